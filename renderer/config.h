@@ -1,0 +1,61 @@
+/* config: every user-settable knob of a render and its default value, in one
+ * place. The command line (main.c) fills a render_config from these defaults;
+ * tests build one the same way. */
+#ifndef PM_CONFIG_H
+#define PM_CONFIG_H
+
+#include <stdint.h>
+
+typedef enum { METHOD_CONVENTIONAL = 0, METHOD_PRECOMPUTED = 1 } config_method;
+typedef enum { DIRECT_PHOTONS = 0, DIRECT_SHADOW_RAYS = 1 } config_direct;
+
+typedef struct {
+    config_method method;     /* radiance estimate: eq. 1 or eq. 2 of the paper */
+    config_direct direct;     /* direct light from the photon map or by shadow rays */
+    uint64_t photons;         /* P_e: photons emitted from the light */
+    uint32_t nn;              /* n: nearest photons per estimate / per precompute */
+    uint32_t width, height;   /* output size in pixels */
+    uint32_t subpixels;       /* S: SxS subpixel grid per pixel, box filtered */
+    uint32_t threads;         /* 0 = all online cores */
+    uint64_t seed;            /* names every random stream */
+    uint32_t rep_every;       /* precomputed: every K-th stored photon is a representative */
+    double normal_cos;        /* precomputed: representative's normal must agree above this cosine */
+    double max_radius;        /* search radius cap in scene units; <= 0: derived from the scene */
+    double max_radius_frac;   /* the derived cap: this fraction of the scene's bounding-box diagonal */
+    uint32_t photon_depth;    /* maximum bounces of a photon path */
+    uint32_t eye_depth;       /* maximum specular bounces of an eye path */
+    int reps_shared;          /* precomputed: 1 = find representatives in the photon tree by flag,
+                                 0 = in their own kd-tree (faster, see README) */
+    int allow_nonfinite;      /* 1: a non-finite pixel is reported but does not fail the run */
+} render_config;
+
+#define CONFIG_DEFAULT_PHOTONS 100000u
+#define CONFIG_DEFAULT_NN 50u
+#define CONFIG_DEFAULT_WIDTH 1024u
+#define CONFIG_DEFAULT_HEIGHT 768u
+#define CONFIG_DEFAULT_SUBPIXELS 2u
+#define CONFIG_DEFAULT_SEED 1u
+#define CONFIG_DEFAULT_REP_EVERY 4u
+#define CONFIG_DEFAULT_NORMAL_COS 0.9
+#define CONFIG_DEFAULT_MAX_RADIUS_FRAC 0.05
+#define CONFIG_DEFAULT_PHOTON_DEPTH 64u
+#define CONFIG_DEFAULT_EYE_DEPTH 16u
+/* Eye paths through glass split into reflected and refracted branches; a
+ * branch whose throughput falls below this is dropped (bias < this). */
+#define CONFIG_EYE_MIN_THROUGHPUT 1e-4
+
+/* Limits that the command line enforces (user errors beyond them exit 2). */
+#define CONFIG_MAX_PHOTONS 2000000000ull
+#define CONFIG_MAX_NN 100000u
+#define CONFIG_MAX_SIDE 16384u
+#define CONFIG_MAX_SUBPIXELS 16u
+#define CONFIG_MAX_THREADS 256u
+#define CONFIG_MAX_DEPTH 1000u
+
+/* The defaults above as a struct; never fails. */
+render_config config_defaults(void);
+/* "conventional"/"precomputed", "photons"/"shadow-rays". */
+const char *config_method_name(config_method m);
+const char *config_direct_name(config_direct d);
+
+#endif

@@ -1,0 +1,584 @@
+/* scene: the .scene parser and the scene model's small queries.
+ *
+ * The format is line-oriented: one statement per line, '#' starts a comment,
+ * fields are "key value..." pairs in any order, each required exactly once.
+ * Statement tokens must be printable ASCII; comments may hold any valid UTF-8.
+ * Every error names file:line:col (1-based, columns in bytes). */
+#include "scene.h"
+
+#include <assert.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SCENE_MAX_TOKENS 48
+#define SCENE_MAX_TOKEN 256
+#define SCENE_MAX_COORD 1e15
+#define SCENE_MAX_POWER 1e35
+#define SCENE_MAX_ITEMS 100000
+#define SCENE_MAX_FILE (64u << 20)
+
+typedef struct {
+    size_t start, len; /* byte offsets into the text */
+    int col;           /* 1-based column */
+} token;
+
+typedef struct {
+    const char *name;
+    const char *text;
+    char *err;
+    size_t errlen;
+    int line;
+    token tok[SCENE_MAX_TOKENS];
+    int ntok;
+    scene *sc;
+    int camera_line, light_line;
+    size_t cap_materials, cap_shapes;
+    int *material_line; /* line each material was defined on */
+} parser;
+
+static int perr(parser *p, int col, const char *fmt, ...)
+{
+    int n = snprintf(p->err, p->errlen, "%s:%d:%d: ", p->name, p->line, col);
+    if (n >= 0 && (size_t)n < p->errlen) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(p->err + n, p->errlen - (size_t)n, fmt, ap);
+        va_end(ap);
+    }
+    return SCENE_ERR_INPUT;
+}
+
+static int tok_is(const parser *p, int i, const char *word)
+{
+    size_t n = strlen(word);
+    return p->tok[i].len == n && memcmp(p->text + p->tok[i].start, word, n) == 0;
+}
+
+/* Copies token i as a C string for messages (cut at 40 bytes). */
+static const char *tok_str(const parser *p, int i, char *buf, size_t cap)
+{
+    size_t n = p->tok[i].len < cap - 1 ? p->tok[i].len : cap - 1;
+    if (n > 40)
+        n = 40;
+    memcpy(buf, p->text + p->tok[i].start, n);
+    buf[n] = '\0';
+    return buf;
+}
+
+/* Length of the valid UTF-8 sequence at s (at most n bytes), 0 if invalid. */
+static size_t utf8_len(const unsigned char *s, size_t n)
+{
+    unsigned c = s[0];
+    size_t len;
+    unsigned min;
+    if (c < 0x80)
+        return 1;
+    if (c >= 0xc2 && c <= 0xdf) { len = 2; min = 0x80; }
+    else if (c >= 0xe0 && c <= 0xef) { len = 3; min = 0x800; }
+    else if (c >= 0xf0 && c <= 0xf4) { len = 4; min = 0x10000; }
+    else return 0;
+    if (n < len)
+        return 0;
+    unsigned cp = c & (0x7f >> len);
+    for (size_t i = 1; i < len; i++) {
+        if ((s[i] & 0xc0) != 0x80)
+            return 0;
+        cp = (cp << 6) | (s[i] & 0x3f);
+    }
+    if (cp < min || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff))
+        return 0;
+    return len;
+}
+
+/* Splits one line (without its '\n') into tokens, validating every byte. */
+static int tokenize(parser *p, size_t start, size_t end)
+{
+    const unsigned char *t = (const unsigned char *)p->text;
+    p->ntok = 0;
+    size_t i = start;
+    while (i < end) {
+        unsigned c = t[i];
+        int col = (int)(i - start) + 1;
+        if (c == '#') { /* comment: any valid UTF-8, no control bytes */
+            for (size_t j = i + 1; j < end;) {
+                unsigned d = t[j];
+                if ((d < 0x20 && d != '\t' && d != '\r') || d == 0x7f)
+                    return perr(p, (int)(j - start) + 1, "control byte 0x%02x in comment", d);
+                size_t l = utf8_len(t + j, end - j);
+                if (l == 0)
+                    return perr(p, (int)(j - start) + 1, "invalid UTF-8 byte 0x%02x in comment", d);
+                j += l;
+            }
+            break;
+        }
+        if (c == ' ' || c == '\t' || c == '\r') {
+            i++;
+            continue;
+        }
+        if (c < 0x20 || c >= 0x7f) {
+            if (c >= 0x80)
+                return perr(p, col, "non-ASCII byte 0x%02x outside a comment", c);
+            return perr(p, col, "control byte 0x%02x (binary data?)", c);
+        }
+        size_t s = i;
+        while (i < end && t[i] > 0x20 && t[i] < 0x7f && t[i] != '#')
+            i++;
+        if (i - s > SCENE_MAX_TOKEN)
+            return perr(p, col, "token longer than %d bytes", SCENE_MAX_TOKEN);
+        if (p->ntok == SCENE_MAX_TOKENS)
+            return perr(p, col, "too many fields on one line (at most %d)", SCENE_MAX_TOKENS);
+        p->tok[p->ntok].start = s;
+        p->tok[p->ntok].len = i - s;
+        p->tok[p->ntok].col = col;
+        p->ntok++;
+    }
+    return SCENE_OK;
+}
+
+/* Parses token i as a finite number in [lo, hi]. */
+static int parse_number(parser *p, int i, double lo, double hi, double *out)
+{
+    char buf[SCENE_MAX_TOKEN + 1];
+    const token *tk = &p->tok[i];
+    memcpy(buf, p->text + tk->start, tk->len);
+    buf[tk->len] = '\0';
+    char c0 = buf[0];
+    int looks_numeric = (c0 >= '0' && c0 <= '9') || c0 == '-' || c0 == '+' || c0 == '.';
+    char *end = NULL;
+    errno = 0;
+    double v = looks_numeric ? strtod(buf, &end) : 0.0;
+    if (!looks_numeric || end == buf || *end != '\0')
+        return perr(p, tk->col, "expected a number, got '%s'", tok_str(p, i, buf, sizeof buf));
+    if (!isfinite(v) || (errno == ERANGE && fabs(v) > 1.0))
+        return perr(p, tk->col, "number '%s' is not finite", buf);
+    if (v < lo || v > hi)
+        return perr(p, tk->col, "%s is out of range [%g, %g]", buf, lo, hi);
+    *out = v;
+    return SCENE_OK;
+}
+
+typedef enum { F_NUM, F_VEC, F_NAME } field_kind;
+
+typedef struct {
+    const char *key;
+    field_kind kind;
+    double lo, hi;
+    /* filled by parse_fields */
+    int seen;
+    int col;  /* column of the first value */
+    vec3 v;   /* F_VEC; F_NUM in v.x */
+    int name; /* F_NAME: token index */
+} field;
+
+/* Parses "key value..." pairs from token `first` on into fields. */
+static int parse_fields(parser *p, int first, field *f, int nf, const char *stmt)
+{
+    char buf[64];
+    for (int i = first; i < p->ntok;) {
+        int k;
+        for (k = 0; k < nf; k++)
+            if (tok_is(p, i, f[k].key))
+                break;
+        if (k == nf) {
+            char msg[256] = "";
+            for (int j = 0; j < nf; j++) {
+                strncat(msg, j ? ", " : "", sizeof msg - strlen(msg) - 1);
+                strncat(msg, f[j].key, sizeof msg - strlen(msg) - 1);
+            }
+            return perr(p, p->tok[i].col, "unknown %s field '%s' (expected %s)", stmt,
+                        tok_str(p, i, buf, sizeof buf), msg);
+        }
+        if (f[k].seen)
+            return perr(p, p->tok[i].col, "%s field '%s' given twice", stmt, f[k].key);
+        int arity = f[k].kind == F_VEC ? 3 : 1;
+        if (i + arity >= p->ntok) {
+            int col = (int)(p->tok[p->ntok - 1].col + p->tok[p->ntok - 1].len);
+            return perr(p, col, "%s field '%s' needs %d value%s", stmt, f[k].key, arity,
+                        arity > 1 ? "s" : "");
+        }
+        f[k].seen = 1;
+        f[k].col = p->tok[i + 1].col;
+        if (f[k].kind == F_NAME) {
+            f[k].name = i + 1;
+        } else {
+            double c[3] = {0, 0, 0};
+            for (int j = 0; j < arity; j++) {
+                int rc = parse_number(p, i + 1 + j, f[k].lo, f[k].hi, &c[j]);
+                if (rc)
+                    return rc;
+            }
+            f[k].v = vec_make(c[0], c[1], c[2]);
+        }
+        i += 1 + arity;
+    }
+    for (int k = 0; k < nf; k++)
+        if (!f[k].seen)
+            return perr(p, p->tok[0].col, "%s is missing field '%s'", stmt, f[k].key);
+    return SCENE_OK;
+}
+
+static int is_name(const parser *p, int i)
+{
+    const char *s = p->text + p->tok[i].start;
+    size_t n = p->tok[i].len;
+    if (n == 0 || n >= MATERIAL_NAME_MAX)
+        return 0;
+    if (!((s[0] >= 'a' && s[0] <= 'z') || (s[0] >= 'A' && s[0] <= 'Z') || s[0] == '_'))
+        return 0;
+    for (size_t j = 1; j < n; j++) {
+        char c = s[j];
+        if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+              c == '-'))
+            return 0;
+    }
+    return 1;
+}
+
+static int find_material(const parser *p, int i)
+{
+    for (size_t m = 0; m < p->sc->nmaterials; m++) {
+        if (tok_is(p, i, p->sc->materials[m].name))
+            return (int)m;
+    }
+    return -1;
+}
+
+static int parse_camera(parser *p)
+{
+    field f[] = {{"position", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
+                 {"look_at", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
+                 {"up", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
+                 {"fov", F_NUM, 0.01, 179.0, 0, 0, {0, 0, 0}, 0}};
+    if (p->camera_line)
+        return perr(p, p->tok[0].col, "second camera (the first is on line %d)", p->camera_line);
+    int rc = parse_fields(p, 1, f, 4, "camera");
+    if (rc)
+        return rc;
+    vec3 dir = vec_sub(f[1].v, f[0].v);
+    if (vec_len(dir) <= 1e-12 * fmax(1.0, vec_len(f[0].v)))
+        return perr(p, f[1].col, "camera look_at equals its position");
+    if (vec_len(f[2].v) == 0.0)
+        return perr(p, f[2].col, "camera up vector is zero");
+    vec3 side = vec_cross(vec_norm(dir), vec_norm(f[2].v));
+    if (vec_len(side) < 1e-6)
+        return perr(p, f[2].col, "camera up vector is parallel to the view direction");
+    p->sc->camera.position = f[0].v;
+    p->sc->camera.look_at = f[1].v;
+    p->sc->camera.up = f[2].v;
+    p->sc->camera.hfov_deg = f[3].v.x;
+    p->camera_line = p->line;
+    return SCENE_OK;
+}
+
+static int parse_light(parser *p)
+{
+    field f[] = {{"position", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
+                 {"power", F_VEC, 0.0, SCENE_MAX_POWER, 0, 0, {0, 0, 0}, 0}};
+    if (p->light_line)
+        return perr(p, p->tok[0].col, "second light (one point light is supported; the first is on line %d)",
+                    p->light_line);
+    if (p->ntok < 2 || !tok_is(p, 1, "point"))
+        return perr(p, p->ntok < 2 ? (int)(p->tok[0].col + p->tok[0].len) : p->tok[1].col,
+                    "expected 'light point ...' (the only light type)");
+    int rc = parse_fields(p, 2, f, 2, "light");
+    if (rc)
+        return rc;
+    p->sc->light.position = f[0].v;
+    p->sc->light.power = f[1].v;
+    p->light_line = p->line;
+    return SCENE_OK;
+}
+
+static int grow(void **arr, size_t *cap, size_t n, size_t elem)
+{
+    if (n < *cap)
+        return 0;
+    size_t nc = *cap ? *cap * 2 : 8;
+    void *q = realloc(*arr, nc * elem);
+    if (!q)
+        return -1;
+    *arr = q;
+    *cap = nc;
+    return 0;
+}
+
+static int parse_material(parser *p)
+{
+    char buf[64];
+    scene *sc = p->sc;
+    if (p->ntok < 3)
+        return perr(p, (int)(p->tok[p->ntok - 1].col + p->tok[p->ntok - 1].len),
+                    "expected 'material NAME lambert|mirror|glass ...'");
+    if (!is_name(p, 1))
+        return perr(p, p->tok[1].col, "bad material name '%s' (letters, digits, _ and -, at most %d)",
+                    tok_str(p, 1, buf, sizeof buf), MATERIAL_NAME_MAX - 1);
+    int prev = find_material(p, 1);
+    if (prev >= 0)
+        return perr(p, p->tok[1].col, "material '%s' already defined on line %d", tok_str(p, 1, buf, sizeof buf),
+                    p->material_line[prev]);
+    if (sc->nmaterials >= SCENE_MAX_ITEMS)
+        return perr(p, p->tok[0].col, "too many materials (at most %d)", SCENE_MAX_ITEMS);
+    material m;
+    memset(&m, 0, sizeof m);
+    m.color = vec_make(1, 1, 1);
+    m.ior = 1.0;
+    int rc;
+    if (tok_is(p, 2, "lambert")) {
+        field f[] = {{"rho", F_VEC, 0.0, 1.0, 0, 0, {0, 0, 0}, 0}};
+        if ((rc = parse_fields(p, 3, f, 1, "lambert material")))
+            return rc;
+        m.kind = MAT_LAMBERT;
+        m.color = f[0].v;
+    } else if (tok_is(p, 2, "mirror")) {
+        field f[] = {{"reflectance", F_VEC, 0.0, 1.0, 0, 0, {0, 0, 0}, 0}};
+        if ((rc = parse_fields(p, 3, f, 1, "mirror material")))
+            return rc;
+        m.kind = MAT_MIRROR;
+        m.color = f[0].v;
+    } else if (tok_is(p, 2, "glass")) {
+        field f[] = {{"ior", F_NUM, 1.0, 10.0, 0, 0, {0, 0, 0}, 0}};
+        if ((rc = parse_fields(p, 3, f, 1, "glass material")))
+            return rc;
+        m.kind = MAT_GLASS;
+        m.ior = f[0].v.x;
+    } else {
+        return perr(p, p->tok[2].col, "unknown material kind '%s' (expected lambert, mirror or glass)",
+                    tok_str(p, 2, buf, sizeof buf));
+    }
+    memcpy(m.name, p->text + p->tok[1].start, p->tok[1].len);
+    m.name[p->tok[1].len] = '\0';
+    size_t cap = p->cap_materials;
+    if (grow((void **)&sc->materials, &p->cap_materials, sc->nmaterials, sizeof(material)))
+        return SCENE_ERR_RUNTIME;
+    if (p->cap_materials != cap) {
+        int *q = realloc(p->material_line, p->cap_materials * sizeof(int));
+        if (!q)
+            return SCENE_ERR_RUNTIME;
+        p->material_line = q;
+    }
+    p->material_line[sc->nmaterials] = p->line;
+    sc->materials[sc->nmaterials++] = m;
+    return SCENE_OK;
+}
+
+static int resolve_material(parser *p, const field *f, int *out)
+{
+    char buf[64];
+    int m = find_material(p, f->name);
+    if (m < 0)
+        return perr(p, f->col, "unknown material '%s'%s", tok_str(p, f->name, buf, sizeof buf),
+                    p->sc->nmaterials ? "" : " (no material is defined above this line)");
+    *out = m;
+    return SCENE_OK;
+}
+
+static int add_shape(parser *p, shape s)
+{
+    if (p->sc->nshapes >= SCENE_MAX_ITEMS)
+        return perr(p, p->tok[0].col, "too many shapes (at most %d)", SCENE_MAX_ITEMS);
+    if (grow((void **)&p->sc->shapes, &p->cap_shapes, p->sc->nshapes, sizeof(shape)))
+        return SCENE_ERR_RUNTIME;
+    p->sc->shapes[p->sc->nshapes++] = s;
+    return SCENE_OK;
+}
+
+static int parse_sphere(parser *p)
+{
+    field f[] = {{"center", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
+                 {"radius", F_NUM, 0.0, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
+                 {"material", F_NAME, 0, 0, 0, 0, {0, 0, 0}, 0}};
+    int rc = parse_fields(p, 1, f, 3, "sphere");
+    if (rc)
+        return rc;
+    if (!(f[1].v.x > 0.0))
+        return perr(p, f[1].col, "sphere radius must be positive");
+    int m;
+    if ((rc = resolve_material(p, &f[2], &m)))
+        return rc;
+    return add_shape(p, shape_sphere(f[0].v, f[1].v.x, m));
+}
+
+static int parse_rect(parser *p)
+{
+    field f[] = {{"corner", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
+                 {"edge1", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
+                 {"edge2", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
+                 {"material", F_NAME, 0, 0, 0, 0, {0, 0, 0}, 0}};
+    int rc = parse_fields(p, 1, f, 4, "rect");
+    if (rc)
+        return rc;
+    double l1 = vec_len(f[1].v), l2 = vec_len(f[2].v);
+    if (!(l1 > 0.0))
+        return perr(p, f[1].col, "rect edge1 is zero");
+    if (!(l2 > 0.0))
+        return perr(p, f[2].col, "rect edge2 is zero");
+    if (fabs(vec_dot(f[1].v, f[2].v)) > 1e-9 * l1 * l2)
+        return perr(p, f[2].col, "rect edges are not perpendicular");
+    int m;
+    if ((rc = resolve_material(p, &f[3], &m)))
+        return rc;
+    return add_shape(p, shape_rect(f[0].v, f[1].v, f[2].v, m));
+}
+
+static int parse_line(parser *p)
+{
+    char buf[64];
+    if (p->ntok == 0)
+        return SCENE_OK;
+    if (tok_is(p, 0, "camera"))
+        return parse_camera(p);
+    if (tok_is(p, 0, "light"))
+        return parse_light(p);
+    if (tok_is(p, 0, "material"))
+        return parse_material(p);
+    if (tok_is(p, 0, "sphere"))
+        return parse_sphere(p);
+    if (tok_is(p, 0, "rect"))
+        return parse_rect(p);
+    return perr(p, p->tok[0].col, "unknown keyword '%s' (expected camera, light, material, sphere or rect)",
+                tok_str(p, 0, buf, sizeof buf));
+}
+
+static void compute_bounds(scene *sc)
+{
+    vec3 lo = sc->light.position, hi = lo;
+    for (size_t i = 0; i < sc->nshapes; i++) {
+        vec3 a, b;
+        shape_bounds(&sc->shapes[i], &a, &b);
+        lo = vec_make(fmin(lo.x, a.x), fmin(lo.y, a.y), fmin(lo.z, a.z));
+        hi = vec_make(fmax(hi.x, b.x), fmax(hi.y, b.y), fmax(hi.z, b.z));
+    }
+    sc->bounds_lo = lo;
+    sc->bounds_hi = hi;
+    sc->scale = vec_len(vec_sub(hi, lo));
+}
+
+int scene_parse_buffer(const char *name, const char *text, size_t len, scene **out, char *err, size_t errlen)
+{
+    assert(name && out && err && errlen > 0);
+    *out = NULL;
+    err[0] = '\0';
+    parser p;
+    memset(&p, 0, sizeof p);
+    p.name = name;
+    p.text = text;
+    p.err = err;
+    p.errlen = errlen;
+    p.sc = calloc(1, sizeof(scene));
+    if (!p.sc) {
+        snprintf(err, errlen, "%s: out of memory", name);
+        return SCENE_ERR_RUNTIME;
+    }
+    int rc = SCENE_OK;
+    size_t pos = 0;
+    p.line = 0;
+    while (pos < len && rc == SCENE_OK) {
+        const char *nl = memchr(text + pos, '\n', len - pos);
+        size_t end = nl ? (size_t)(nl - text) : len;
+        p.line++;
+        rc = tokenize(&p, pos, end);
+        if (rc == SCENE_OK)
+            rc = parse_line(&p);
+        pos = end + 1;
+    }
+    if (rc == SCENE_OK) {
+        if (p.line == 0)
+            p.line = 1;
+        if (!p.camera_line)
+            rc = perr(&p, 1, "%s: no camera", p.line == 1 && len == 0 ? "empty scene" : "end of scene");
+        else if (!p.light_line)
+            rc = perr(&p, 1, "end of scene: no light");
+        else if (p.sc->nshapes == 0)
+            rc = perr(&p, 1, "end of scene: no shapes");
+    }
+    if (rc == SCENE_ERR_RUNTIME)
+        snprintf(err, errlen, "%s: out of memory while parsing", name);
+    free(p.material_line);
+    if (rc != SCENE_OK) {
+        scene_free(p.sc);
+        return rc;
+    }
+    compute_bounds(p.sc);
+    *out = p.sc;
+    return SCENE_OK;
+}
+
+int scene_load(const char *path, scene **out, char *err, size_t errlen)
+{
+    *out = NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        return SCENE_ERR_RUNTIME;
+    }
+    size_t cap = 1 << 16, len = 0;
+    char *buf = malloc(cap);
+    int rc = SCENE_OK;
+    while (buf) {
+        if (len == cap) {
+            if (cap >= SCENE_MAX_FILE) {
+                snprintf(err, errlen, "%s:1:1: file larger than %u MiB; not a scene", path, SCENE_MAX_FILE >> 20);
+                rc = SCENE_ERR_INPUT;
+                break;
+            }
+            char *q = realloc(buf, cap * 2);
+            if (!q) {
+                free(buf);
+                buf = NULL;
+                break;
+            }
+            buf = q;
+            cap *= 2;
+        }
+        size_t n = fread(buf + len, 1, cap - len, f);
+        len += n;
+        if (n == 0) {
+            if (ferror(f)) {
+                snprintf(err, errlen, "%s: read error: %s", path, strerror(errno));
+                rc = SCENE_ERR_RUNTIME;
+            }
+            break;
+        }
+    }
+    fclose(f);
+    if (!buf) {
+        snprintf(err, errlen, "%s: out of memory reading the file", path);
+        return SCENE_ERR_RUNTIME;
+    }
+    if (rc == SCENE_OK)
+        rc = scene_parse_buffer(path, buf, len, out, err, errlen);
+    free(buf);
+    return rc;
+}
+
+void scene_free(scene *s)
+{
+    if (!s)
+        return;
+    free(s->materials);
+    free(s->shapes);
+    free(s);
+}
+
+int scene_intersect(const scene *s, const ray *r, double tmin, double tmax, double *t)
+{
+    int best = -1;
+    double tt;
+    for (size_t i = 0; i < s->nshapes; i++) {
+        if (shape_intersect(&s->shapes[i], r, tmin, tmax, &tt)) {
+            tmax = tt;
+            best = (int)i;
+        }
+    }
+    if (best >= 0)
+        *t = tmax;
+    return best;
+}
+
+double scene_epsilon(const scene *s)
+{
+    return 1e-7 * s->scale;
+}

@@ -1,0 +1,58 @@
+/* stats: clock and JSON writer. */
+#include "stats.h"
+
+#include <time.h>
+
+int64_t stats_now_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (int64_t)ts.tv_sec * 1000000000LL + ts.tv_nsec;
+}
+
+static void json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(f, "\\%c", c);
+        else if (c < 0x20)
+            fprintf(f, "\\u%04x", c);
+        else
+            fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+int stats_write_json(FILE *f, const char *scene_path, const render_config *cfg, unsigned threads,
+                     const stats_run *st)
+{
+    fprintf(f, "{\n  \"scene\": ");
+    json_string(f, scene_path);
+    fprintf(f, ",\n  \"method\": \"%s\",\n", config_method_name(cfg->method));
+    fprintf(f, "  \"direct\": \"%s\",\n", config_direct_name(cfg->direct));
+    fprintf(f, "  \"photons_emitted\": %llu,\n", (unsigned long long)st->photons_emitted);
+    fprintf(f, "  \"photons_stored\": %llu,\n", (unsigned long long)st->photons_stored);
+    fprintf(f, "  \"photon_paths_truncated\": %llu,\n", (unsigned long long)st->photon_paths_truncated);
+    fprintf(f, "  \"photons_escaped\": %llu,\n", (unsigned long long)st->photons_escaped);
+    fprintf(f, "  \"representatives\": %llu,\n", (unsigned long long)st->representatives);
+    fprintf(f, "  \"rep_every\": %u,\n", cfg->rep_every);
+    fprintf(f, "  \"normal_cos\": %.17g,\n", cfg->normal_cos);
+    fprintf(f, "  \"nn\": %u,\n", cfg->nn);
+    fprintf(f, "  \"max_radius\": %.17g,\n", st->max_radius);
+    fprintf(f, "  \"width\": %u,\n  \"height\": %u,\n", cfg->width, cfg->height);
+    fprintf(f, "  \"samples_per_pixel\": %u,\n", cfg->subpixels * cfg->subpixels);
+    fprintf(f, "  \"threads\": %u,\n", threads);
+    fprintf(f, "  \"seed\": %llu,\n", (unsigned long long)cfg->seed);
+    fprintf(f, "  \"time_s\": {\"trace\": %.6f, \"build\": %.6f, \"precompute\": %.6f, \"render\": %.6f, "
+               "\"total\": %.6f},\n",
+            st->trace, st->build, st->precompute, st->render, st->total);
+    fprintf(f, "  \"samples\": %llu,\n", (unsigned long long)st->samples);
+    fprintf(f, "  \"eye_depth_limit_hits\": %llu,\n", (unsigned long long)st->eye_depth_limit_hits);
+    fprintf(f, "  \"empty_estimates\": %llu,\n", (unsigned long long)st->empty_estimates);
+    fprintf(f, "  \"bytes_photon_map\": %llu,\n", (unsigned long long)st->bytes_photon_map);
+    fprintf(f, "  \"bytes_representatives\": %llu,\n", (unsigned long long)st->bytes_representatives);
+    fprintf(f, "  \"nonfinite_pixels\": %llu\n}\n", (unsigned long long)st->nonfinite_pixels);
+    return ferror(f) ? -1 : 0;
+}

@@ -1,0 +1,33 @@
+/* stats: the monotonic clock, what a render measured (times per phase and
+ * counts), and its JSON form. */
+#ifndef PM_STATS_H
+#define PM_STATS_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "config.h"
+
+typedef struct {
+    /* seconds, monotonic clock */
+    double trace, build, precompute, render, total;
+    /* photon pass */
+    uint64_t photons_emitted, photons_stored, photon_paths_truncated, photons_escaped;
+    uint64_t representatives;
+    /* eye pass */
+    uint64_t samples;             /* eye rays from the camera */
+    uint64_t eye_depth_limit_hits;/* specular chains cut at the depth limit */
+    uint64_t empty_estimates;     /* diffuse hits with no photon / no agreeing representative in range */
+    uint64_t nonfinite_pixels;
+    double max_radius;            /* search radius cap used, scene units */
+    uint64_t bytes_photon_map;    /* photon map (tree + payload) */
+    uint64_t bytes_representatives;
+} stats_run;
+
+/* Monotonic time in nanoseconds. */
+int64_t stats_now_ns(void);
+/* Writes the run as one JSON object to f. Returns 0, or -1 on a write error. */
+int stats_write_json(FILE *f, const char *scene_path, const render_config *cfg, unsigned threads,
+                     const stats_run *st);
+
+#endif

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages photonmap needs, only those missing.
+# Idempotent; `make` runs it once (stamp: build/.deps-stamp).
+set -euo pipefail
+
+PACKAGES=(
+  build-essential clang pkg-config
+  libopenexr-dev libpng-dev         # EXR via OpenEXR's C API, PNG previews
+  openimageio-tools                 # idiff, oiiotool: image diffs and composites
+  povray                            # POV-Ray 3.7: the independent reference
+  gnuplot-nox                       # plots
+  libnanoflann-dev                  # benchmark comparison (C++ header-only)
+  libclang-rt-14-dev                # sanitizer and libFuzzer runtimes for clang
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then SUDO=sudo; else
+    echo "install-deps: need root to install: ${missing[*]}" >&2; exit 1
+  fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# cli.test.sh: the command line as users and scripts see it: outputs, stats
+# keys, exit codes and messages, atomic outputs, determinism across threads.
+set -u
+cd "$(dirname "$0")/.."
+. tests/lib.sh
+
+SMALL=(--photons 20000 --nn 20 --width 64 --height 48 --quiet)
+
+render_ok() {
+  $PM render scenes/cornell.scene "${SMALL[@]}" -o "$TMP/a.exr" --png "$TMP/a.png" --stats "$TMP/a.json" &&
+  [ -s "$TMP/a.exr" ] && [ -s "$TMP/a.png" ] && [ -s "$TMP/a.json" ] &&
+  ! ls "$TMP"/*.tmp.* 2>/dev/null
+}
+check "render writes exr, png and stats" render_ok
+
+stats_keys() {
+  for k in method photons_emitted photons_stored nn width height samples_per_pixel threads seed \
+           time_s trace build render total nonfinite_pixels representatives precompute; do
+    grep -q "\"$k\"" "$TMP/a.json" || { echo "missing key $k"; return 1; }
+  done
+  grep -q '"samples_per_pixel": 4' "$TMP/a.json" && grep -q '"photons_emitted": 20000' "$TMP/a.json"
+}
+check "stats has the documented keys" stats_keys
+
+threads_identical() {
+  $PM render scenes/cornell.scene "${SMALL[@]}" --threads 1 -o "$TMP/t1.exr" &&
+  $PM render scenes/cornell.scene "${SMALL[@]}" --threads 2 -o "$TMP/t2.exr" &&
+  cmp "$TMP/t1.exr" "$TMP/t2.exr"
+}
+check "exr bit-identical for 1 and 2 threads" threads_identical
+
+precomputed_ok() {
+  $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed --stats "$TMP/p.json" &&
+  grep -q '"method": "precomputed"' "$TMP/p.json" && grep -qE '"representatives": [1-9]' "$TMP/p.json"
+}
+check "precomputed method runs and reports representatives" precomputed_ok
+
+check "no arguments: usage, exit 2" expect_exit 2 "usage" $PM
+check "unknown command: exit 2" expect_exit 2 "unknown command 'draw'" $PM draw
+check "--nn 0: exit 2" expect_exit 2 "--nn: expected an integer in \[1," $PM render scenes/cornell.scene --nn 0
+check "--photons -5: exit 2" expect_exit 2 "--photons: expected an integer" $PM render scenes/cornell.scene --photons -5
+check "--width 1e9: exit 2" expect_exit 2 "--width: expected an integer" $PM render scenes/cornell.scene --width 1e9
+check "--width 99999: exit 2" expect_exit 2 "--width: expected an integer in \[1, 16384\]" $PM render scenes/cornell.scene --width 99999
+check "unknown flag: exit 2" expect_exit 2 "unknown option '--fast'" $PM render scenes/cornell.scene --fast
+check "flag without value: exit 2" expect_exit 2 "--nn needs a value" $PM render scenes/cornell.scene --nn
+check "bad method: exit 2" expect_exit 2 "--method: expected conventional or precomputed" $PM render scenes/cornell.scene --method fast
+check "missing scene file: exit 1 naming it" expect_exit 1 "nope.scene: cannot open" $PM render nope.scene
+
+bad_scene() {
+  printf 'camera position 0 1 2 look_at 0 1 0 up 0 1 0 fov 60\nlight point position 0 1 0 power 1 1 1\nmaterial white lambert rho 1 1 1\nsphere center 0 0 0 radius 1 material whte\n' > "$TMP/x.scene"
+  expect_exit 2 "^$TMP/x.scene:4:39: unknown material 'whte'" $PM render "$TMP/x.scene" -o "$TMP/x.exr" &&
+  [ ! -e "$TMP/x.exr" ]
+}
+check "scene error: file:line:col, exit 2, no output" bad_scene
+
+unwritable() {
+  expect_exit 1 "/nonexistent-dir/out.exr: cannot write" $PM render scenes/cornell.scene "${SMALL[@]}" -o /nonexistent-dir/out.exr
+}
+check "unwritable output: exit 1 naming the path, before rendering" unwritable
+
+killed_keeps_old() {
+  echo "old" > "$TMP/keep.exr"
+  $PM render scenes/cornell.scene --photons 200000 --nn 100 --width 512 --height 384 --threads 1 --quiet \
+      -o "$TMP/keep.exr" &
+  local pid=$!
+  sleep 1
+  kill -9 "$pid"; wait "$pid" 2>/dev/null
+  [ "$(cat "$TMP/keep.exr")" = "old" ]
+}
+check "a killed run leaves an existing output untouched" killed_keeps_old
+
+finish

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# The test runner behind `make test`: the unit tests, the same unit tests
+# under AddressSanitizer + UndefinedBehaviorSanitizer, then every
+# tests/*.test.sh script. Each part prints "N passed, N failed"; this script
+# adds them up, prints the total last, and exits non-zero on any failure.
+set -u
+cd "$(dirname "$0")/.."
+
+total_pass=0
+total_fail=0
+
+run_part() { # name, command...
+  local name=$1; shift
+  echo "== $name"
+  local out rc
+  out=$("$@" 2>&1); rc=$?
+  printf '%s\n' "$out" | grep -v '^ok ' || true
+  local line p f
+  line=$(printf '%s\n' "$out" | grep -E '^[0-9]+ passed, [0-9]+ failed' | tail -n 1)
+  if [ -z "$line" ]; then
+    echo "   $name: no result line (exit $rc): counted as 1 failure"
+    total_fail=$((total_fail + 1)); return
+  fi
+  p=${line%% passed*}; f=${line#*, }; f=${f%% failed*}
+  if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
+    echo "   $name: exited $rc with no failed test: counted as 1 failure"
+    f=1
+  fi
+  total_pass=$((total_pass + p)); total_fail=$((total_fail + f))
+}
+
+run_part "unit tests" build/unit-tests
+ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0} \
+UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
+  run_part "unit tests (ASan+UBSan)" build/unit-tests-san
+for t in tests/*.test.sh; do
+  [ -e "$t" ] || continue
+  run_part "$t" bash "$t"
+done
+
+echo
+echo "$total_pass passed, $total_fail failed"
+[ "$total_fail" -eq 0 ]

@@ -1,0 +1,48 @@
+/* main: runs every unit test of tests.h (or those named on the command
+ * line), prints each result and "N passed, N failed"; exit 1 on failure. */
+#include <stdio.h>
+#include <string.h>
+
+#include "check.h"
+#include "tests.h"
+
+static check_state current;
+
+check_state *check_current(void)
+{
+    return &current;
+}
+
+typedef struct {
+    const char *name;
+    void (*fn)(void);
+} test_entry;
+
+#define TEST_ENTRY(name) {#name, test_##name},
+static const test_entry all_tests[] = {TEST_LIST(TEST_ENTRY)};
+
+int main(int argc, char **argv)
+{
+    int passed = 0, failed = 0;
+    for (size_t i = 0; i < sizeof all_tests / sizeof all_tests[0]; i++) {
+        if (argc > 1) {
+            int wanted = 0;
+            for (int a = 1; a < argc; a++)
+                wanted |= strcmp(argv[a], all_tests[i].name) == 0;
+            if (!wanted)
+                continue;
+        }
+        current.failures = 0;
+        all_tests[i].fn();
+        if (current.failures == 0) {
+            passed++;
+            printf("ok   %s\n", all_tests[i].name);
+        } else {
+            failed++;
+            printf("FAIL %s (%d checks)\n", all_tests[i].name, current.failures);
+        }
+        fflush(stdout);
+    }
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed ? 1 : 0;
+}

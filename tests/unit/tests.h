@@ -1,0 +1,27 @@
+/* tests: the list of unit tests, one X(name) per test function. Each file
+ * tests/unit/test_*.c defines the functions it lists here. */
+#ifndef PM_TESTS_H
+#define PM_TESTS_H
+
+#define TEST_LIST(X)                   \
+    X(kdtree_matches_brute_force)      \
+    X(kdtree_edge_cases)               \
+    X(kdtree_nearest_if)               \
+    X(sphere_hits)                     \
+    X(rect_hits)                       \
+    X(fresnel_energy_and_tir)          \
+    X(refract_snell)                   \
+    X(cosine_sampling_mean)            \
+    X(rng_streams)                     \
+    X(scene_parses_cornell)            \
+    X(scene_errors)                    \
+    X(photon_power_closed_box)         \
+    X(furnace_sphere)                  \
+    X(diffuse_plane_matches_analytic)  \
+    X(cornell_finite_and_deterministic)\
+    X(exr_round_trip)
+
+#define TEST_DECLARE(name) void test_##name(void);
+TEST_LIST(TEST_DECLARE)
+
+#endif
