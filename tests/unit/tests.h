@@ -19,7 +19,11 @@
     X(furnace_sphere)                  \
     X(diffuse_plane_matches_analytic)  \
     X(cornell_finite_and_deterministic)\
-    X(exr_round_trip)
+    X(exr_round_trip)                  \
+    X(precomputed_equals_conventional_on_uniform_plane) \
+    X(precomputed_converges_on_cornell) \
+    X(precomputed_normal_test_at_corner) \
+    X(precomputed_extremes)
 
 #define TEST_DECLARE(name) void test_##name(void);
 TEST_LIST(TEST_DECLARE)
