@@ -51,6 +51,25 @@ static int exr_fail(exr_result_t rc, const char *path, const char *what, char *e
     return -1;
 }
 
+/* OpenEXRCore 3.1 stores a ZIP chunk compressed even when the compressed size
+ * equals the raw size exactly, but every reader takes a chunk whose stored
+ * size equals its raw size as uncompressed: that chunk reads back as garbage
+ * (NaN, 1e38; found by the stability tests on a 64x48 Cornell render, rows
+ * 16-31). This wraps the library's compressor and stores such a chunk raw. */
+typedef struct {
+    exr_result_t (*compress)(exr_encode_pipeline_t *);
+} exr_compress_guard;
+
+static exr_result_t exr_compress_unambiguous(exr_encode_pipeline_t *enc)
+{
+    const exr_compress_guard *g = enc->encoding_user_data;
+    exr_result_t rc = g->compress(enc);
+    if (rc == EXR_ERR_SUCCESS && enc->compressed_bytes == enc->packed_bytes &&
+        enc->compressed_buffer != enc->packed_buffer && enc->compressed_alloc_size >= enc->packed_bytes)
+        memcpy(enc->compressed_buffer, enc->packed_buffer, enc->packed_bytes);
+    return rc;
+}
+
 /* Writes the EXR to `file` (the temporary name). */
 static int exr_write_to(const image *im, const char *file, const char *path, char *err, size_t errlen)
 {
@@ -66,6 +85,7 @@ static int exr_write_to(const image *im, const char *file, const char *path, cha
     memset(&enc, 0, sizeof enc);
     int enc_init = 0;
     float *planes = NULL;
+    exr_compress_guard guard = {NULL};
     if ((rc = exr_add_part(ctx, "rgb", EXR_STORAGE_SCANLINE, &part)) ||
         (rc = exr_initialize_required_attr_simple(ctx, part, (int32_t)im->width, (int32_t)im->height,
                                                   EXR_COMPRESSION_ZIP)) ||
@@ -122,6 +142,11 @@ static int exr_write_to(const image *im, const char *file, const char *path, cha
                 goto done;
             }
             enc_init = 1;
+            if (enc.compress_fn) { /* see exr_compress_unambiguous */
+                guard.compress = enc.compress_fn;
+                enc.encoding_user_data = &guard;
+                enc.compress_fn = exr_compress_unambiguous;
+            }
         }
         if ((rc = exr_encoding_run(ctx, part, &enc))) {
             exr_fail(rc, path, "cannot write pixels", err, errlen);

@@ -258,7 +258,9 @@ static int parse_camera(parser *p)
     if (rc)
         return rc;
     vec3 dir = vec_sub(f[1].v, f[0].v);
-    if (vec_len(dir) <= 1e-12 * fmax(1.0, vec_len(f[0].v)))
+    /* relative to the position only, not to 1: a whole scene scaled by 1e-15
+     * was rejected here (tests/unit/test_stability.c) */
+    if (vec_len(dir) <= 1e-12 * vec_len(f[0].v))
         return perr(p, f[1].col, "camera look_at equals its position");
     if (vec_len(f[2].v) == 0.0)
         return perr(p, f[2].col, "camera up vector is zero");

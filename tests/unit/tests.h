@@ -23,7 +23,18 @@
     X(precomputed_equals_conventional_on_uniform_plane) \
     X(precomputed_converges_on_cornell) \
     X(precomputed_normal_test_at_corner) \
-    X(precomputed_extremes)
+    X(precomputed_extremes)            \
+    X(stability_nn_one_and_at_stored_count) \
+    X(stability_coincident_photons)    \
+    X(stability_few_or_no_photons_in_range) \
+    X(stability_no_agreeing_representative) \
+    X(stability_photon_counts)         \
+    X(stability_light_power_extremes)  \
+    X(stability_scene_scale)           \
+    X(stability_grazing_rays)          \
+    X(stability_camera_inside_glass)   \
+    X(stability_tir_depth_limit)       \
+    X(stability_exr_round_trip_of_renders)
 
 #define TEST_DECLARE(name) void test_##name(void);
 TEST_LIST(TEST_DECLARE)
