@@ -1,0 +1,346 @@
+/* bench: the performance harness of issue 7 (not a test). Builds the real
+ * photon maps of a scene, takes the eye pass's diffuse hit points as kNN
+ * queries (16x16-tile order and shuffled), and times our kd-tree against
+ * nanoflann side by side in one process; then the representative lookup,
+ * the eye pass on 1 and 2 threads, and the memory per photon. Prints
+ * Markdown on stdout.
+ *
+ *   bench [--scene F] [--reps R] [--qw W --qh H] [--icount] [--sizes a,b,c]
+ *
+ * --icount: few queries per cell, each cell's loop bracketed by callgrind
+ * client requests (run under valgrind --tool=callgrind --instr-atstart=no);
+ * run.sh turns the dumps into instructions per query. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <valgrind/callgrind.h>
+
+#include "config.h"
+#include "estimate.h"
+#include "kdtree.h"
+#include "material.h"
+#include "photons.h"
+#include "render.h"
+#include "rng.h"
+#include "scene.h"
+#include "stats.h"
+
+void *nano_build(const float *pts, uint32_t n, uint32_t leaf);
+void nano_free(void *h);
+uint64_t nano_knn_batch(void *h, const float *q, uint32_t nq, uint32_t k, float max_d2, uint32_t *idx, float *d2,
+                        double *r2sum);
+
+#define TILE 16u
+#define MAXK 100u
+
+typedef struct {
+    uint32_t n;
+    float *p;  /* xyz */
+    float *nr; /* normal facing the viewer, xyz */
+} qset;
+
+static double now_s(void) { return (double)stats_now_ns() * 1e-9; }
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof(double), cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* The first diffuse hit of the camera ray through each pixel centre of a WxH
+ * image, pixels visited tile by tile as the eye pass does. Mirrors reflect;
+ * glass refracts (reflects on total internal reflection). */
+static qset eye_points(const scene *sc, uint32_t w, uint32_t h)
+{
+    qset q = {0, malloc(sizeof(float) * 3 * w * h), malloc(sizeof(float) * 3 * w * h)};
+    double eps = scene_epsilon(sc), aspect = (double)h / w;
+    for (uint32_t ty = 0; ty < (h + TILE - 1) / TILE; ty++)
+        for (uint32_t tx = 0; tx < (w + TILE - 1) / TILE; tx++)
+            for (uint32_t y = ty * TILE; y < h && y < ty * TILE + TILE; y++)
+                for (uint32_t x = tx * TILE; x < w && x < tx * TILE + TILE; x++) {
+                    ray r = render_camera_ray(sc, aspect, (x + 0.5) / w, (y + 0.5) / h);
+                    for (int depth = 0; depth < 16; depth++) {
+                        double t;
+                        int hit = scene_intersect(sc, &r, eps, INFINITY, &t);
+                        if (hit < 0)
+                            break;
+                        const shape *s = &sc->shapes[hit];
+                        const material *m = &sc->materials[s->material];
+                        vec3 p = vec_madd(r.origin, r.dir, t), ng = shape_normal(s, p);
+                        int front = vec_dot(ng, r.dir) < 0.0;
+                        vec3 n = front ? ng : vec_neg(ng);
+                        if (m->kind == MAT_LAMBERT) {
+                            float *o = q.p + 3 * q.n, *on = q.nr + 3 * q.n;
+                            o[0] = (float)p.x, o[1] = (float)p.y, o[2] = (float)p.z;
+                            on[0] = (float)n.x, on[1] = (float)n.y, on[2] = (float)n.z;
+                            q.n++;
+                            break;
+                        }
+                        vec3 d;
+                        if (m->kind == MAT_GLASS &&
+                            material_refract(r.dir, n, front ? 1.0 / m->ior : m->ior, &d)) {
+                            r.origin = vec_madd(p, n, -eps);
+                            r.dir = d;
+                        } else {
+                            r.origin = vec_madd(p, n, eps);
+                            r.dir = material_reflect(r.dir, n);
+                        }
+                    }
+                }
+    return q;
+}
+
+static qset shuffled(const qset *a, uint64_t seed)
+{
+    qset q = {a->n, malloc(sizeof(float) * 3 * a->n), malloc(sizeof(float) * 3 * a->n)};
+    memcpy(q.p, a->p, sizeof(float) * 3 * a->n);
+    memcpy(q.nr, a->nr, sizeof(float) * 3 * a->n);
+    rng_stream s = rng_make(seed, 7);
+    for (uint32_t i = a->n; i > 1; i--) {
+        uint32_t j = (uint32_t)(rng_next_u64(&s) % i);
+        for (int c = 0; c < 3; c++) {
+            float t = q.p[3 * (i - 1) + c]; q.p[3 * (i - 1) + c] = q.p[3 * j + c]; q.p[3 * j + c] = t;
+            t = q.nr[3 * (i - 1) + c]; q.nr[3 * (i - 1) + c] = q.nr[3 * j + c]; q.nr[3 * j + c] = t;
+        }
+    }
+    return q;
+}
+
+static uint64_t ours_knn_batch(const kd_tree *t, const float *q, uint32_t nq, uint32_t k, float max_d2,
+                               uint32_t *idx, float *d2, double *r2sum)
+{
+    uint64_t total = 0;
+    double s = 0.0;
+    for (uint32_t i = 0; i < nq; i++) {
+        float r2;
+        total += kd_knn(t, q + 3 * (size_t)i, k, max_d2, idx, d2, &r2);
+        s += r2;
+    }
+    *r2sum += s;
+    return total;
+}
+
+static uint64_t lookup_batch(const est_reps *r, const photon_map *m, const qset *q, uint32_t nq, double cos_min,
+                             double max_r2, double *esum)
+{
+    uint64_t found = 0;
+    double s = 0.0;
+    for (uint32_t i = 0; i < nq; i++) {
+        const float *p = q->p + 3 * (size_t)i, *n = q->nr + 3 * (size_t)i;
+        int f;
+        vec3 e = est_lookup(r, m, vec_make(p[0], p[1], p[2]), vec_make(n[0], n[1], n[2]), cos_min, max_r2, &f);
+        found += (uint64_t)f;
+        s += e.x;
+    }
+    *esum += s;
+    return found;
+}
+
+int main(int argc, char **argv)
+{
+    const char *scene_path = "scenes/cornell.scene";
+    int reps = 5, icount = 0;
+    uint32_t qw = 320, qh = 240;
+    uint32_t sizes[8] = {50000, 100000, 500000};
+    int nsizes = 3;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--scene") && i + 1 < argc)
+            scene_path = argv[++i];
+        else if (!strcmp(argv[i], "--reps") && i + 1 < argc)
+            reps = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--qw") && i + 1 < argc)
+            qw = (uint32_t)atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--qh") && i + 1 < argc)
+            qh = (uint32_t)atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--icount"))
+            icount = 1;
+        else if (!strcmp(argv[i], "--sizes") && i + 1 < argc) {
+            nsizes = 0;
+            for (char *s = strtok(argv[++i], ","); s && nsizes < 8; s = strtok(NULL, ","))
+                sizes[nsizes++] = (uint32_t)atoi(s);
+        } else {
+            fprintf(stderr, "bench: unknown argument %s\n", argv[i]);
+            return 2;
+        }
+    }
+    if (reps < 1)
+        reps = 1;
+    char err[256];
+    scene *sc;
+    if (scene_load(scene_path, &sc, err, sizeof err) != SCENE_OK) {
+        fprintf(stderr, "bench: %s\n", err);
+        return 1;
+    }
+    render_config cfg = config_defaults();
+    double max_r = render_max_radius(sc, &cfg);
+    float max_d2 = (float)(max_r * max_r);
+    qset tiles = eye_points(sc, qw, qh);
+    qset shuf = shuffled(&tiles, 1);
+    if (icount) { /* every m-th query of each order, so the sample covers the whole view */
+        uint32_t m = tiles.n / 8000 ? tiles.n / 8000 : 1, j = 0;
+        for (uint32_t i = 0; i < tiles.n; i += m, j++) {
+            memmove(tiles.p + 3 * j, tiles.p + 3 * i, 3 * sizeof(float));
+            memmove(shuf.p + 3 * j, shuf.p + 3 * i, 3 * sizeof(float));
+        }
+        tiles.n = shuf.n = j;
+    }
+    const qset *orders[2] = {&tiles, &shuf};
+    const char *order_name[2] = {"tiles", "shuffled"};
+    uint32_t nq = tiles.n;
+    const uint32_t ks[] = {1, 10, 20, 50, 100};
+    uint32_t idx[MAXK];
+    float d2[MAXK];
+
+    if (!icount) {
+        printf("## kNN queries per second, one thread\n\n");
+        printf("Queries: the first diffuse hit of the ray through each pixel centre of a %ux%u view "
+               "(%u points), in 16x16-tile order and shuffled. Radius cap %.4g (0.05 x diagonal). "
+               "Leaf size %u for both trees. Median of %d interleaved runs; `ratio` = ours / nanoflann "
+               "(queries/s). `found` = mean neighbours per query (identical for both; checked).\n\n",
+               qw, qh, tiles.n, max_r, KD_DEFAULT_LEAF, reps);
+        printf("| P_e | stored | k | order | ours (Mq/s) | nanoflann (Mq/s) | ratio | found |\n");
+        printf("|---:|---:|---:|---|---:|---:|---:|---:|\n");
+    }
+    for (int si = 0; si < nsizes; si++) {
+        render_config c = cfg;
+        c.photons = sizes[si];
+        c.method = METHOD_PRECOMPUTED; /* flags representatives; positions are the same either way */
+        photon_list list;
+        photon_map map;
+        if (photons_trace(sc, &c, 1, NULL, &list)) {
+            fprintf(stderr, "bench: out of memory\n");
+            return 1;
+        }
+        float *pos = malloc(sizeof(float) * 3 * list.count);
+        memcpy(pos, list.pos, sizeof(float) * 3 * list.count);
+        uint32_t stored = (uint32_t)list.count;
+        if (photons_build_map(&list, &map)) {
+            fprintf(stderr, "bench: out of memory\n");
+            return 1;
+        }
+        void *nano = nano_build(pos, stored, KD_DEFAULT_LEAF);
+        if (icount)
+            CALLGRIND_START_INSTRUMENTATION;
+        for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ki++) {
+            uint32_t k = ks[ki];
+            for (int o = 0; o < 2; o++) {
+                const float *q = orders[o]->p;
+                if (icount) {
+                    char label[96];
+                    double s = 0;
+                    CALLGRIND_ZERO_STATS;
+                    ours_knn_batch(&map.tree, q, nq, k, max_d2, idx, d2, &s);
+                    snprintf(label, sizeof label, "ours %u %u %s %u", sizes[si], k, order_name[o], nq);
+                    CALLGRIND_DUMP_STATS_AT(label);
+                    nano_knn_batch(nano, q, nq, k, max_d2, idx, d2, &s);
+                    snprintf(label, sizeof label, "nano %u %u %s %u", sizes[si], k, order_name[o], nq);
+                    CALLGRIND_DUMP_STATS_AT(label);
+                    continue;
+                }
+                double t_ours[64], t_nano[64], s_ours = 0, s_nano = 0;
+                uint64_t f_ours = 0, f_nano = 0;
+                for (int r = 0; r < reps && r < 64; r++) {
+                    double t0 = now_s();
+                    f_ours = ours_knn_batch(&map.tree, q, nq, k, max_d2, idx, d2, &s_ours);
+                    double t1 = now_s();
+                    f_nano = nano_knn_batch(nano, q, nq, k, max_d2, idx, d2, &s_nano);
+                    double t2 = now_s();
+                    t_ours[r] = t1 - t0;
+                    t_nano[r] = t2 - t1;
+                }
+                if (f_ours != f_nano || fabs(s_ours - s_nano) > 1e-6 * fabs(s_nano) + 1e-12)
+                    fprintf(stderr, "bench: MISMATCH P_e=%u k=%u: found %llu vs %llu, r2 sums %.9g vs %.9g\n",
+                            sizes[si], k, (unsigned long long)f_ours, (unsigned long long)f_nano, s_ours, s_nano);
+                double mo = median(t_ours, reps), mn = median(t_nano, reps);
+                printf("| %u | %u | %u | %s | %.3f | %.3f | %.2f | %.1f |\n", sizes[si], stored, k, order_name[o],
+                       nq / mo * 1e-6, nq / mn * 1e-6, mn / mo, (double)f_ours / nq);
+                fflush(stdout);
+            }
+        }
+        if (icount)
+            CALLGRIND_STOP_INSTRUMENTATION;
+        nano_free(nano);
+        free(pos);
+
+        if (!icount) {
+            /* representatives: precompute with the defaults, then the lookup */
+            est_reps rp;
+            if (est_precompute(&map, cfg.nn, (double)max_d2, EST_REPS_SEPARATE, 1, NULL, &rp)) {
+                fprintf(stderr, "bench: out of memory\n");
+                return 1;
+            }
+            if (si == 0) {
+                printf("\n## Representative lookup (nearest representative with normal cosine > %.2f, "
+                       "est_lookup, own tree), one thread\n\n",
+                       cfg.normal_cos);
+                printf("| P_e | representatives | order | lookups/s (M) | found | bytes/photon (map) | "
+                       "bytes/representative |\n|---:|---:|---|---:|---:|---:|---:|\n");
+            }
+            for (int o = 0; o < 2; o++) {
+                double t[64], es = 0;
+                uint64_t f = 0;
+                for (int r = 0; r < reps && r < 64; r++) {
+                    double t0 = now_s();
+                    f = lookup_batch(&rp, &map, orders[o], nq, cfg.normal_cos, (double)max_d2, &es);
+                    t[r] = now_s() - t0;
+                }
+                printf("| %u | %u | %s | %.3f | %.3f | %.2f | %.2f |\n", sizes[si], rp.count, order_name[o],
+                       nq / median(t, reps) * 1e-6, (double)f / nq,
+                       (double)(kd_bytes(&map.tree) + (size_t)map.count * sizeof(photon)) / map.count,
+                       (double)est_reps_bytes(&rp, &map) / rp.count);
+            }
+            est_reps_free(&rp);
+            if (si + 1 < nsizes)
+                printf("\n| P_e | stored | k | order | ours (Mq/s) | nanoflann (Mq/s) | ratio | found |\n"
+                       "|---:|---:|---:|---|---:|---:|---:|---:|\n");
+        }
+        photons_map_free(&map);
+    }
+
+    if (!icount) {
+        uint32_t ew = 256, eh = 192;
+        printf("\n## Eye pass, samples per second (render_run, %ux%u, S=%u, P_e=%u, n=%u)\n\n", ew, eh,
+               cfg.subpixels, (unsigned)cfg.photons, cfg.nn);
+        printf("| method | 1 thread (Msamples/s) | 2 threads (Msamples/s) | scaling |\n|---|---:|---:|---:|\n");
+        for (int m = 0; m < 2; m++) {
+            render_config c = cfg;
+            c.width = ew;
+            c.height = eh;
+            c.method = m ? METHOD_PRECOMPUTED : METHOD_CONVENTIONAL;
+            double rate[2];
+            for (unsigned th = 1; th <= 2; th++) {
+                double t[64];
+                uint64_t samples = 0;
+                for (int r = 0; r < reps && r < 64; r++) {
+                    image img;
+                    stats_run st;
+                    if (render_run(sc, &c, th, 0, &img, &st)) {
+                        fprintf(stderr, "bench: out of memory\n");
+                        return 1;
+                    }
+                    image_free(&img);
+                    t[r] = st.render;
+                    samples = st.samples;
+                }
+                rate[th - 1] = samples / median(t, reps);
+            }
+            printf("| %s | %.3f | %.3f | %.2fx |\n", config_method_name(c.method), rate[0] * 1e-6, rate[1] * 1e-6,
+                   rate[1] / rate[0]);
+        }
+        printf("\nPHOTON_BYTES_PER_STORED = %zu (payload %zu + position %zu); the tree adds %.2f bytes/photon "
+               "of inner nodes and leaf offsets (see the table above).\n",
+               (size_t)PHOTON_BYTES_PER_STORED, sizeof(photon), 3 * sizeof(float),
+               0.0 + (double)(sizeof(float) + 1 + sizeof(uint32_t)) / KD_DEFAULT_LEAF);
+    }
+    free(tiles.p), free(tiles.nr), free(shuf.p), free(shuf.nr);
+    scene_free(sc);
+    return 0;
+}
