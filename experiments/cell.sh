@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# cell.sh: one cell of `make reproduce-table` (see experiments/table.mk).
+#   cell.sh NAME DIR REPEATS  (settings from the environment: PM SCENE WIDTH
+#   HEIGHT SUBPIXELS THREADS_ARG CELL_LIST)
+# NAME is METHOD-pPHOTONS-nNN. Renders REPEATS times with --stats into
+# DIR/rep<i>.json (a repeat whose JSON exists is kept, so an interrupted cell
+# resumes and raising REPEATS adds repeats); the first repeat also writes
+# DIR/image.exr and DIR/image.png. Then writes DIR/summary-r<REPEATS>.tsv: the
+# median over repeats of each phase time, and the spread of the total.
+set -euo pipefail
+name=$1 dir=$2 reps=$3
+method=${name%%-*}
+rest=${name#*-p}; photons=${rest%%-n*}; nn=${rest#*-n}
+PM=${PM:-build/photonmap}
+
+# "cell k/N": the cell's position in the full list make was given.
+k=0 i=0
+for c in ${CELL_LIST:-$name}; do i=$((i + 1)); [ "$c" = "$name" ] && k=$i; done
+label="cell $k/$i $method P_e=$photons n=$nn ${WIDTH}x$HEIGHT"
+
+mkdir -p "$dir"
+for r in $(seq 1 "$reps"); do
+  json=$dir/rep$r.json
+  if [ -s "$json" ] && { [ "$r" -gt 1 ] || [ -s "$dir/image.exr" ]; }; then continue; fi
+  img=()
+  [ "$r" -eq 1 ] && img=(-o "$dir/image.exr" --png "$dir/image.png")
+  "$PM" render "$SCENE" --method "$method" --photons "$photons" --nn "$nn" \
+    --width "$WIDTH" --height "$HEIGHT" --subpixels "$SUBPIXELS" --threads "$THREADS_ARG" \
+    "${img[@]}" --stats "$json.tmp" --quiet
+  mv "$json.tmp" "$json"
+  t=$(sed -n 's/.*"total": *\([0-9.e+-]*\).*/\1/p' "$json")
+  echo "$label  rep $r/$reps  total ${t} s"
+done
+
+# Medians over the repeats of each phase (each column's own median).
+for r in $(seq 1 "$reps"); do
+  awk '/"time_s"/ { s = $0; gsub(/[{},:"]/, " ", s); n = split(s, w, " ");
+         for (i = 1; i < n; i++) t[w[i]] = w[i + 1]; }
+       /"photons_stored"/ { gsub(/[",]/, ""); ps = $2 }
+       /"representatives"/ { gsub(/[",]/, ""); rp = $2 }
+       END { print t["trace"], t["build"], t["precompute"], t["render"], t["total"], ps, rp }' "$dir/rep$r.json"
+done | awk -v reps="$reps" '
+  function median(col,   n, i, j, v, tmp) {
+    for (i = 1; i <= NR; i++) v[i] = x[i, col];
+    for (i = 2; i <= NR; i++) { tmp = v[i]; for (j = i - 1; j >= 1 && v[j] > tmp; j--) v[j + 1] = v[j]; v[j + 1] = tmp; }
+    n = NR; return (n % 2) ? v[(n + 1) / 2] : (v[n / 2] + v[n / 2 + 1]) / 2;
+  }
+  { for (c = 1; c <= NF; c++) x[NR, c] = $c;
+    if (NR == 1 || $5 < lo) lo = $5; if (NR == 1 || $5 > hi) hi = $5; }
+  END {
+    print "trace_s\tbuild_s\tprecompute_s\trender_s\ttotal_s\ttotal_min_s\ttotal_max_s\tphotons_stored\trepresentatives\trepeats";
+    printf "%.4f\t%.4f\t%.4f\t%.4f\t%.4f\t%.4f\t%.4f\t%d\t%d\t%d\n", median(1), median(2), median(3), median(4), median(5), lo, hi, x[1, 6], x[1, 7], reps;
+  }' > "$dir/summary-r$reps.tsv.tmp"
+mv "$dir/summary-r$reps.tsv.tmp" "$dir/summary-r$reps.tsv"
+echo "$label  done: median total $(awk 'NR==2 {print $5}' "$dir/summary-r$reps.tsv") s over $reps"

@@ -1,0 +1,28 @@
+# `make resolution`: beyond the paper (issue 5). For each output size in
+# RES_SIZES, runs the Table 1 grid at that size (cells shared with
+# `make reproduce-table`) and finds the cheapest (P_e, n, method) whose error
+# against the reference stays under each target in RES_TARGETS (relMSE);
+# writes RESULTS/resolution.md (+ RESULTS/resolution/table-<size>.csv|md).
+# Reference per size: a POV-Ray render in reference/ of that size when there
+# is one, else our own high-photon conventional render (RES_REF_PHOTONS
+# emitted, RES_REF_NN nearest, all cores), which the table says.
+RES_SIZES ?= 256x192 512x384 1024x768
+RES_TARGETS ?= 0.05 0.02 0.01 0.005 0.002
+RES_REF_PHOTONS ?= 2000000
+RES_REF_NN ?= 200
+RES_REPEATS ?= $(REPEATS)
+
+# Our high-photon reference at one size (stem = WxH).
+$(RESULTS)/cells/%-refhigh-p$(RES_REF_PHOTONS)-n$(RES_REF_NN)/image.exr: | $(BUILD)/photonmap
+	@mkdir -p $(dir $@)
+	@echo "reference: conventional P_e=$(RES_REF_PHOTONS) n=$(RES_REF_NN) at $*, all cores"
+	$(PM) render $(SCENE) --method conventional --photons $(RES_REF_PHOTONS) --nn $(RES_REF_NN) \
+	  --width $(word 1,$(subst x, ,$*)) --height $(word 2,$(subst x, ,$*)) --subpixels $(SUBPIXELS) --threads 0 \
+	  -o $@ --png $(dir $@)image.png --stats $(dir $@)stats.json --quiet
+
+.PHONY: resolution
+resolution: | $(IMGMETRICS) $(BUILD)/photonmap
+	@MAKE="$(MAKE)" RESULTS=$(RESULTS) RES_SIZES="$(RES_SIZES)" RES_TARGETS="$(RES_TARGETS)" \
+	  RES_REF_PHOTONS=$(RES_REF_PHOTONS) RES_REF_NN=$(RES_REF_NN) RES_REPEATS=$(RES_REPEATS) \
+	  PHOTONS="$(PHOTONS)" NNS="$(NNS)" THREADS="$(THREADS)" PM=$(PM) \
+	  bash experiments/resolution.sh

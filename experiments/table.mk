@@ -1,0 +1,58 @@
+# `make reproduce-table`: the paper's Table 1 grid (issue 5), and
+# build/imgmetrics (scripts/imgmetrics.c), the image-error tool it uses.
+#
+#   make reproduce-table                      # full grid: 1024x768, 2x2 samples, 3 repeats, 1 thread
+#   make reproduce-table SIZE=256x192 REPEATS=1 PHOTONS="50000" NNS="10 100"
+#   make reproduce-table THREADS=             # all cores (--threads 0)
+#
+# Knobs: SIZE (or WIDTH/HEIGHT), SUBPIXELS, PHOTONS, NNS, METHODS, REPEATS,
+# THREADS, RESULTS (results dir), TABLE (output stem, default RESULTS/table1),
+# REF (reference EXR; default: found in reference/ by size, see
+# experiments/table.sh), SCENE. Each cell is one make target,
+# RESULTS/cells/<W>x<H>-s<S>-t<T>/<method>-p<P_e>-n<n>/summary-r<REPEATS>.tsv,
+# beside the cell's per-repeat stats JSON and its image (first repeat), so an
+# interrupted run resumes where it stopped (repeats already done are kept).
+
+IMGMETRICS := $(BUILD)/imgmetrics
+all: $(IMGMETRICS)
+
+$(BUILD)/obj/imgmetrics.o: scripts/imgmetrics.c renderer/image.h | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_COMMON) $(CFLAGS) -c $< -o $@
+
+$(IMGMETRICS): $(BUILD)/obj/imgmetrics.o $(BUILD)/obj/image.o $(BUILD)/obj/outfile.o
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
+RESULTS ?= results
+SIZE ?= 1024x768
+WIDTH ?= $(word 1,$(subst x, ,$(SIZE)))
+HEIGHT ?= $(word 2,$(subst x, ,$(SIZE)))
+SUBPIXELS ?= 2
+PHOTONS ?= 50000 100000 500000
+NNS ?= 10 20 50 100
+METHODS ?= conventional precomputed
+REPEATS ?= 3
+THREADS ?= 1
+SCENE ?= scenes/cornell.scene
+TABLE ?= $(RESULTS)/table1
+REF ?=
+# The renderer the cells run (copy build/photonmap aside to pin it during a long run).
+PM ?= $(BUILD)/photonmap
+
+T_ARG := $(if $(strip $(THREADS)),$(strip $(THREADS)),0)
+T_LABEL := $(if $(strip $(THREADS)),t$(strip $(THREADS)),tall)
+CELLROOT := $(RESULTS)/cells/$(WIDTH)x$(HEIGHT)-s$(SUBPIXELS)-$(T_LABEL)
+CELLS := $(foreach p,$(PHOTONS),$(foreach n,$(NNS),$(foreach m,$(METHODS),$(m)-p$(p)-n$(n))))
+CELL_FILES := $(foreach c,$(CELLS),$(CELLROOT)/$(c)/summary-r$(REPEATS).tsv)
+
+# One cell: REPEATS renders of one (method, P_e, n).
+$(CELLROOT)/%/summary-r$(REPEATS).tsv: | $(BUILD)/photonmap
+	@PM=$(PM) SCENE=$(SCENE) WIDTH=$(WIDTH) HEIGHT=$(HEIGHT) SUBPIXELS=$(SUBPIXELS) \
+	  THREADS_ARG=$(T_ARG) CELL_LIST="$(CELLS)" bash experiments/cell.sh $* $(CELLROOT)/$* $(REPEATS)
+
+.PHONY: reproduce-table reproduce-cells
+reproduce-cells: $(CELL_FILES)
+reproduce-table: $(CELL_FILES) | $(IMGMETRICS)
+	@CELLROOT=$(CELLROOT) PHOTONS="$(PHOTONS)" NNS="$(NNS)" METHODS="$(METHODS)" REPEATS=$(REPEATS) \
+	  WIDTH=$(WIDTH) HEIGHT=$(HEIGHT) SUBPIXELS=$(SUBPIXELS) THREADS_LABEL="$(if $(strip $(THREADS)),$(strip $(THREADS)),all ($(shell nproc)))" \
+	  REF="$(REF)" IMGMETRICS=$(IMGMETRICS) bash experiments/table.sh $(TABLE)
