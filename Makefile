@@ -72,3 +72,4 @@ clean:
 	rm -rf $(BUILD)/obj $(BUILD)/san $(BUILD)/photonmap $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 
 -include experiments/*.mk
+-include reference/*.mk
