@@ -73,3 +73,4 @@ clean:
 
 -include experiments/*.mk
 -include reference/*.mk
+-include tests/fuzz/*.mk

@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 int outfile_begin(outfile *o, const char *path, int stream, char *err, size_t errlen)
@@ -13,6 +14,14 @@ int outfile_begin(outfile *o, const char *path, int stream, char *err, size_t er
     size_t n = strlen(path);
     if (n == 0 || n + 32 >= OUTFILE_PATH_MAX) {
         snprintf(err, errlen, "%s: bad output path", path);
+        return -1;
+    }
+    /* Renaming over a device, FIFO or directory would replace it: `-o
+     * /dev/full` run as root turned /dev/full into a regular file (found by
+     * tests/hostile.test.sh). Only regular files or new names are outputs. */
+    struct stat st;
+    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+        snprintf(err, errlen, "%s: not a regular file; outputs are written beside it and renamed over it", path);
         return -1;
     }
     memcpy(o->path, path, n + 1);

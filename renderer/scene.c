@@ -19,6 +19,9 @@
 #define SCENE_MAX_POWER 1e35
 #define SCENE_MAX_ITEMS 100000
 #define SCENE_MAX_FILE (64u << 20)
+/* Shortest radius, edge and scene size: below it squared lengths underflow
+ * (a rect of edges 1e-160 got an infinite 1/|edge|^2; fuzz_scene finding). */
+#define SCENE_MIN_LENGTH 1e-50
 
 typedef struct {
     size_t start, len; /* byte offsets into the text */
@@ -146,7 +149,9 @@ static int parse_number(parser *p, int i, double lo, double hi, double *out)
     memcpy(buf, p->text + tk->start, tk->len);
     buf[tk->len] = '\0';
     char c0 = buf[0];
-    int looks_numeric = (c0 >= '0' && c0 <= '9') || c0 == '-' || c0 == '+' || c0 == '.';
+    /* decimal only, as scenes/README.md says: strtod also takes hex floats
+     * ("0x10", "0x1p-1074"; tests/hostile.test.sh) */
+    int looks_numeric = ((c0 >= '0' && c0 <= '9') || c0 == '-' || c0 == '+' || c0 == '.') && !strpbrk(buf, "xX");
     char *end = NULL;
     errno = 0;
     double v = looks_numeric ? strtod(buf, &end) : 0.0;
@@ -395,8 +400,8 @@ static int parse_sphere(parser *p)
     int rc = parse_fields(p, 1, f, 3, "sphere");
     if (rc)
         return rc;
-    if (!(f[1].v.x > 0.0))
-        return perr(p, f[1].col, "sphere radius must be positive");
+    if (!(f[1].v.x >= SCENE_MIN_LENGTH))
+        return perr(p, f[1].col, "sphere radius must be positive and at least %g", SCENE_MIN_LENGTH);
     int m;
     if ((rc = resolve_material(p, &f[2], &m)))
         return rc;
@@ -413,10 +418,10 @@ static int parse_rect(parser *p)
     if (rc)
         return rc;
     double l1 = vec_len(f[1].v), l2 = vec_len(f[2].v);
-    if (!(l1 > 0.0))
-        return perr(p, f[1].col, "rect edge1 is zero");
-    if (!(l2 > 0.0))
-        return perr(p, f[2].col, "rect edge2 is zero");
+    if (!(l1 >= SCENE_MIN_LENGTH))
+        return perr(p, f[1].col, "rect edge1 is zero or shorter than %g", SCENE_MIN_LENGTH);
+    if (!(l2 >= SCENE_MIN_LENGTH))
+        return perr(p, f[2].col, "rect edge2 is zero or shorter than %g", SCENE_MIN_LENGTH);
     if (fabs(vec_dot(f[1].v, f[2].v)) > 1e-9 * l1 * l2)
         return perr(p, f[2].col, "rect edges are not perpendicular");
     int m;
@@ -504,6 +509,14 @@ int scene_parse_buffer(const char *name, const char *text, size_t len, scene **o
         return rc;
     }
     compute_bounds(p.sc);
+    /* everything within rounding of one point: epsilons and radii would be 0
+     * (fuzz_scene finding: light and a 1e-320 sphere at x = 1) */
+    if (!(p.sc->scale >= SCENE_MIN_LENGTH)) {
+        perr(&p, 1, "end of scene: the scene has no extent (bounding-box diagonal %g, at least %g needed)",
+             p.sc->scale, SCENE_MIN_LENGTH);
+        scene_free(p.sc);
+        return SCENE_ERR_INPUT;
+    }
     *out = p.sc;
     return SCENE_OK;
 }

@@ -34,7 +34,8 @@
     X(stability_grazing_rays)          \
     X(stability_camera_inside_glass)   \
     X(stability_tir_depth_limit)       \
-    X(stability_exr_round_trip_of_renders)
+    X(stability_exr_round_trip_of_renders) \
+    X(stability_parser_degenerate_sizes)
 
 #define TEST_DECLARE(name) void test_##name(void);
 TEST_LIST(TEST_DECLARE)
