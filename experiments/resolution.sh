@@ -7,7 +7,7 @@ out=$RESULTS/resolution
 mkdir -p "$out"
 declare -A refdesc
 for s in $RES_SIZES; do
-  ref=$(ls reference/*"$s"*.exr 2>/dev/null | grep -viE 'direct|fast' | sort | head -n 1 || true)
+  ref=$(bash experiments/findref.sh "$s")
   if [ -n "$ref" ]; then
     refdesc[$s]="POV-Ray \`$ref\`"
   else

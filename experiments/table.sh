@@ -5,9 +5,8 @@
 # (medians in summary-r<REPEATS>.tsv), their EXR images measured with
 # build/imgmetrics, and the paper's Table 1 (experiments/paper-table1.csv).
 #
-# Reference: REF if set, else the first EXR in reference/ whose name holds
-# <W>x<H> and not "direct"/"fast" (a reference-quality POV-Ray render of the
-# full scene at our size), else "n/a".
+# Reference: REF if set, else the POV-Ray render of the full scene at our
+# size in reference/ (experiments/findref.sh), else "n/a".
 set -euo pipefail
 stem=$1
 : "${CELLROOT:?}" "${PHOTONS:?}" "${NNS:?}" "${METHODS:?}" "${REPEATS:?}" "${WIDTH:?}" "${HEIGHT:?}"
@@ -15,7 +14,7 @@ IMGMETRICS=${IMGMETRICS:-build/imgmetrics}
 PAPER=${PAPER:-experiments/paper-table1.csv}
 SUBPIXELS=${SUBPIXELS:-2}
 if [ -z "${REF:-}" ]; then
-  REF=$(ls reference/*"${WIDTH}x${HEIGHT}"*.exr 2>/dev/null | grep -viE 'direct|fast' | sort | head -n 1 || true)
+  REF=$(bash experiments/findref.sh "${WIDTH}x${HEIGHT}")
 fi
 [ -n "$REF" ] && [ ! -s "$REF" ] && { echo "table.sh: reference $REF not found" >&2; exit 1; }
 mkdir -p "$(dirname "$stem")"
