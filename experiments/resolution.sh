@@ -7,13 +7,16 @@ out=$RESULTS/resolution
 mkdir -p "$out"
 declare -A refdesc
 for s in $RES_SIZES; do
-  ref=$(bash experiments/findref.sh "$s")
+  ref=""
+  [ "${RES_REF:-ours}" = pov ] && ref=$(bash experiments/findref.sh "$s")
   if [ -n "$ref" ]; then
     refdesc[$s]="POV-Ray \`$ref\`"
   else
     ref=$RESULTS/cells/$s-refhigh-p$RES_REF_PHOTONS-n$RES_REF_NN/image.exr
     $MAKE --no-print-directory "$ref"
-    refdesc[$s]="ours: conventional, P_e=$RES_REF_PHOTONS, n=$RES_REF_NN (no POV-Ray reference of this size in reference/)"
+    why="RES_REF=ours: one kind of reference at every size"
+    [ "${RES_REF:-ours}" = pov ] && why="no POV-Ray reference of this size in reference/"
+    refdesc[$s]="ours: conventional, P_e=$RES_REF_PHOTONS, n=$RES_REF_NN, same scene and settings ($why)"
   fi
   $MAKE --no-print-directory reproduce-table SIZE="$s" REPEATS="$RES_REPEATS" TABLE="$out/table-$s" REF="$ref" \
     PHOTONS="$PHOTONS" NNS="$NNS" THREADS="$THREADS" PM="$PM"
