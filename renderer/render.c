@@ -22,7 +22,8 @@ typedef struct {
     const render_config *cfg;
     const photon_map *map;
     const est_reps *reps;
-    double max_r2, eps, aspect;
+    double max_r2, eps;
+    render_camera camera;
     vec3 light_intensity; /* power / 4pi, for shadow rays */
     image *img;
     uint32_t tiles_x;
@@ -31,17 +32,31 @@ typedef struct {
     progress *prog;
 } eye_ctx;
 
-ray render_camera_ray(const scene *sc, double aspect_h_over_w, double u, double v)
+render_camera render_camera_make(const scene *sc, double aspect_h_over_w)
 {
     const scene_camera *c = &sc->camera;
-    vec3 fwd = vec_norm(vec_sub(c->look_at, c->position));
-    vec3 right = vec_norm(vec_cross(fwd, c->up));
-    vec3 up = vec_cross(right, fwd);
+    render_camera cam;
+    cam.origin = c->position;
+    cam.fwd = vec_norm(vec_sub(c->look_at, c->position));
+    vec3 right = vec_norm(vec_cross(cam.fwd, c->up));
+    vec3 up = vec_cross(right, cam.fwd);
     double hw = tan(0.5 * c->hfov_deg * VEC_PI / 180.0);
-    double hh = hw * aspect_h_over_w;
-    vec3 d = vec_add(fwd, vec_add(vec_scale(right, (2.0 * u - 1.0) * hw), vec_scale(up, (1.0 - 2.0 * v) * hh)));
-    ray r = {c->position, vec_norm(d)};
+    cam.right = vec_scale(right, hw);
+    cam.up = vec_scale(up, hw * aspect_h_over_w);
+    return cam;
+}
+
+ray render_camera_at(const render_camera *cam, double u, double v)
+{
+    vec3 d = vec_add(cam->fwd, vec_add(vec_scale(cam->right, 2.0 * u - 1.0), vec_scale(cam->up, 1.0 - 2.0 * v)));
+    ray r = {cam->origin, vec_norm(d)};
     return r;
+}
+
+ray render_camera_ray(const scene *sc, double aspect_h_over_w, double u, double v)
+{
+    render_camera cam = render_camera_make(sc, aspect_h_over_w);
+    return render_camera_at(&cam, u, v);
 }
 
 double render_max_radius(const scene *sc, const render_config *cfg)
@@ -143,7 +158,7 @@ static void eye_tile(uint64_t tile, unsigned thread, void *arg)
                 for (uint32_t sx = 0; sx < S; sx++) {
                     double u = (x + (sx + 0.5) / S) / cfg->width;
                     double v = (y + (sy + 0.5) / S) / cfg->height;
-                    ray r = render_camera_ray(c->sc, c->aspect, u, v);
+                    ray r = render_camera_at(&c->camera, u, v);
                     sum = vec_add(sum, radiance(c, thread, r, 0, 1.0));
                 }
             }
@@ -218,7 +233,7 @@ int render_run(const scene *sc, const render_config *cfg, unsigned threads, int 
     c.reps = &reps;
     c.max_r2 = max_r * max_r;
     c.eps = scene_epsilon(sc);
-    c.aspect = (double)cfg->height / (double)cfg->width;
+    c.camera = render_camera_make(sc, (double)cfg->height / (double)cfg->width);
     c.light_intensity = vec_scale(sc->light.power, 1.0 / (4.0 * VEC_PI));
     c.img = out;
     c.tiles_x = (cfg->width + RENDER_TILE - 1) / RENDER_TILE;

@@ -12,7 +12,19 @@
 #include "scene.h"
 #include "stats.h"
 
-/* The camera ray through image-plane point (u, v) in [0,1]^2, v down. */
+/* The pinhole camera's basis for one image aspect, computed once per render. */
+typedef struct {
+    vec3 origin;
+    vec3 fwd;   /* unit view direction */
+    vec3 right; /* tan(hfov/2) x the unit right vector */
+    vec3 up;    /* tan(hfov/2) x aspect x the unit up vector */
+} render_camera;
+
+/* The camera of sc for images of height/width = aspect_h_over_w. */
+render_camera render_camera_make(const scene *sc, double aspect_h_over_w);
+/* The ray through image-plane point (u, v) in [0,1]^2, v down. */
+ray render_camera_at(const render_camera *cam, double u, double v);
+/* Both in one call (for tests and tools; the eye pass makes the camera once). */
 ray render_camera_ray(const scene *sc, double aspect_h_over_w, double u, double v);
 
 /* The search radius cap in scene units for cfg on sc. */
