@@ -13,34 +13,34 @@ REF_DIR := reference
 REF_TMP := $(BUILD)/reference
 REF_SCENE := scenes/cornell.scene
 REF_POVRAY_FLAGS := +FE -A -J +WT1 -D -V +GS
-# ref_render NAME, W, H, F, EXPORT-FLAGS, FIXUP: the rules for one reference,
+# ref_render NAME, SCENE, W, H, F, EXPORT-FLAGS, FIXUP: the rules for one reference,
 # rendered at F*W x F*H and box-filtered by F (F = 2: the renderer's default
 # 2x2 subpixels; F = 1: one centre sample per pixel); FIXUP, if any, edits the exported SDL
 define ref_render
-$(REF_DIR)/$(1).pov: $(REF_SCENE) renderer/povray.c $(BUILD)/photonmap scripts/pov-nocaustic.sh
+$(REF_DIR)/$(1).pov: $(2) renderer/povray.c $(BUILD)/photonmap scripts/pov-nocaustic.sh
 	@mkdir -p $(REF_TMP)
-	$(BUILD)/photonmap export-pov $(REF_SCENE) --width $$$$(($(2) * $(4))) --height $$$$(($(3) * $(4))) $(5) -o $(REF_TMP)/$(1).pov
-	$(6)
+	$(BUILD)/photonmap export-pov $(2) --width $$$$(($(3) * $(5))) --height $$$$(($(4) * $(5))) $(6) -o $(REF_TMP)/$(1).pov
+	$(7)
 	@if cmp -s $(REF_TMP)/$(1).pov $$@; then echo "$$@ unchanged"; else mv $(REF_TMP)/$(1).pov $$@; fi
 
 $(REF_DIR)/$(1).exr: $(REF_DIR)/$(1).pov
 	@mkdir -p $(REF_TMP)
-	{ echo "reference $(1): $(2)x$(3), rendered at $$$$(($(2) * $(4)))x$$$$(($(3) * $(4))) and box-downsampled by $(4)"; \
-	  echo "export: build/photonmap export-pov $(REF_SCENE) --width $$$$(($(2) * $(4))) --height $$$$(($(3) * $(4))) $(5)"; \
-	  echo "povray: nice povray +I$$< +O$(REF_TMP)/$(1)-raw.exr +W$$$$(($(2) * $(4))) +H$$$$(($(3) * $(4))) $(REF_POVRAY_FLAGS)"; \
-	  echo "downsample: oiiotool $(REF_TMP)/$(1)-raw.exr --resize:filter=box $(2)x$(3) -d half -o $$@"; \
+	{ echo "reference $(1): $(3)x$(4), rendered at $$$$(($(3) * $(5)))x$$$$(($(4) * $(5))) and box-downsampled by $(5)"; \
+	  echo "export: build/photonmap export-pov $(2) --width $$$$(($(3) * $(5))) --height $$$$(($(4) * $(5))) $(6)"; \
+	  echo "povray: nice povray +I$$< +O$(REF_TMP)/$(1)-raw.exr +W$$$$(($(3) * $(5))) +H$$$$(($(4) * $(5))) $(REF_POVRAY_FLAGS)"; \
+	  echo "downsample: oiiotool $(REF_TMP)/$(1)-raw.exr --resize:filter=box $(3)x$(4) -d half -o $$@"; \
 	  echo "version: $$$$(povray --version 2>&1 | grep -m1 POV-Ray); $$$$(dpkg-query -W povray 2>/dev/null); $$$$(oiiotool --version 2>&1 | head -n1)"; \
 	  echo "host: $$$$(uname -m), $$$$(nproc) cores; date: $$$$(date -u +%Y-%m-%dT%H:%MZ)"; \
 	  echo "---- povray output"; } > $(REF_TMP)/$(1).log
 	/usr/bin/time -f "povray: %e s wall, %U s user" nice povray +I$$< +O$(REF_TMP)/$(1)-raw.exr \
-	  +W$$$$(($(2) * $(4))) +H$$$$(($(3) * $(4))) $(REF_POVRAY_FLAGS) >> $(REF_TMP)/$(1).log 2>&1 || \
+	  +W$$$$(($(3) * $(5))) +H$$$$(($(4) * $(5))) $(REF_POVRAY_FLAGS) >> $(REF_TMP)/$(1).log 2>&1 || \
 	  { tail -n 20 $(REF_TMP)/$(1).log; exit 1; }
-	oiiotool $(REF_TMP)/$(1)-raw.exr --resize:filter=box $(2)x$(3) -d half -o $(REF_TMP)/$(1).exr
+	oiiotool $(REF_TMP)/$(1)-raw.exr --resize:filter=box $(3)x$(4) -d half -o $(REF_TMP)/$(1).exr
 	grep -v -e '^  *[0-9.]*%' -e 'Rendered [0-9]* of' -e 'cannot open the user configuration' $(REF_TMP)/$(1).log > $(REF_DIR)/$(1).log
 	mv $(REF_TMP)/$(1).exr $$@
 endef
 
-REF_SMALL := cornell-direct-129x96 cornell-fast-128x96 cornell-nocaustic-128x96 cornell-fast-16x12 \
+REF_SMALL := cornell-direct-129x96 cornell-fast-128x96 cornell-nocaustic-128x96 caustic-fast-128x96 caustic-nocaustic-128x96 cornell-fast-16x12 \
              cornell-direct-256x192 cornell-fast-256x192 cornell-reference-256x192
 REF_LARGE := cornell-reference-1024x768
 
@@ -48,17 +48,31 @@ REF_LARGE := cornell-reference-1024x768
 # that no sample ray hits a room edge exactly (the camera is centred in the
 # room, so with even sample counts the four corner edges pass exactly through
 # sample rays and either surface is a valid hit)
-$(eval $(call ref_render,cornell-direct-129x96,129,96,3,--no-radiosity --no-photons,))
-$(eval $(call ref_render,cornell-fast-128x96,128,96,2,--quality fast,))
+$(eval $(call ref_render,cornell-direct-129x96,$(REF_SCENE),129,96,3,--no-radiosity --no-photons,))
+$(eval $(call ref_render,cornell-fast-128x96,$(REF_SCENE),128,96,2,--quality fast,))
 # negative control: the glass caustic missing (scripts/pov-nocaustic.sh)
-$(eval $(call ref_render,cornell-nocaustic-128x96,128,96,2,--quality fast,\
+$(eval $(call ref_render,cornell-nocaustic-128x96,$(REF_SCENE),128,96,2,--quality fast,\
   bash scripts/pov-nocaustic.sh $(REF_TMP)/cornell-nocaustic-128x96.pov $(REF_SCENE) 256 192 > $(REF_TMP)/nc.pov && \
   mv $(REF_TMP)/nc.pov $(REF_TMP)/cornell-nocaustic-128x96.pov))
-$(eval $(call ref_render,cornell-fast-16x12,16,12,2,--quality fast,))
-$(eval $(call ref_render,cornell-direct-256x192,256,192,2,--no-radiosity --no-photons,))
-$(eval $(call ref_render,cornell-fast-256x192,256,192,2,--quality fast,))
-$(eval $(call ref_render,cornell-reference-256x192,256,192,2,--quality reference,))
-$(eval $(call ref_render,cornell-reference-1024x768,1024,768,1,--quality reference,))
+$(eval $(call ref_render,cornell-fast-16x12,$(REF_SCENE),16,12,2,--quality fast,))
+$(eval $(call ref_render,cornell-direct-256x192,$(REF_SCENE),256,192,2,--no-radiosity --no-photons,))
+$(eval $(call ref_render,cornell-fast-256x192,$(REF_SCENE),256,192,2,--quality fast,))
+$(eval $(call ref_render,cornell-reference-256x192,$(REF_SCENE),256,192,2,--quality reference,))
+$(eval $(call ref_render,cornell-reference-1024x768,$(REF_SCENE),1024,768,1,--quality reference,))
+
+# The caustic scene: the paper's room with the glass sphere lifted off the
+# floor and moved back, so that its caustic lies in view (in cornell.scene it
+# lies almost entirely under the sphere, hidden from the camera).
+REF_CAUSTIC := $(REF_DIR)/caustic.scene
+$(REF_CAUSTIC): $(REF_SCENE) $(REF_DIR)/reference.mk
+	{ echo "# Generated by reference/reference.mk from $(REF_SCENE): the glass sphere lifted"; \
+	  echo "# to (0.05, 0.75, -0.1) so that its caustic on the floor is in view."; \
+	  sed 's/^sphere center  0.05 0.3 0.35   radius 0.3   material glass/sphere center  0.05 0.75 -0.1   radius 0.3   material glass/' $(REF_SCENE); } > $@.tmp
+	grep -q '^sphere center  0.05 0.75 -0.1 ' $@.tmp && mv $@.tmp $@
+$(eval $(call ref_render,caustic-fast-128x96,$(REF_CAUSTIC),128,96,2,--quality fast,))
+$(eval $(call ref_render,caustic-nocaustic-128x96,$(REF_CAUSTIC),128,96,2,--quality fast,\
+  bash scripts/pov-nocaustic.sh $(REF_TMP)/caustic-nocaustic-128x96.pov $(REF_CAUSTIC) 256 192 > $(REF_TMP)/nc.pov && \
+  mv $(REF_TMP)/nc.pov $(REF_TMP)/caustic-nocaustic-128x96.pov))
 
 .PHONY: reference reference-small
 reference-small: $(REF_SMALL:%=$(REF_DIR)/%.exr)

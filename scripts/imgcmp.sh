@@ -15,6 +15,8 @@
 #       Prints relMSE = mean (t-r)^2/(r^2+0.01), RMSE and PSNR (peak = max r)
 #       over all pixels, or over the pixels where MASK's first channel > 0.5.
 #
+# IMGCMP_CUT=WxH+X+Y (environment) restricts every mode to that window of
+# both images (e.g. the caustic's region).
 # Exit status: 0 pass, 1 fail, 2 usage or unreadable image.
 set -u -o pipefail
 
@@ -30,7 +32,9 @@ dump() {
   [ -r "$img" ] || die "$img: cannot read"
   NDUMP=$((NDUMP + 1))
   local tmp="$WORK/d$NDUMP.$BASHPID.exr"
-  oiiotool -i "$img" "$@" --ch 0,1,2 -d float -o "$tmp" 2>/dev/null || die "$img: oiiotool failed"
+  local cut=()
+  [ -n "${IMGCMP_CUT:-}" ] && cut=(--cut "$IMGCMP_CUT" --origin +0+0)
+  oiiotool -i "$img" "${cut[@]}" "$@" --ch 0,1,2 -d float -o "$tmp" 2>/dev/null || die "$img: oiiotool failed"
   oiiotool --dumpdata "$tmp" | awk '/^ *Pixel/ { gsub(/[(),:]/, " "); print $2, $3, $4, $5, $6 }'
 }
 

@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# measure.sh: the measurements quoted in reference/README.md, re-run from
+# the committed references (run from the repository root after `make`):
+#   bash reference/measure.sh [OUTDIR]
+# Prints one line per comparison: what was compared, then scripts/imgcmp.sh's
+# verdict line. Renders of ours go to OUTDIR (default build/measure).
+set -u
+cd "$(dirname "$0")/.."
+PM=build/photonmap
+OUT=${1:-build/measure}
+mkdir -p "$OUT"
+CMP="bash scripts/imgcmp.sh"
+S=scenes/cornell.scene
+R=reference
+
+show() { # label, imgcmp args...
+  local label=$1; shift
+  printf '%-58s %s\n' "$label" "$($CMP "$@" 2>&1 | tr '\n' ' ')"
+}
+
+sed 's/^material red   lambert rho 0.63 0.065 0.05/material red   lambert rho 0.065 0.63 0.05/' $S > "$OUT/green.scene"
+sed 's/^\(rect corner  1 0 -1 .*\)material mirror  # right/\1material white   # right/' $S > "$OUT/diffmirror.scene"
+
+echo "== direct light only (ours: --direct shadow-rays --photons 0; POV-Ray: --no-radiosity --no-photons)"
+$PM render $S --direct shadow-rays --photons 0 --width 129 --height 96 --subpixels 3 --quiet -o "$OUT/direct-129.exr"
+$PM render $S --direct shadow-rays --photons 0 --width 256 --height 192 --quiet -o "$OUT/direct-256.exr"
+show "direct 129x96 3x3 vs cornell-direct-129x96 (pixel)" pixel "$OUT/direct-129.exr" $R/cornell-direct-129x96.exr 1e-3 1
+show "direct 256x192 2x2 vs cornell-direct-256x192 (pixel)" pixel "$OUT/direct-256.exr" $R/cornell-direct-256x192.exr 1e-3 1
+show "direct 256x192 2x2 vs cornell-direct-256x192 (block 32x24)" block "$OUT/direct-256.exr" $R/cornell-direct-256x192.exr 32 24 0.15
+
+echo "== full image, P_e = 500k, n = 100, 256x192, vs POV-Ray fast and reference"
+for m in photons shadow-rays; do
+  $PM render $S --photons 500000 --nn 100 --width 256 --height 192 --direct $m --quiet -o "$OUT/full-256-$m.exr"
+  for q in fast reference; do
+    [ -e $R/cornell-$q-256x192.exr ] || continue
+    show "ours --direct $m vs POV $q (block 32x24)" block "$OUT/full-256-$m.exr" $R/cornell-$q-256x192.exr 32 24 0.15
+    show "ours --direct $m vs POV $q (block 16x12)" block "$OUT/full-256-$m.exr" $R/cornell-$q-256x192.exr 16 12 0.15
+    show "ours --direct $m vs POV $q (stats)" stats "$OUT/full-256-$m.exr" $R/cornell-$q-256x192.exr
+  done
+done
+
+echo "== POV-Ray against itself"
+if [ -e $R/cornell-reference-256x192.exr ]; then
+  show "POV fast vs POV reference 256x192 (block 32x24)" block $R/cornell-fast-256x192.exr $R/cornell-reference-256x192.exr 32 24 0.15
+  show "POV fast vs POV reference 256x192 (block 16x12)" block $R/cornell-fast-256x192.exr $R/cornell-reference-256x192.exr 16 12 0.15
+fi
+oiiotool $R/cornell-fast-256x192.exr --resize:filter=box 128x96 -o "$OUT/pov-fast-256-to-128.exr"
+show "POV fast 256x192 downsampled vs POV fast 128x96 (block 16x12)" block "$OUT/pov-fast-256-to-128.exr" $R/cornell-fast-128x96.exr 16 12 0.15
+
+echo "== negative controls, 256x192, against POV-Ray fast"
+oiiotool "$OUT/full-256-photons.exr" --mulc 0.8 -o "$OUT/x08.exr"
+oiiotool "$OUT/full-256-photons.exr" --mulc 3.14159265 -o "$OUT/xpi.exr"
+$PM render "$OUT/green.scene" --photons 500000 --nn 100 --width 256 --height 192 --quiet -o "$OUT/green.exr"
+$PM render "$OUT/diffmirror.scene" --photons 500000 --nn 100 --width 256 --height 192 --quiet -o "$OUT/diffmirror.exr"
+for c in x08 xpi green diffmirror; do
+  show "control $c (block 32x24)" block "$OUT/$c.exr" $R/cornell-fast-256x192.exr 32 24 0.15
+  show "control $c (block 16x12)" block "$OUT/$c.exr" $R/cornell-fast-256x192.exr 16 12 0.15
+done
+
+echo "== test size 128x96 (tests/povray.test.sh): full image and controls, 16x12 blocks"
+F=(--photons 500000 --nn 100 --width 128 --height 96 --quiet)
+for m in photons shadow-rays; do
+  $PM render $S "${F[@]}" --direct $m -o "$OUT/full-128-$m.exr"
+  show "ours --direct $m vs POV fast 128x96" block "$OUT/full-128-$m.exr" $R/cornell-fast-128x96.exr 16 12 0.15
+done
+oiiotool "$OUT/full-128-photons.exr" --mulc 0.8 -o "$OUT/x08-128.exr"
+show "control x0.8" block "$OUT/x08-128.exr" $R/cornell-fast-128x96.exr 16 12 0.15
+show "POV no glass caustic vs POV fast (cornell.scene)" block $R/cornell-nocaustic-128x96.exr $R/cornell-fast-128x96.exr 16 12 0.15
+if [ -e $R/caustic-fast-128x96.exr ]; then
+  $PM render $R/caustic.scene "${F[@]}" -o "$OUT/caustic-128.exr"
+  $PM render $R/caustic.scene "${F[@]}" --direct shadow-rays -o "$OUT/caustic-128-sr.exr"
+  show "caustic scene: ours vs POV fast" block "$OUT/caustic-128.exr" $R/caustic-fast-128x96.exr 16 12 0.15
+  show "caustic scene: ours shadow-rays vs POV fast" block "$OUT/caustic-128-sr.exr" $R/caustic-fast-128x96.exr 16 12 0.15
+  show "caustic scene: POV no caustic vs POV fast" block $R/caustic-nocaustic-128x96.exr $R/caustic-fast-128x96.exr 16 12 0.15
+fi
