@@ -16,10 +16,10 @@ global_settings {
   adc_bailout 1e-4
   radiosity {
     pretrace_start 0.08
-    pretrace_end 0.01
+    pretrace_end 0.02
     count 300
     error_bound 0.3
-    nearest_count 10
+    nearest_count 8
     recursion_limit 20
     low_error_factor 0.5
     gray_threshold 0
@@ -31,8 +31,8 @@ global_settings {
     media off
   }
   photons {
-    count 2000000
-    gather 40, 200
+    count 1000000
+    gather 20, 100
     autostop 0
     max_trace_level 32
     adc_bailout 1e-4

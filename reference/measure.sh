@@ -41,6 +41,7 @@ done
 
 echo "== POV-Ray against itself"
 if [ -e $R/cornell-reference-256x192.exr ]; then
+  show "POV fast vs POV reference 256x192 (stats)" stats $R/cornell-fast-256x192.exr $R/cornell-reference-256x192.exr
   show "POV fast vs POV reference 256x192 (block 32x24)" block $R/cornell-fast-256x192.exr $R/cornell-reference-256x192.exr 32 24 0.15
   show "POV fast vs POV reference 256x192 (block 16x12)" block $R/cornell-fast-256x192.exr $R/cornell-reference-256x192.exr 16 12 0.15
 fi
@@ -73,3 +74,30 @@ if [ -e $R/caustic-fast-128x96.exr ]; then
   show "caustic scene: ours shadow-rays vs POV fast" block "$OUT/caustic-128-sr.exr" $R/caustic-fast-128x96.exr 16 12 0.15
   show "caustic scene: POV no caustic vs POV fast" block $R/caustic-nocaustic-128x96.exr $R/caustic-fast-128x96.exr 16 12 0.15
 fi
+if [ -e $R/caustic-fast-128x96.exr ]; then
+  export IMGCMP_CUT=24x20+52+76
+  show "caustic window: ours vs POV fast (6x5 blocks)" block "$OUT/caustic-128.exr" $R/caustic-fast-128x96.exr 6 5 0.15
+  show "caustic window: ours shadow-rays vs POV fast" block "$OUT/caustic-128-sr.exr" $R/caustic-fast-128x96.exr 6 5 0.15
+  show "caustic window: POV no caustic vs POV fast" block $R/caustic-nocaustic-128x96.exr $R/caustic-fast-128x96.exr 6 5 0.15
+  oiiotool "$OUT/caustic-128.exr" --mulc 0.8 -o "$OUT/caustic-x08.exr"
+  show "caustic window: control x0.8" block "$OUT/caustic-x08.exr" $R/caustic-fast-128x96.exr 6 5 0.15
+  unset IMGCMP_CUT
+fi
+
+echo "== direct-light controls (test size: 129x96, 3x3 subpixels)"
+D=(--direct shadow-rays --photons 0 --width 129 --height 96 --subpixels 3 --quiet)
+oiiotool "$OUT/direct-129.exr" --mulc 0.8 -o "$OUT/direct-x08.exr"
+oiiotool "$OUT/direct-129.exr" --mulc 3.14159265 -o "$OUT/direct-xpi.exr"
+$PM render "$OUT/green.scene" "${D[@]}" -o "$OUT/direct-green.exr"
+$PM render "$OUT/diffmirror.scene" "${D[@]}" -o "$OUT/direct-diffmirror.exr"
+awk '/shadow-only proxy/ { skip = 1 } !skip { print } skip && /^}/ { skip = 0 }' $R/cornell-direct-129x96.pov > "$OUT/noproxy.pov"
+povray +I"$OUT/noproxy.pov" +O"$OUT/noproxy-raw.exr" +W387 +H288 +FE -A -J +WT1 -D -V +GS >/dev/null 2>&1
+oiiotool "$OUT/noproxy-raw.exr" --resize:filter=box 129x96 -o "$OUT/direct-noshadow.exr"
+for c in x08 xpi green diffmirror noshadow; do
+  show "direct control $c (pixel)" pixel "$OUT/direct-$c.exr" $R/cornell-direct-129x96.exr 1e-3 1
+done
+
+echo "== POV-Ray re-run (single thread) vs the committed file"
+povray +I$R/cornell-fast-16x12.pov +O"$OUT/rerun-raw.exr" +W32 +H24 +FE -A -J +WT1 -D -V +GS >/dev/null 2>&1
+oiiotool "$OUT/rerun-raw.exr" --resize:filter=box 16x12 -d half -o "$OUT/rerun.exr"
+printf '%-58s %s\n' "cornell-fast-16x12 re-rendered" "$(idiff -fail 0 -warn 0 "$OUT/rerun.exr" $R/cornell-fast-16x12.exr | tail -n 1)"

@@ -107,10 +107,10 @@ static void put_header(FILE *f, const scene *sc, const char *scene_name, const p
         int ref = o->quality == POV_QUALITY_REFERENCE;
         fprintf(f, "  radiosity {\n");
         fprintf(f, "    pretrace_start 0.08\n");
-        fprintf(f, "    pretrace_end %s\n", ref ? "0.01" : "0.02");
+        fprintf(f, "    pretrace_end 0.02\n");
         fprintf(f, "    count %d\n", ref ? 300 : 100);
         fprintf(f, "    error_bound %s\n", ref ? "0.3" : "0.5");
-        fprintf(f, "    nearest_count %d\n", ref ? 10 : 5);
+        fprintf(f, "    nearest_count %d\n", ref ? 8 : 5);
         fprintf(f, "    recursion_limit 20\n");
         fprintf(f, "    low_error_factor 0.5\n");
         fprintf(f, "    gray_threshold 0\n");
@@ -125,8 +125,10 @@ static void put_header(FILE *f, const scene *sc, const char *scene_name, const p
     if (o->photons) {
         int ref = o->quality == POV_QUALITY_REFERENCE;
         fprintf(f, "  photons {\n");
-        fprintf(f, "    count %d\n", ref ? 2000000 : 200000);
-        fprintf(f, "    gather %s\n", ref ? "40, 200" : "20, 100");
+        /* the gather count, not the photon count, sets the noise; gathering
+         * is the hidden cost (radiosity rays gather too) */
+        fprintf(f, "    count %d\n", ref ? 1000000 : 200000);
+        fprintf(f, "    gather 20, 100\n");
         fprintf(f, "    autostop 0\n");
         fprintf(f, "    max_trace_level 32\n");
         fprintf(f, "    adc_bailout 1e-4\n");
