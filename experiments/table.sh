@@ -32,25 +32,30 @@ paper() { # KPHOTONS NN METHOD -> "seconds,ratio" or "n/a,n/a"
 }
 
 csv=$stem.csv.tmp
-echo "photons,nn,method,width,height,subpixels,threads,repeats,trace_s,build_s,precompute_s,render_s,total_s,total_min_s,total_max_s,photons_stored,representatives,ratio_percent,paper_s,paper_ratio_percent,relmse_ref,psnr_ref,relmse_conv,psnr_conv" > "$csv"
+echo "photons,nn,method,width,height,subpixels,threads,repeats,trace_s,build_s,precompute_s,render_s,total_s,total_min_s,total_max_s,photons_stored,representatives,ratio_percent,paper_s,paper_ratio_percent,relmse_ref,psnr_ref,relmse_conv,psnr_conv,cpu_s,cpu_min_s,cpu_ratio_percent" > "$csv"
 missing=0
 for p in $PHOTONS; do
   for n in $NNS; do
     conv_dir=$CELLROOT/conventional-p$p-n$n
     conv_total=$(awk 'NR == 2 { print $5 }' "$conv_dir/summary-r$REPEATS.tsv" 2>/dev/null || true)
+    conv_cpu=$(awk 'NR == 2 { print ($11 == "" ? "n/a" : $11) }' "$conv_dir/summary-r$REPEATS.tsv" 2>/dev/null || true)
     for m in $METHODS; do
       dir=$CELLROOT/$m-p$p-n$n
       sum=$dir/summary-r$REPEATS.tsv
       if [ ! -s "$sum" ]; then missing=$((missing + 1)); continue; fi
       row=$(awk 'NR == 2 { OFS = ","; print $1, $2, $3, $4, $5, $6, $7, $8, $9 }' "$sum")
       total=$(awk 'NR == 2 { print $5 }' "$sum")
+      cpu=$(awk 'NR == 2 { OFS = ","; print ($11 == "" ? "n/a" : $11), ($12 == "" ? "n/a" : $12) }' "$sum")
+      cpu_ratio=n/a
+      [ -n "$conv_cpu" ] && [ "$conv_cpu" != n/a ] && [ "${cpu%%,*}" != n/a ] &&
+        cpu_ratio=$(awk -v a="${cpu%%,*}" -v b="$conv_cpu" 'BEGIN { if (b > 0) printf "%.1f", 100 * a / b; else print "n/a" }')
       ratio=n/a
       [ -n "$conv_total" ] && ratio=$(awk -v a="$total" -v b="$conv_total" 'BEGIN { printf "%.1f", 100 * a / b }')
       kp=$(awk -v p="$p" 'BEGIN { printf "%g", p / 1000 }')
       pap=$(paper "$kp" "$n" "$m")
       ref_m=$(metric "$dir/image.exr" "$REF")
       if [ "$m" = conventional ]; then conv_m="0,inf"; else conv_m=$(metric "$dir/image.exr" "$conv_dir/image.exr"); fi
-      echo "$p,$n,$m,$WIDTH,$HEIGHT,$SUBPIXELS,${THREADS_LABEL%% *},$REPEATS,$row,$ratio,$pap,$ref_m,$conv_m" >> "$csv"
+      echo "$p,$n,$m,$WIDTH,$HEIGHT,$SUBPIXELS,${THREADS_LABEL%% *},$REPEATS,$row,$ratio,$pap,$ref_m,$conv_m,$cpu,$cpu_ratio" >> "$csv"
     done
   done
 done
@@ -75,22 +80,23 @@ refnote=${REF:-"n/a: no reference EXR of ${WIDTH}x${HEIGHT} in reference/ (error
   echo
   echo "## Times: the paper beside ours"
   echo
-  echo "ratio = precomputed (the paper's \"proposed\") / conventional total time, in percent."
+  echo "ratio = precomputed (the paper's \"proposed\") / conventional total time, in percent. \"our ... s\": median wall-clock total (the stats JSON's time_s.total); \"CPU s\": median user+system CPU seconds of the whole process (/usr/bin/time; includes start-up and, on the first repeat, writing the images), less disturbed than wall time by other work on a shared machine."
   echo
-  echo "| P_e | n | paper conv. s | paper prop. s | paper ratio % | our conv. s | our prec. s | our ratio % | speed-up vs paper (conv.) |"
-  echo "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
-  awk -F, 'NR > 1 { key = $1 "," $2; if (!(key in seen)) { seen[key] = 1; order[++k] = key }
-                    if ($3 == "conventional") { ct[key] = $13; cp[key] = $19 } else { pt[key] = $13; pp[key] = $19; r[key] = $18; pr[key] = $20 } }
-    function f(x) { return (x == "" ? "n/a" : x) }
+  echo "| P_e | n | paper conv. s | paper prop. s | paper ratio % | our conv. s | our prec. s | our ratio % | our conv. CPU s | our prec. CPU s | our ratio % (CPU) |"
+  echo "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+  awk -F, 'function g(x) { return (x == "" || x == "n/a") ? "n/a" : sprintf("%.3g", x) }
+    NR > 1 { key = $1 "," $2; if (!(key in seen)) { seen[key] = 1; order[++k] = key }
+             if ($3 == "conventional") { ct[key] = $13; cp[key] = $19; cc[key] = $25 }
+             else { pt[key] = $13; pp[key] = $19; r[key] = $18; pr[key] = $20; pc[key] = $25; rc[key] = $27 } }
     END { for (i = 1; i <= k; i++) { key = order[i]; split(key, a, ",");
-            su = (cp[key] != "n/a" && cp[key] != "" && ct[key] > 0) ? sprintf("%.0fx", cp[key] / ct[key]) : "n/a";
-            printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", a[1], a[2], f(cp[key]), f(pp[key]), f(pr[key]), f(ct[key]), f(pt[key]), f(r[key]), su } }' "$stem.csv"
+            printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", a[1], a[2], g(cp[key]), g(pp[key]), g(pr[key]),
+              g(ct[key]), g(pt[key]), g(r[key]), g(cc[key]), g(pc[key]), g(rc[key]) } }' "$stem.csv"
   echo
   echo "## Our phases (median seconds)"
   echo
-  echo "| P_e | n | method | trace | build | precompute | render | total (min-max) | stored photons | representatives |"
-  echo "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|"
-  awk -F, 'NR > 1 { printf "| %s | %s | %s | %.3f | %.3f | %.3f | %.3f | %.3f (%.3f-%.3f) | %s | %s |\n", $1, $2, $3, $9, $10, $11, $12, $13, $14, $15, $16, $17 }' "$stem.csv"
+  echo "| P_e | n | method | trace | build | precompute | render | total (min-max) | CPU (min) | stored photons | representatives |"
+  echo "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+  awk -F, 'NR > 1 { printf "| %s | %s | %s | %.3f | %.3f | %.3f | %.3f | %.3f (%.3f-%.3f) | %s (%s) | %s | %s |\n", $1, $2, $3, $9, $10, $11, $12, $13, $14, $15, $25, $26, $16, $17 }' "$stem.csv"
   echo
   echo "## Error: what the speed costs"
   echo

@@ -27,15 +27,16 @@ make -s reproduce-table "${ARGS[@]}" > "$TMP/grid.log" 2>&1
 check "reproduce-table: exits 0 and shows progress per cell" \
   bash -c "grep -q 'cell 1/4 conventional P_e=2000 n=10' $TMP/grid.log && grep -q 'cell 4/4 precomputed P_e=2000 n=20' $TMP/grid.log"
 check "reproduce-table: CSV has a header and 4 rows" \
-  bash -c "[ \$(wc -l < $R/table1.csv) -eq 5 ] && head -n 1 $R/table1.csv | grep -q '^photons,nn,method,.*total_s,.*relmse_conv,psnr_conv$'"
+  bash -c "[ \$(wc -l < $R/table1.csv) -eq 5 ] && head -n 1 $R/table1.csv | grep -q '^photons,nn,method,.*total_s,.*relmse_conv,psnr_conv,cpu_s,cpu_min_s,cpu_ratio_percent$'"
 check "reproduce-table: rows are the grid, times positive, ratio and errors filled" \
   awk -F, 'NR > 1 { n++; key = key $1 "/" $2 "/" $3 " ";
                     if (!($13 > 0) || $16 <= 0 || $4 != 32 || $5 != 24 || $8 != 1) bad = 1
                     if ($3 == "precomputed" && (!($17 > 0) || !($18 > 0) || !($23 > 0) || !($24 > 0))) bad = 1
-                    if ($3 == "conventional" && ($18 != "100.0" || $23 != 0)) bad = 1 }
+                    if ($3 == "conventional" && ($18 != "100.0" || $23 != 0)) bad = 1
+                    if (NF != 27 || !($25 >= 0) || !($26 >= 0)) bad = 1 }
            END { exit !(n == 4 && !bad && key == "2000/10/conventional 2000/10/precomputed 2000/20/conventional 2000/20/precomputed ") }' "$R/table1.csv"
 check "reproduce-table: Markdown has the three tables and the machine" \
-  bash -c "grep -q '^| 2000 | 20 | n/a | n/a | n/a | [0-9.]* | [0-9.]* | [0-9.]* | n/a |$' $R/table1.md &&
+  bash -c "grep -q '^| 2000 | 20 | n/a | n/a | n/a | [0-9.e-]* | [0-9.e-]* | [0-9.]* | [0-9.e-]* | [0-9.e-]* | [0-9.na/]* |$' $R/table1.md &&
            grep -q '^| 2000 | 10 | precomputed | [0-9.]* |' $R/table1.md && grep -q 'Machine: .*threads used per render: 1' $R/table1.md &&
            grep -q 'Commit: ' $R/table1.md && grep -q 'n/a: no reference EXR of 32x24' $R/table1.md"
 cells=$(ls -d "$R"/cells/32x24-s2-t1/*/ | wc -l)
@@ -47,7 +48,7 @@ check "reproduce-table: a missing reference named by REF is an error" grep -q "r
 rm "$R/cells/32x24-s2-t1/precomputed-p2000-n20/summary-r1.tsv"
 make -s reproduce-table "${ARGS[@]}" REF="$R/cells/32x24-s2-t1/conventional-p2000-n20/image.exr" > "$TMP/grid4.log" 2>&1
 check "reproduce-table: resumes only the missing cell, errors vs REF filled" \
-  bash -c "[ \$(grep -c '^cell .* done' $TMP/grid4.log) -eq 1 ] && grep -q '^2000,20,conventional,.*,0,inf,0,inf$' $R/table1.csv"
+  bash -c "[ \$(grep -c '^cell .* done' $TMP/grid4.log) -eq 1 ] && grep -q '^2000,20,conventional,.*,0,inf,0,inf,[0-9.]*,[0-9.]*,[0-9.na/]*$' $R/table1.csv"
 
 make -s resolution "${ARGS[@]}" RES_SIZES="16x12 32x24" RES_REF_PHOTONS=5000 RES_REF_NN=20 RES_TARGETS="1 0.000001" > "$TMP/res.log" 2>&1
 check "resolution: table with one row per target and a column per size" \
