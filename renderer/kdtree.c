@@ -1,17 +1,25 @@
 /* kdtree: build by recursive median split on the widest axis (quickselect),
- * search by depth-first descent with the incremental cell distance of Arya &
- * Mount (each cell's squared distance is updated per axis, so far cells are
- * pruned without storing boxes). Small k keeps a sorted array, large k a
- * max-heap. */
+ * search by iterative depth-first descent (explicit stack) with the
+ * incremental cell distance of Arya & Mount (each cell's squared distance is
+ * updated per axis, so far cells are pruned without storing boxes). Leaves
+ * are scanned KD_CHUNK points at a time (the coordinate arrays carry
+ * KD_CHUNK floats of padding, so a chunk may run past the last point).
+ * Results: small k keeps a sorted array, larger k a max-heap (packed
+ * 64-bit keys on the stack up to KD_PACK_K). */
 #include "kdtree.h"
 
 #include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
-#define KD_SMALL_K 16u
-#define KD_MAX_DEPTH 40
+#define KD_SMALL_K 16u  /* k up to this: sorted insertion */
+#define KD_PACK_K 256u  /* k up to this: packed 64-bit max-heap on the stack; above: two-array heap */
+#define KD_CHUNK 8u     /* leaf points per distance batch; padding of the coordinate arrays */
+#define KD_STACK 64     /* > tree depth (nleaves <= 2^32) */
 
 /* ---- build ---- */
 
@@ -105,9 +113,9 @@ int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint3
     t->split = malloc(sizeof(float) * nleaves);
     t->axis = malloc(nleaves);
     t->leaf_start = malloc(sizeof(uint32_t) * (nleaves + 1));
-    t->x = malloc(sizeof(float) * (n ? n : 1));
-    t->y = malloc(sizeof(float) * (n ? n : 1));
-    t->z = malloc(sizeof(float) * (n ? n : 1));
+    t->x = calloc((size_t)n + KD_CHUNK, sizeof(float));
+    t->y = calloc((size_t)n + KD_CHUNK, sizeof(float));
+    t->z = calloc((size_t)n + KD_CHUNK, sizeof(float));
     if (!own || !t->split || !t->axis || !t->leaf_start || !t->x || !t->y || !t->z) {
         if (!perm)
             free(own);
@@ -151,98 +159,18 @@ void kd_free(kd_tree *t)
 
 size_t kd_bytes(const kd_tree *t)
 {
-    return (size_t)t->n * 3 * sizeof(float) + (size_t)t->nleaves * (sizeof(float) + 1 + sizeof(uint32_t)) +
-           sizeof(uint32_t);
+    size_t pts = (size_t)t->n + (t->x ? KD_CHUNK : 0);
+    return pts * 3 * sizeof(float) + (size_t)t->nleaves * (sizeof(float) + 1 + sizeof(uint32_t)) + sizeof(uint32_t);
 }
 
-/* ---- k nearest ---- */
+/* ---- search helpers ---- */
 
+/* A deferred far cell: its node, squared distance and per-axis offsets. */
 typedef struct {
-    uint32_t k, n;
-    float worst; /* the k-th distance when full, else the cap */
-    uint32_t *idx;
-    float *d2;
-} kd_result;
-
-static inline void result_add(kd_result *r, uint32_t i, float d)
-{
-    if (r->k <= KD_SMALL_K) {
-        /* sorted insertion, ascending */
-        uint32_t j = r->n < r->k ? r->n++ : r->k - 1;
-        while (j > 0 && r->d2[j - 1] > d) {
-            r->d2[j] = r->d2[j - 1];
-            r->idx[j] = r->idx[j - 1];
-            j--;
-        }
-        r->d2[j] = d;
-        r->idx[j] = i;
-        if (r->n == r->k)
-            r->worst = r->d2[r->k - 1];
-        return;
-    }
-    /* max-heap on d2 */
-    if (r->n < r->k) {
-        uint32_t j = r->n++;
-        while (j > 0) {
-            uint32_t parent = (j - 1) / 2;
-            if (r->d2[parent] >= d)
-                break;
-            r->d2[j] = r->d2[parent];
-            r->idx[j] = r->idx[parent];
-            j = parent;
-        }
-        r->d2[j] = d;
-        r->idx[j] = i;
-        if (r->n == r->k)
-            r->worst = r->d2[0];
-        return;
-    }
-    /* replace the root and sift down */
-    uint32_t j = 0, n = r->n;
-    for (;;) {
-        uint32_t c = 2 * j + 1;
-        if (c >= n)
-            break;
-        if (c + 1 < n && r->d2[c + 1] > r->d2[c])
-            c++;
-        if (r->d2[c] <= d)
-            break;
-        r->d2[j] = r->d2[c];
-        r->idx[j] = r->idx[c];
-        j = c;
-    }
-    r->d2[j] = d;
-    r->idx[j] = i;
-    r->worst = r->d2[0];
-}
-
-static void knn_node(const kd_tree *t, uint32_t node, const float q[3], float rd, float off[3], kd_result *r)
-{
-    uint32_t first_leaf = t->nleaves - 1;
-    if (node >= first_leaf) {
-        uint32_t leaf = node - first_leaf;
-        uint32_t end = t->leaf_start[leaf + 1];
-        for (uint32_t i = t->leaf_start[leaf]; i < end; i++) {
-            float dx = t->x[i] - q[0], dy = t->y[i] - q[1], dz = t->z[i] - q[2];
-            float d = dx * dx + dy * dy + dz * dz;
-            if (r->n < r->k ? d <= r->worst : d < r->worst)
-                result_add(r, i, d);
-        }
-        return;
-    }
-    int a = t->axis[node];
-    float diff = q[a] - t->split[node];
-    uint32_t near = diff < 0.0f ? 2 * node + 1 : 2 * node + 2;
-    uint32_t far = diff < 0.0f ? 2 * node + 2 : 2 * node + 1;
-    knn_node(t, near, q, rd, off, r);
-    float old = off[a];
-    float nrd = rd - old * old + diff * diff;
-    if (nrd <= r->worst) {
-        off[a] = diff;
-        knn_node(t, far, q, nrd, off, r);
-        off[a] = old;
-    }
-}
+    uint32_t node;
+    float rd;
+    float off[3];
+} kd_frame;
 
 /* Squared distance from q to the box of all points, and its per-axis parts. */
 static float root_offsets(const kd_tree *t, const float q[3], float off[3])
@@ -256,69 +184,305 @@ static float root_offsets(const kd_tree *t, const float q[3], float off[3])
     return rd;
 }
 
+/* Squared distances from (qx, qy, qz) to the KD_CHUNK points from index i
+ * (a fixed-length loop the compiler vectorises; may read the padding). */
+static inline void chunk_d2(const kd_tree *t, uint32_t i, float qx, float qy, float qz, float *out)
+{
+    const float *x = t->x + i, *y = t->y + i, *z = t->z + i;
+    for (uint32_t j = 0; j < KD_CHUNK; j++) {
+        float dx = x[j] - qx, dy = y[j] - qy, dz = z[j] - qz;
+        out[j] = dx * dx + dy * dy + dz * dz;
+    }
+}
+
+/* chunk_d2, and a bit mask of the lanes with distance <= worst. */
+static inline uint32_t chunk_within(const kd_tree *t, uint32_t i, const float q[3], float worst, float *out)
+{
+#if defined(__SSE2__)
+    __m128 qx = _mm_set1_ps(q[0]), qy = _mm_set1_ps(q[1]), qz = _mm_set1_ps(q[2]), w = _mm_set1_ps(worst);
+    uint32_t mask = 0;
+    for (uint32_t j = 0; j < KD_CHUNK; j += 4) {
+        __m128 dx = _mm_sub_ps(_mm_loadu_ps(t->x + i + j), qx);
+        __m128 dy = _mm_sub_ps(_mm_loadu_ps(t->y + i + j), qy);
+        __m128 dz = _mm_sub_ps(_mm_loadu_ps(t->z + i + j), qz);
+        __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+        _mm_storeu_ps(out + j, d);
+        mask |= (uint32_t)_mm_movemask_ps(_mm_cmple_ps(d, w)) << j;
+    }
+    return mask;
+#else
+    chunk_d2(t, i, q[0], q[1], q[2], out);
+    uint32_t mask = 0;
+    for (uint32_t j = 0; j < KD_CHUNK; j++)
+        mask |= (uint32_t)(out[j] <= worst) << j;
+    return mask;
+#endif
+}
+
+/* Descends from *node to a leaf, nearer child first, pushing each far child
+ * whose cell lies within `worst`. Returns the leaf number. */
+static inline uint32_t descend(const kd_tree *t, uint32_t node, const float q[3], float rd, float off[3],
+                               float worst, kd_frame *stack, int *sp)
+{
+    uint32_t first_leaf = t->nleaves - 1;
+    while (node < first_leaf) {
+        int a = t->axis[node];
+        float diff = q[a] - t->split[node];
+        uint32_t near = 2 * node + 1 + (diff >= 0.0f);
+        float old = off[a];
+        float nrd = rd - old * old + diff * diff;
+        if (nrd <= worst) {
+            kd_frame *f = &stack[(*sp)++];
+            f->node = 4 * node + 3 - near; /* the sibling: 2n+1 <-> 2n+2 */
+            f->rd = nrd;
+            f->off[0] = off[0];
+            f->off[1] = off[1];
+            f->off[2] = off[2];
+            f->off[a] = diff;
+        }
+        node = near;
+    }
+    return node - first_leaf;
+}
+
+/* Pops the next deferred cell still within `worst` into node/rd/off;
+ * returns 0 when none is left. */
+static inline int pop(kd_frame *stack, int *sp, float worst, uint32_t *node, float *rd, float off[3])
+{
+    while (*sp > 0) {
+        const kd_frame *f = &stack[--*sp];
+        if (f->rd <= worst) {
+            *node = f->node;
+            *rd = f->rd;
+            off[0] = f->off[0];
+            off[1] = f->off[1];
+            off[2] = f->off[2];
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* ---- k nearest: results ----
+ * Both kinds live in the caller's idx/d2 arrays, take the current count in
+ * *np and return the new acceptance threshold: the cap until k are held,
+ * then the k-th distance. Callers add a point when d <= threshold and
+ * (d < threshold or fewer than k are held). */
+
+/* sorted insertion, ascending (k <= KD_SMALL_K) */
+static inline float sorted_add(uint32_t *restrict ri, float *restrict rd2, uint32_t k, uint32_t *np, uint32_t i,
+                               float d, float cap)
+{
+    uint32_t n = *np;
+    uint32_t j = n < k ? n++ : k - 1;
+    while (j > 0 && rd2[j - 1] > d) {
+        rd2[j] = rd2[j - 1];
+        ri[j] = ri[j - 1];
+        j--;
+    }
+    rd2[j] = d;
+    ri[j] = i;
+    *np = n;
+    return n == k ? rd2[k - 1] : cap;
+}
+
+/* max-heap on d2 (k > KD_SMALL_K) */
+static inline float heap_add(uint32_t *restrict hi, float *restrict hd, uint32_t k, uint32_t *np, uint32_t i,
+                             float d, float cap)
+{
+    uint32_t n = *np;
+    if (n < k) {
+        uint32_t j = n;
+        while (j > 0) {
+            uint32_t parent = (j - 1) / 2;
+            float dp = hd[parent];
+            if (dp >= d)
+                break;
+            hd[j] = dp;
+            hi[j] = hi[parent];
+            j = parent;
+        }
+        hd[j] = d;
+        hi[j] = i;
+        *np = n + 1;
+        return n + 1 == k ? hd[0] : cap;
+    }
+    /* replace the root and sift down */
+    uint32_t j = 0;
+    for (;;) {
+        uint32_t c = 2 * j + 1;
+        if (c >= k)
+            break;
+        float dc = hd[c];
+        if (c + 1 < k) {
+            float dc1 = hd[c + 1];
+            if (dc1 > dc) {
+                dc = dc1;
+                c++;
+            }
+        }
+        if (dc <= d)
+            break;
+        hd[j] = dc;
+        hi[j] = hi[c];
+        j = c;
+    }
+    hd[j] = d;
+    hi[j] = i;
+    return hd[0];
+}
+
+/* Packed max-heap (KD_SMALL_K < k <= KD_PACK_K): one 64-bit key per
+ * entry, the squared distance's bits above the index (non-negative floats
+ * order as their bit patterns), so a move is one load and one store. The
+ * first k points are appended and heapified at once; an extra zero key at
+ * h[k] lets the sift-down read a right child without a bounds test. */
+static inline uint64_t pack_key(float d, uint32_t i)
+{
+    uint32_t b;
+    memcpy(&b, &d, sizeof b);
+    return (uint64_t)b << 32 | i;
+}
+
+static inline float key_d2(uint64_t key)
+{
+    uint32_t b = (uint32_t)(key >> 32);
+    float d;
+    memcpy(&d, &b, sizeof d);
+    return d;
+}
+
+static inline void sift_down(uint64_t *h, uint32_t k, uint32_t j, uint64_t key)
+{
+    uint32_t c;
+    while ((c = 2 * j + 1) < k) {
+        uint64_t hc = h[c], hc1 = h[c + 1];
+        if (hc1 > hc) {
+            hc = hc1;
+            c++;
+        }
+        if (hc <= key)
+            break;
+        h[j] = hc;
+        j = c;
+    }
+    h[j] = key;
+}
+
+static inline float packed_add(uint64_t *h, uint32_t k, uint32_t *np, uint32_t i, float d, float cap)
+{
+    uint32_t n = *np;
+    if (n < k) {
+        h[n++] = pack_key(d, i);
+        *np = n;
+        if (n < k)
+            return cap;
+        for (uint32_t j = k / 2; j-- > 0;)
+            sift_down(h, k, j, h[j]);
+        return key_d2(h[0]);
+    }
+    sift_down(h, k, 0, pack_key(d, i));
+    return key_d2(h[0]);
+}
+
+/* ---- k nearest: search ---- */
+
+/* The search loop, instantiated once per result kind (ADD). */
+#define KD_KNN_SEARCH(ADD)                                                                                      \
+    do {                                                                                                        \
+        kd_frame stack[KD_STACK];                                                                               \
+        int sp = 0;                                                                                             \
+        float off[3];                                                                                           \
+        float rd = root_offsets(t, q, off);                                                                     \
+        uint32_t node = 0;                                                                                      \
+        if (rd > worst)                                                                                         \
+            break;                                                                                              \
+        do {                                                                                                    \
+            uint32_t leaf = descend(t, node, q, rd, off, worst, stack, &sp);                                    \
+            uint32_t beg = t->leaf_start[leaf], end = t->leaf_start[leaf + 1];                                 \
+            for (uint32_t c = beg; c < end; c += KD_CHUNK) {                                                    \
+                float dd[KD_CHUNK];                                                                             \
+                uint32_t mask = chunk_within(t, c, q, worst, dd);                                               \
+                if (end - c < KD_CHUNK)                                                                         \
+                    mask &= (1u << (end - c)) - 1u;                                                             \
+                while (mask) {                                                                                  \
+                    uint32_t j = (uint32_t)__builtin_ctz(mask);                                                 \
+                    mask &= mask - 1u;                                                                          \
+                    float d = dd[j];                                                                            \
+                    if (d <= worst && (d < worst || n < k))                                                     \
+                        worst = ADD(c + j, d);                                                                  \
+                }                                                                                               \
+            }                                                                                                   \
+        } while (pop(stack, &sp, worst, &node, &rd, off));                                                      \
+    } while (0)
+
 uint32_t kd_knn(const kd_tree *t, const float q[3], uint32_t k, float max_d2, uint32_t *idx, float *d2, float *r2)
 {
     *r2 = 0.0f;
     if (k == 0 || t->n == 0)
         return 0;
-    kd_result r = {k, 0, max_d2, idx, d2};
-    float off[3];
-    float rd = root_offsets(t, q, off);
-    if (rd <= max_d2)
-        knn_node(t, 0, q, rd, off, &r);
-    if (r.n > 0)
-        *r2 = k <= KD_SMALL_K ? r.d2[r.n - 1] : r.d2[0];
-    return r.n;
+    uint32_t n = 0;
+    float worst = max_d2;
+    if (k <= KD_SMALL_K) {
+#define ADD_SORTED(i, d) sorted_add(idx, d2, k, &n, (i), (d), max_d2)
+        KD_KNN_SEARCH(ADD_SORTED);
+#undef ADD_SORTED
+        if (n > 0)
+            *r2 = d2[n - 1];
+    } else if (k <= KD_PACK_K) {
+        uint64_t h[KD_PACK_K + 1];
+        h[k] = 0;
+#define ADD_PACKED(i, d) packed_add(h, k, &n, (i), (d), max_d2)
+        KD_KNN_SEARCH(ADD_PACKED);
+#undef ADD_PACKED
+        uint64_t top = 0;
+        for (uint32_t j = 0; j < n; j++) {
+            idx[j] = (uint32_t)h[j];
+            d2[j] = key_d2(h[j]);
+            top = h[j] > top ? h[j] : top;
+        }
+        *r2 = n > 0 ? key_d2(top) : 0.0f;
+    } else {
+#define ADD_HEAP(i, d) heap_add(idx, d2, k, &n, (i), (d), max_d2)
+        KD_KNN_SEARCH(ADD_HEAP);
+#undef ADD_HEAP
+        if (n > 0)
+            *r2 = d2[0];
+    }
+    return n;
 }
 
 /* ---- nearest with a predicate ---- */
 
-typedef struct {
-    kd_pred pred;
-    const void *ctx;
-    uint32_t best;
-    float best_d2;
-} kd_nearest;
-
-static void nearest_node(const kd_tree *t, uint32_t node, const float q[3], float rd, float off[3], kd_nearest *s)
-{
-    uint32_t first_leaf = t->nleaves - 1;
-    if (node >= first_leaf) {
-        uint32_t leaf = node - first_leaf;
-        uint32_t end = t->leaf_start[leaf + 1];
-        for (uint32_t i = t->leaf_start[leaf]; i < end; i++) {
-            float dx = t->x[i] - q[0], dy = t->y[i] - q[1], dz = t->z[i] - q[2];
-            float d = dx * dx + dy * dy + dz * dz;
-            if (d <= s->best_d2 && (s->best == KD_NONE || d < s->best_d2) && (!s->pred || s->pred(i, s->ctx))) {
-                s->best = i;
-                s->best_d2 = d;
-            }
-        }
-        return;
-    }
-    int a = t->axis[node];
-    float diff = q[a] - t->split[node];
-    uint32_t near = diff < 0.0f ? 2 * node + 1 : 2 * node + 2;
-    uint32_t far = diff < 0.0f ? 2 * node + 2 : 2 * node + 1;
-    nearest_node(t, near, q, rd, off, s);
-    float old = off[a];
-    float nrd = rd - old * old + diff * diff;
-    if (nrd <= s->best_d2) {
-        off[a] = diff;
-        nearest_node(t, far, q, nrd, off, s);
-        off[a] = old;
-    }
-}
-
 uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx, float *d2)
 {
-    kd_nearest s = {pred, ctx, KD_NONE, max_d2};
+    uint32_t best = KD_NONE;
+    float best_d2 = max_d2;
     if (t->n > 0) {
+        kd_frame stack[KD_STACK];
+        int sp = 0;
         float off[3];
         float rd = root_offsets(t, q, off);
-        if (rd <= max_d2)
-            nearest_node(t, 0, q, rd, off, &s);
+        uint32_t node = 0;
+        if (rd <= max_d2) {
+            do {
+                uint32_t leaf = descend(t, node, q, rd, off, best_d2, stack, &sp);
+                uint32_t beg = t->leaf_start[leaf], end = t->leaf_start[leaf + 1];
+                for (uint32_t c = beg; c < end; c += KD_CHUNK) {
+                    float dd[KD_CHUNK];
+                    chunk_d2(t, c, q[0], q[1], q[2], dd);
+                    uint32_t m = end - c < KD_CHUNK ? end - c : KD_CHUNK;
+                    for (uint32_t j = 0; j < m; j++) {
+                        float d = dd[j];
+                        if (d <= best_d2 && (best == KD_NONE || d < best_d2) && (!pred || pred(c + j, ctx))) {
+                            best = c + j;
+                            best_d2 = d;
+                        }
+                    }
+                }
+            } while (pop(stack, &sp, best_d2, &node, &rd, off));
+        }
     }
-    *d2 = s.best == KD_NONE ? 0.0f : s.best_d2;
-    return s.best;
+    *d2 = best == KD_NONE ? 0.0f : best_d2;
+    return best;
 }

@@ -21,7 +21,7 @@ typedef struct {
     float *split;         /* nleaves-1 inner nodes */
     uint8_t *axis;        /* nleaves-1 inner nodes */
     uint32_t *leaf_start; /* nleaves+1 offsets into x, y, z */
-    float *x, *y, *z;     /* points in leaf order */
+    float *x, *y, *z;     /* points in leaf order (+ padding, see kdtree.c) */
     float lo[3], hi[3];   /* bounds of all points */
 } kd_tree;
 
