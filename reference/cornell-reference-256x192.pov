@@ -31,7 +31,7 @@ global_settings {
     media off
   }
   photons {
-    count 1000000
+    count 200000
     gather 20, 100
     autostop 0
     max_trace_level 32

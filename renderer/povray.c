@@ -86,9 +86,18 @@ static void put_point(FILE *f, vec3 v) { put_triple(f, pov_coords(v)); }
 /* 1 when v has exactly one non-zero component. */
 static int axis_aligned(vec3 v) { return (v.x != 0.0) + (v.y != 0.0) + (v.z != 0.0) == 1; }
 
+/* Writes s inside a // comment: bytes other than printable ASCII become '?'. */
+static void put_comment_text(FILE *f, const char *s)
+{
+    for (; *s; s++)
+        fputc(*s >= 0x20 && *s < 0x7f ? *s : '?', f);
+}
+
 static void put_header(FILE *f, const scene *sc, const char *scene_name, const pov_options *o)
 {
-    fprintf(f, "// POV-Ray 3.7 SDL exported by `photonmap export-pov` from %s\n", scene_name);
+    fprintf(f, "// POV-Ray 3.7 SDL exported by `photonmap export-pov` from ");
+    put_comment_text(f, scene_name);
+    fputc('\n', f);
     fprintf(f, "// settings: %ux%u, quality %s, radiosity %s, photons %s\n", o->width, o->height,
             pov_quality_name(o->quality), o->radiosity ? "on" : "off", o->photons ? "on" : "off");
     fprintf(f, "// Render single-threaded for reproducibility, linear OpenEXR, no antialiasing:\n");
@@ -123,11 +132,11 @@ static void put_header(FILE *f, const scene *sc, const char *scene_name, const p
         fprintf(f, "  }\n");
     }
     if (o->photons) {
-        int ref = o->quality == POV_QUALITY_REFERENCE;
         fprintf(f, "  photons {\n");
-        /* the gather count, not the photon count, sets the noise; gathering
-         * is the hidden cost (radiosity rays gather too) */
-        fprintf(f, "    count %d\n", ref ? 1000000 : 200000);
+        /* The gather count, not the photon count, sets the noise; and here
+         * POV-Ray's photon pass slowed down pathologically with count 1e6 (no
+         * progress in minutes), so both qualities use the same photons. */
+        fprintf(f, "    count 200000\n");
         fprintf(f, "    gather 20, 100\n");
         fprintf(f, "    autostop 0\n");
         fprintf(f, "    max_trace_level 32\n");
