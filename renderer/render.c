@@ -15,6 +15,7 @@
 
 typedef struct {
     uint64_t samples, depth_hits, empty;
+    char pad[128 - 3 * sizeof(uint64_t)]; /* one per thread: no two threads' counters share a cache line */
 } eye_counts;
 
 typedef struct {
@@ -242,7 +243,7 @@ int render_run(const scene *sc, const render_config *cfg, unsigned threads, int 
     c.counts = calloc(threads, sizeof(eye_counts));
     int rc = (!c.scratch || !c.counts || image_init(out, cfg->width, cfg->height)) ? -1 : 0;
     for (unsigned t = 0; rc == 0 && t < threads; t++)
-        rc = est_scratch_init(&c.scratch[t], cfg->nn);
+        rc = est_scratch_init(&c.scratch[t], cfg->nn + 16); /* unused tail: threads' buffers share no line */
     if (rc == 0) {
         progress_begin(&prog, "render", (uint64_t)c.tiles_x * tiles_y, show_progress);
         c.prog = &prog;

@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <valgrind/callgrind.h>
 
@@ -21,6 +22,7 @@
 #include "estimate.h"
 #include "kdtree.h"
 #include "material.h"
+#include "parallel.h"
 #include "photons.h"
 #include "render.h"
 #include "rng.h"
@@ -42,6 +44,34 @@ typedef struct {
 } qset;
 
 static double now_s(void) { return (double)stats_now_ns() * 1e-9; }
+
+/* A pure compute loop split over `threads` (64 items): the machine's own
+ * 2-thread scaling at this moment, to read the eye pass's against. */
+static void spin_item(uint64_t item, unsigned thread, void *ctx)
+{
+    (void)thread;
+    volatile uint64_t *sink = ctx;
+    uint64_t x = item;
+    for (uint32_t i = 0; i < 2000000u; i++)
+        x = x * 6364136223846793005ull + 1442695040888963407ull;
+    *sink += x & 1;
+}
+
+static double spin_s(unsigned threads)
+{
+    static volatile uint64_t sink;
+    double t0 = (double)stats_now_ns() * 1e-9;
+    parallel_for(threads, 64, spin_item, (void *)&sink);
+    return (double)stats_now_ns() * 1e-9 - t0;
+}
+
+/* CPU seconds of the whole process (all threads). */
+static double cpu_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -307,33 +337,65 @@ int main(int argc, char **argv)
 
     if (!icount) {
         uint32_t ew = 256, eh = 192;
+        double load[3] = {0, 0, 0};
+        FILE *lf = fopen("/proc/loadavg", "r");
+        if (lf) {
+            if (fscanf(lf, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3)
+                load[0] = load[1] = load[2] = 0;
+            fclose(lf);
+        }
         printf("\n## Eye pass, samples per second (render_run, %ux%u, S=%u, P_e=%u, n=%u)\n\n", ew, eh,
                cfg.subpixels, (unsigned)cfg.photons, cfg.nn);
-        printf("| method | 1 thread (Msamples/s) | 2 threads (Msamples/s) | scaling |\n|---|---:|---:|---:|\n");
+        printf("Wall: eye-pass samples per second from render_run's own eye-pass timer, median of %d runs. "
+               "CPU: process CPU seconds of the eye pass (a render minus the same render at 16x16) per "
+               "sample; `CPU ratio` = CPU per sample on 1 thread / on 2 threads, 1.00 when the second "
+               "thread does its share with no overhead (false sharing, contention), so that 2 free cores "
+               "would give 2 x CPU ratio. Load average when this ran: %.1f %.1f %.1f (other jobs share "
+               "the 2 cores, so wall scaling here understates what the code does; `compute-loop scaling` is what a "
+               "pure integer loop split over 2 threads got in the same minutes, the most the machine gave).\n\n",
+               reps, load[0], load[1], load[2]);
+        printf("| method | 1 thread (Msamples/s) | 2 threads (Msamples/s) | wall scaling | compute-loop scaling "
+               "| CPU us/sample 1 thr | CPU us/sample 2 thr | CPU ratio |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
         for (int m = 0; m < 2; m++) {
             render_config c = cfg;
             c.width = ew;
             c.height = eh;
             c.method = m ? METHOD_PRECOMPUTED : METHOD_CONVENTIONAL;
-            double rate[2];
+            render_config tiny = c;
+            tiny.width = tiny.height = 16;
+            double rate[2], cpu[2], spin[2][64];
             for (unsigned th = 1; th <= 2; th++) {
-                double t[64];
+                double t[64], cs[64];
                 uint64_t samples = 0;
                 for (int r = 0; r < reps && r < 64; r++) {
                     image img;
-                    stats_run st;
+                    stats_run st, st0;
+                    double c0 = cpu_s();
+                    if (render_run(sc, &tiny, th, 0, &img, &st0)) {
+                        fprintf(stderr, "bench: out of memory\n");
+                        return 1;
+                    }
+                    image_free(&img);
+                    double c1 = cpu_s();
                     if (render_run(sc, &c, th, 0, &img, &st)) {
                         fprintf(stderr, "bench: out of memory\n");
                         return 1;
                     }
                     image_free(&img);
+                    double c2 = cpu_s();
                     t[r] = st.render;
+                    samples = st.samples - st0.samples;
+                    cs[r] = ((c2 - c1) - (c1 - c0)) / (double)samples;
                     samples = st.samples;
+                    spin[th - 1][r] = spin_s(th);
                 }
                 rate[th - 1] = samples / median(t, reps);
+                cpu[th - 1] = median(cs, reps);
             }
-            printf("| %s | %.3f | %.3f | %.2fx |\n", config_method_name(c.method), rate[0] * 1e-6, rate[1] * 1e-6,
-                   rate[1] / rate[0]);
+            double spin_scaling = median(spin[0], reps) / median(spin[1], reps);
+            printf("| %s | %.3f | %.3f | %.2fx | %.2fx | %.3f | %.3f | %.2f |\n", config_method_name(c.method),
+                   rate[0] * 1e-6, rate[1] * 1e-6, rate[1] / rate[0], spin_scaling, cpu[0] * 1e6, cpu[1] * 1e6,
+                   cpu[0] / cpu[1]);
         }
         printf("\nPHOTON_BYTES_PER_STORED = %zu (payload %zu + position %zu); the tree adds %.2f bytes/photon "
                "of inner nodes and leaf offsets (see the table above).\n",

@@ -38,7 +38,7 @@ icount_md() {
 icount_md > "$tmp/icount.md"
 
 echo "bench: eye-pass profile (perf)" >&2
-prof_args=(render scenes/cornell.scene --photons 500000 --nn 100 --width 256 --height 192 --threads 1 --quiet -o "$tmp/p.exr")
+prof_args=(render scenes/cornell.scene --photons 500000 --nn 100 --width 512 --height 384 --threads 1 --quiet -o "$tmp/p.exr")
 profile() { # method
   if perf record -q -e cpu-clock -o "$tmp/perf.data" build/photonmap "${prof_args[@]}" --method "$1" \
       > /dev/null 2>&1; then
@@ -90,13 +90,13 @@ heavy precomputed >> "$tmp/heavy.md"
   echo "|---|---:|---:|---:|---:|"
   cat "$tmp/heavy.md"
   echo
-  echo "## Where the eye-pass time goes (perf, cpu-clock, 256x192, P_e=500k, n=100, 1 thread)"
+  echo "## Where the eye-pass time goes (perf, cpu-clock, whole run of build/photonmap at 512x384, S=2, P_e=500k, n=100, 1 thread)"
   echo
   echo "Conventional:"
   echo
   cat "$tmp/prof_conv.txt"
   echo
-  echo "Precomputed (the profile includes the photon pass, build and precompute):"
+  echo "Precomputed:"
   echo
   cat "$tmp/prof_pre.txt"
 } > "$OUT"
