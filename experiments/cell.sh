@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # cell.sh: one cell of `make reproduce-table` (see experiments/table.mk).
 #   cell.sh NAME DIR REPEATS  (settings from the environment: PM SCENE WIDTH
-#   HEIGHT SUBPIXELS THREADS_ARG CELL_LIST)
+#   HEIGHT SUBPIXELS THREADS_ARG CELL_LIST, and PM_ARGS: extra render options)
 # NAME is METHOD-pPHOTONS-nNN. Renders REPEATS times with --stats into
 # DIR/rep<i>.json (a repeat whose JSON exists is kept, so an interrupted cell
 # resumes and raising REPEATS adds repeats); the first repeat also writes
@@ -31,7 +31,7 @@ for r in $(seq 1 "$reps"); do
   [ "$r" -eq 1 ] && img=(-o "$dir/image.exr" --png "$dir/image.png")
   /usr/bin/time -f "%U %S" -o "$dir/rep$r.cpu.tmp" "$PM" render "$SCENE" --method "$method" --photons "$photons" --nn "$nn" \
     --width "$WIDTH" --height "$HEIGHT" --subpixels "$SUBPIXELS" --threads "$THREADS_ARG" \
-    "${img[@]}" --stats "$json.tmp" --quiet
+    ${PM_ARGS:-} "${img[@]}" --stats "$json.tmp" --quiet
   mv "$json.tmp" "$json"
   awk '{ printf "%.4f\n", $1 + $2 }' "$dir/rep$r.cpu.tmp" > "$dir/rep$r.cpu" && rm -f "$dir/rep$r.cpu.tmp"
   t=$(sed -n 's/.*"total": *\([0-9.e+-]*\).*/\1/p' "$json")

@@ -5,7 +5,7 @@
 # the fallback reference) first; see experiments/figures.sh.
 FIG_SIZE ?= 1024x768
 .PHONY: figures
-figures: | $(IMGMETRICS)
+figures: | $(BUILD)/imgmetrics
 	@RESULTS=$(RESULTS) CELLROOT=$(RESULTS)/cells/$(FIG_SIZE)-s$(SUBPIXELS)-$(T_LABEL) FIG_SIZE=$(FIG_SIZE) \
 	  TABLE_CSV=$(TABLE).csv RES_REF_PHOTONS=$(RES_REF_PHOTONS) RES_REF_NN=$(RES_REF_NN) \
 	  bash experiments/figures.sh

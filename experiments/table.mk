@@ -7,6 +7,7 @@
 #
 # Knobs: SIZE (or WIDTH/HEIGHT), SUBPIXELS, PHOTONS, NNS, METHODS, REPEATS,
 # THREADS, RESULTS (results dir), TABLE (output stem, default RESULTS/table1),
+# TAG + PM_ARGS (+ CONV_CELLROOT) for a variant with extra render options,
 # REF (reference EXR; default: found in reference/ by size, see
 # experiments/table.sh), SCENE. Each cell is one make target,
 # RESULTS/cells/<W>x<H>-s<S>-t<T>/<method>-p<P_e>-n<n>/summary-r<REPEATS>.tsv,
@@ -36,23 +37,31 @@ THREADS ?= 1
 SCENE ?= scenes/cornell.scene
 TABLE ?= $(RESULTS)/table1
 REF ?=
-# The renderer the cells run (copy build/photonmap aside to pin it during a long run).
+# The renderer the cells run (copy build/photonmap aside to pin it during a
+# long run; a file PM.commit beside the copy, e.g. `git rev-parse --short HEAD;
+# git status --short renderer`, is quoted in the table as its provenance).
 PM ?= $(BUILD)/photonmap
 
 T_ARG := $(if $(strip $(THREADS)),$(strip $(THREADS)),0)
 T_LABEL := $(if $(strip $(THREADS)),t$(strip $(THREADS)),tall)
-CELLROOT := $(RESULTS)/cells/$(WIDTH)x$(HEIGHT)-s$(SUBPIXELS)-$(T_LABEL)
+# TAG names a variant run with extra render options PM_ARGS (its cells get
+# their own directory); CONV_CELLROOT is where the ratio's conventional cells
+# are (e.g. the untagged grid when a variant runs METHODS=precomputed only).
+TAG ?=
+PM_ARGS ?=
+CELLROOT := $(RESULTS)/cells/$(WIDTH)x$(HEIGHT)-s$(SUBPIXELS)-$(T_LABEL)$(if $(strip $(TAG)),-$(strip $(TAG)))
+CONV_CELLROOT ?= $(CELLROOT)
 CELLS := $(foreach p,$(PHOTONS),$(foreach n,$(NNS),$(foreach m,$(METHODS),$(m)-p$(p)-n$(n))))
 CELL_FILES := $(foreach c,$(CELLS),$(CELLROOT)/$(c)/summary-r$(REPEATS).tsv)
 
 # One cell: REPEATS renders of one (method, P_e, n).
 $(CELLROOT)/%/summary-r$(REPEATS).tsv: | $(BUILD)/photonmap
-	@PM=$(PM) SCENE=$(SCENE) WIDTH=$(WIDTH) HEIGHT=$(HEIGHT) SUBPIXELS=$(SUBPIXELS) \
+	@PM=$(PM) PM_ARGS="$(PM_ARGS)" SCENE=$(SCENE) WIDTH=$(WIDTH) HEIGHT=$(HEIGHT) SUBPIXELS=$(SUBPIXELS) \
 	  THREADS_ARG=$(T_ARG) CELL_LIST="$(CELLS)" bash experiments/cell.sh $* $(CELLROOT)/$* $(REPEATS)
 
 .PHONY: reproduce-table reproduce-cells
 reproduce-cells: $(CELL_FILES)
 reproduce-table: $(CELL_FILES) | $(IMGMETRICS)
-	@CELLROOT=$(CELLROOT) PHOTONS="$(PHOTONS)" NNS="$(NNS)" METHODS="$(METHODS)" REPEATS=$(REPEATS) \
+	@PM=$(PM) CELLROOT=$(CELLROOT) CONV_CELLROOT=$(CONV_CELLROOT) PM_ARGS="$(PM_ARGS)" PHOTONS="$(PHOTONS)" NNS="$(NNS)" METHODS="$(METHODS)" REPEATS=$(REPEATS) \
 	  WIDTH=$(WIDTH) HEIGHT=$(HEIGHT) SUBPIXELS=$(SUBPIXELS) THREADS_LABEL="$(if $(strip $(THREADS)),$(strip $(THREADS)),all ($(shell nproc)))" \
 	  REF="$(REF)" IMGMETRICS=$(IMGMETRICS) bash experiments/table.sh $(TABLE)
