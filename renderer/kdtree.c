@@ -1,4 +1,5 @@
-/* kdtree: build by recursive median split on the widest axis (quickselect),
+/* kdtree: build by recursive median split on the widest axis (quickselect
+ * on a contiguous working copy of the points),
  * search by iterative depth-first descent (explicit stack) with the
  * incremental cell distance of Arya & Mount (each cell's squared distance is
  * updated per axis, so far cells are pruned without storing boxes). Leaves
@@ -23,22 +24,28 @@
 
 /* ---- build ---- */
 
+/* The build partitions a working copy of the points with their input
+ * indices (16 bytes each), so every pass reads memory in order. */
 typedef struct {
-    const float *pts;
-    uint32_t *perm;
+    float p[3];
+    uint32_t id;
+} kd_item;
+
+typedef struct {
+    kd_item *it;
     kd_tree *t;
 } kd_builder;
 
 static float coord(const kd_builder *b, uint32_t i, int axis)
 {
-    return b->pts[3 * (size_t)b->perm[i] + axis];
+    return b->it[i].p[axis];
 }
 
-/* Reorders perm[lo..hi) so that the element at position k is the one a full
+/* Reorders it[lo..hi) so that the element at position k is the one a full
  * sort by `axis` would put there, with smaller-or-equal ones before it. */
 static void select_kth(kd_builder *b, uint32_t lo, uint32_t hi, uint32_t k, int axis)
 {
-    uint32_t *p = b->perm;
+    kd_item *p = b->it;
     while (hi - lo > 1) {
         /* median of three pivot */
         uint32_t mid = lo + (hi - lo) / 2;
@@ -49,11 +56,11 @@ static void select_kth(kd_builder *b, uint32_t lo, uint32_t hi, uint32_t k, int 
         while (i < gt) {
             float v = coord(b, i, axis);
             if (v < pivot) {
-                uint32_t tmp = p[lt]; p[lt] = p[i]; p[i] = tmp;
+                kd_item tmp = p[lt]; p[lt] = p[i]; p[i] = tmp;
                 lt++; i++;
             } else if (v > pivot) {
                 gt--;
-                uint32_t tmp = p[gt]; p[gt] = p[i]; p[i] = tmp;
+                kd_item tmp = p[gt]; p[gt] = p[i]; p[i] = tmp;
             } else {
                 i++;
             }
@@ -109,22 +116,25 @@ int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint3
         nleaves *= 2;
     t->n = n;
     t->nleaves = nleaves;
-    uint32_t *own = perm ? perm : malloc(sizeof(uint32_t) * (n ? n : 1));
+    kd_item *it = malloc(sizeof(kd_item) * (n ? n : 1));
     t->split = malloc(sizeof(float) * nleaves);
     t->axis = malloc(nleaves);
     t->leaf_start = malloc(sizeof(uint32_t) * (nleaves + 1));
     t->x = calloc((size_t)n + KD_CHUNK, sizeof(float));
     t->y = calloc((size_t)n + KD_CHUNK, sizeof(float));
     t->z = calloc((size_t)n + KD_CHUNK, sizeof(float));
-    if (!own || !t->split || !t->axis || !t->leaf_start || !t->x || !t->y || !t->z) {
-        if (!perm)
-            free(own);
+    if (!it || !t->split || !t->axis || !t->leaf_start || !t->x || !t->y || !t->z) {
+        free(it);
         kd_free(t);
         return -1;
     }
-    for (uint32_t i = 0; i < n; i++)
-        own[i] = i;
-    kd_builder b = {pts, own, t};
+    for (uint32_t i = 0; i < n; i++) {
+        it[i].p[0] = pts[3 * (size_t)i];
+        it[i].p[1] = pts[3 * (size_t)i + 1];
+        it[i].p[2] = pts[3 * (size_t)i + 2];
+        it[i].id = i;
+    }
+    kd_builder b = {it, t};
     build_node(&b, 0, 0, n, nleaves);
     t->leaf_start[nleaves] = n;
     for (int a = 0; a < 3; a++) {
@@ -132,7 +142,9 @@ int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint3
         t->hi[a] = -INFINITY;
     }
     for (uint32_t i = 0; i < n; i++) {
-        const float *p = pts + 3 * (size_t)own[i];
+        const float *p = it[i].p;
+        if (perm)
+            perm[i] = it[i].id;
         t->x[i] = p[0];
         t->y[i] = p[1];
         t->z[i] = p[2];
@@ -141,8 +153,7 @@ int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint3
             t->hi[a] = p[a] > t->hi[a] ? p[a] : t->hi[a];
         }
     }
-    if (!perm)
-        free(own);
+    free(it);
     return 0;
 }
 
