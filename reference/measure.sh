@@ -45,6 +45,10 @@ if [ -e $R/cornell-reference-256x192.exr ]; then
   show "POV fast vs POV reference 256x192 (block 32x24)" block $R/cornell-fast-256x192.exr $R/cornell-reference-256x192.exr 32 24 0.15
   show "POV fast vs POV reference 256x192 (block 16x12)" block $R/cornell-fast-256x192.exr $R/cornell-reference-256x192.exr 16 12 0.15
 fi
+if [ -e $R/cornell-reference-1024x768.exr ]; then
+  oiiotool $R/cornell-reference-1024x768.exr --resize:filter=box 256x192 -o "$OUT/pov-ref-1024-to-256.exr"
+  show "POV reference 1024x768 downsampled vs POV reference 256x192" block "$OUT/pov-ref-1024-to-256.exr" $R/cornell-reference-256x192.exr 32 24 0.15
+fi
 oiiotool $R/cornell-fast-256x192.exr --resize:filter=box 128x96 -o "$OUT/pov-fast-256-to-128.exr"
 show "POV fast 256x192 downsampled vs POV fast 128x96 (block 16x12)" block "$OUT/pov-fast-256-to-128.exr" $R/cornell-fast-128x96.exr 16 12 0.15
 
