@@ -77,6 +77,11 @@ if [ -e $R/caustic-fast-128x96.exr ]; then
   show "caustic scene: ours vs POV fast" block "$OUT/caustic-128.exr" $R/caustic-fast-128x96.exr 16 12 0.15
   show "caustic scene: ours shadow-rays vs POV fast" block "$OUT/caustic-128-sr.exr" $R/caustic-fast-128x96.exr 16 12 0.15
   show "caustic scene: POV no caustic vs POV fast" block $R/caustic-nocaustic-128x96.exr $R/caustic-fast-128x96.exr 16 12 0.15
+  if [ -e $R/caustic-reference-128x96.exr ]; then
+    show "caustic scene: ours vs POV reference" block "$OUT/caustic-128.exr" $R/caustic-reference-128x96.exr 16 12 0.15
+    show "caustic scene: ours shadow-rays vs POV reference" block "$OUT/caustic-128-sr.exr" $R/caustic-reference-128x96.exr 16 12 0.15
+    show "caustic scene: POV fast vs POV reference" block $R/caustic-fast-128x96.exr $R/caustic-reference-128x96.exr 16 12 0.15
+  fi
 fi
 if [ -e $R/caustic-fast-128x96.exr ]; then
   export IMGCMP_CUT=24x20+52+76

@@ -40,7 +40,7 @@ $(REF_DIR)/$(1).exr: $(REF_DIR)/$(1).pov
 	mv $(REF_TMP)/$(1).exr $$@
 endef
 
-REF_SMALL := cornell-direct-129x96 cornell-fast-128x96 cornell-nocaustic-128x96 caustic-fast-128x96 caustic-nocaustic-128x96 cornell-fast-16x12 \
+REF_SMALL := cornell-direct-129x96 cornell-fast-128x96 cornell-nocaustic-128x96 caustic-fast-128x96 caustic-reference-128x96 caustic-nocaustic-128x96 cornell-fast-16x12 \
              cornell-direct-256x192 cornell-fast-256x192 cornell-reference-256x192
 REF_LARGE := cornell-reference-1024x768
 
@@ -70,6 +70,7 @@ $(REF_CAUSTIC): $(REF_SCENE) $(REF_DIR)/reference.mk
 	  sed 's/^sphere center  0.05 0.3 0.35   radius 0.3   material glass/sphere center  0.05 0.75 -0.1   radius 0.3   material glass/' $(REF_SCENE); } > $@.tmp
 	grep -q '^sphere center  0.05 0.75 -0.1 ' $@.tmp && mv $@.tmp $@
 $(eval $(call ref_render,caustic-fast-128x96,$(REF_CAUSTIC),128,96,2,--quality fast,))
+$(eval $(call ref_render,caustic-reference-128x96,$(REF_CAUSTIC),128,96,2,--quality reference,))
 $(eval $(call ref_render,caustic-nocaustic-128x96,$(REF_CAUSTIC),128,96,2,--quality fast,\
   bash scripts/pov-nocaustic.sh $(REF_TMP)/caustic-nocaustic-128x96.pov $(REF_CAUSTIC) 256 192 > $(REF_TMP)/nc.pov && \
   mv $(REF_TMP)/nc.pov $(REF_TMP)/caustic-nocaustic-128x96.pov))
