@@ -62,6 +62,6 @@ $(CELLROOT)/%/summary-r$(REPEATS).tsv: | $(BUILD)/photonmap
 .PHONY: reproduce-table reproduce-cells
 reproduce-cells: $(CELL_FILES)
 reproduce-table: $(CELL_FILES) | $(IMGMETRICS)
-	@PM=$(PM) CELLROOT=$(CELLROOT) CONV_CELLROOT=$(CONV_CELLROOT) PM_ARGS="$(PM_ARGS)" PHOTONS="$(PHOTONS)" NNS="$(NNS)" METHODS="$(METHODS)" REPEATS=$(REPEATS) \
+	@PM=$(PM) SCENE=$(SCENE) CELLROOT=$(CELLROOT) CONV_CELLROOT=$(CONV_CELLROOT) PM_ARGS="$(PM_ARGS)" PHOTONS="$(PHOTONS)" NNS="$(NNS)" METHODS="$(METHODS)" REPEATS=$(REPEATS) \
 	  WIDTH=$(WIDTH) HEIGHT=$(HEIGHT) SUBPIXELS=$(SUBPIXELS) THREADS_LABEL="$(if $(strip $(THREADS)),$(strip $(THREADS)),all ($(shell nproc)))" \
 	  REF="$(REF)" IMGMETRICS=$(IMGMETRICS) bash experiments/table.sh $(TABLE)

@@ -14,7 +14,7 @@ IMGMETRICS=${IMGMETRICS:-build/imgmetrics}
 PAPER=${PAPER:-experiments/paper-table1.csv}
 SUBPIXELS=${SUBPIXELS:-2}
 if [ -z "${REF:-}" ]; then
-  REF=$(bash experiments/findref.sh "${WIDTH}x${HEIGHT}")
+  REF=$(bash experiments/findref.sh "${WIDTH}x${HEIGHT}" "${SCENE:-scenes/cornell.scene}")
 fi
 [ -n "$REF" ] && [ ! -s "$REF" ] && { echo "table.sh: reference $REF not found" >&2; exit 1; }
 mkdir -p "$(dirname "$stem")"
