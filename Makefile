@@ -65,7 +65,7 @@ unit-tests: $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 
 # The one test command (README, .ci/run): unit tests, the same under
 # ASan+UBSan, command-line tests; ends with "N passed, N failed".
-test: $(BUILD)/photonmap unit-tests
+test: all unit-tests
 	bash tests/run.sh
 
 clean:
