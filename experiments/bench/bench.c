@@ -307,13 +307,11 @@ int main(int argc, char **argv)
                 fprintf(stderr, "bench: out of memory\n");
                 return 1;
             }
-            if (si == 0) {
-                printf("\n## Representative lookup (nearest representative with normal cosine > %.2f, "
-                       "est_lookup, own tree), one thread\n\n",
-                       cfg.normal_cos);
-                printf("| P_e | representatives | order | lookups/s (M) | found | bytes/photon (map) | "
-                       "bytes/representative |\n|---:|---:|---|---:|---:|---:|---:|\n");
-            }
+            printf("\n### Representative lookup at P_e = %u (nearest representative with normal cosine > %.2f, "
+                   "est_lookup, own tree), one thread\n\n",
+                   sizes[si], cfg.normal_cos);
+            printf("| P_e | representatives | order | lookups/s (M) | found | bytes/photon (map) | "
+                   "bytes/representative |\n|---:|---:|---|---:|---:|---:|---:|\n");
             for (int o = 0; o < 2; o++) {
                 double t[64], es = 0;
                 uint64_t f = 0;
