@@ -95,9 +95,7 @@ int est_precompute(const photon_map *m, uint32_t nn, double max_r2, est_rep_layo
 {
     memset(out, 0, sizeof *out);
     out->layout = layout;
-    uint32_t count = 0;
-    for (uint32_t i = 0; i < m->count; i++)
-        count += (m->ph[i].flags & PHOTON_FLAG_REP) != 0;
+    uint32_t count = m->reps;
     uint32_t *rep_photon = malloc(sizeof(uint32_t) * (count ? count : 1));
     est_rep *rep = malloc(sizeof(est_rep) * (count ? count : 1));
     est_scratch *scratch = calloc(threads ? threads : 1, sizeof(est_scratch));
@@ -109,6 +107,7 @@ int est_precompute(const photon_map *m, uint32_t nn, double max_r2, est_rep_layo
         for (uint32_t i = 0; i < m->count; i++)
             if (m->ph[i].flags & PHOTON_FLAG_REP)
                 rep_photon[j++] = i;
+        assert(j == count);
         precompute_ctx c = {m, nn, max_r2, rep_photon, rep, count, scratch, prog};
         parallel_for(threads, (count + EST_CHUNK - 1) / EST_CHUNK, precompute_chunk, &c);
     }

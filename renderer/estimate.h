@@ -56,7 +56,8 @@ void est_scratch_free(est_scratch *s);
 vec3 est_irradiance(const photon_map *m, vec3 x, vec3 n, uint32_t nn, double max_r2, est_scratch *s,
                     uint32_t *found);
 
-/* Precomputes irradiance at every representative (PHOTON_FLAG_REP) of m with
+/* Precomputes irradiance at every representative (PHOTON_FLAG_REP; m->reps
+ * of them, as photons_build_map counted) of m with
  * est_irradiance, on `threads` threads, deterministically. Returns 0, or -1
  * when memory runs out (out is then empty). */
 int est_precompute(const photon_map *m, uint32_t nn, double max_r2, est_rep_layout layout, unsigned threads,

@@ -217,8 +217,10 @@ int photons_build_map(photon_list *l, photon_map *m)
         photons_map_free(m);
         return -1;
     }
-    for (uint32_t i = 0; i < n; i++)
+    for (uint32_t i = 0; i < n; i++) {
         m->ph[i] = l->ph[perm[i]];
+        m->reps += (m->ph[i].flags & PHOTON_FLAG_REP) != 0;
+    }
     m->count = n;
     free(perm);
     photons_list_free(l);

@@ -42,6 +42,7 @@ typedef struct {
     kd_tree tree; /* positions */
     photon *ph;   /* payload, tree leaf order */
     uint32_t count;
+    uint32_t reps; /* photons flagged PHOTON_FLAG_REP */
 } photon_map;
 
 /* Quantises a unit vector to 3 signed bytes and back. */
@@ -58,7 +59,8 @@ int photons_trace(const scene *sc, const render_config *cfg, unsigned threads, p
                   photon_list *out);
 /* Frees a list; a zeroed list is fine. */
 void photons_list_free(photon_list *l);
-/* Builds the map from a list (which it consumes and frees). Returns 0, or -1
+/* Builds the map from a list (which it consumes and frees) and counts its
+ * representatives. Returns 0, or -1
  * when memory runs out or the list exceeds 2^32-1 photons. */
 int photons_build_map(photon_list *l, photon_map *m);
 /* Frees a map; a zeroed map is fine. */

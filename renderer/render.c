@@ -209,10 +209,7 @@ int render_run(const scene *sc, const render_config *cfg, unsigned threads, int 
     est_reps reps;
     memset(&reps, 0, sizeof reps);
     if (cfg->method == METHOD_PRECOMPUTED) {
-        uint32_t nrep = 0;
-        for (uint32_t i = 0; i < map.count; i++)
-            nrep += (map.ph[i].flags & PHOTON_FLAG_REP) != 0;
-        progress_begin(&prog, "precompute", nrep, show_progress);
+        progress_begin(&prog, "precompute", map.reps, show_progress);
         t0 = stats_now_ns();
         if (est_precompute(&map, cfg->nn, max_r * max_r, cfg->reps_shared ? EST_REPS_SHARED : EST_REPS_SEPARATE,
                            threads, &prog, &reps)) {
