@@ -36,6 +36,8 @@ typedef struct {
 typedef struct {
     const scene *sc;
     const render_config *cfg;
+    double eps;   /* scene_epsilon(sc) */
+    vec3 power;   /* each emitted photon's power: light power / cfg->photons */
     photon_chunk *chunks;
     progress *prog;
 } trace_ctx;
@@ -76,12 +78,12 @@ static int trace_one(const trace_ctx *tc, uint64_t index, photon_chunk *c)
     const scene *sc = tc->sc;
     const render_config *cfg = tc->cfg;
     rng_stream rs = rng_make(cfg->seed, index);
-    double eps = scene_epsilon(sc);
+    double eps = tc->eps;
     /* isotropic emission */
     double u1 = rng_next_double(&rs), u2 = rng_next_double(&rs);
     double z = 1.0 - 2.0 * u1, s = sqrt(fmax(0.0, 1.0 - z * z)), phi = 2.0 * VEC_PI * u2;
     ray r = {sc->light.position, vec_make(s * cos(phi), s * sin(phi), z)};
-    vec3 power = vec_scale(sc->light.power, 1.0 / (double)cfg->photons);
+    vec3 power = tc->power;
     unsigned bounces = 0;
     for (uint32_t depth = 0;; depth++) {
         if (depth >= cfg->photon_depth) {
@@ -156,7 +158,8 @@ int photons_trace(const scene *sc, const render_config *cfg, unsigned threads, p
     photon_chunk *chunks = calloc(nchunks ? nchunks : 1, sizeof(photon_chunk));
     if (!chunks)
         return -1;
-    trace_ctx tc = {sc, cfg, chunks, prog};
+    vec3 power = cfg->photons ? vec_scale(sc->light.power, 1.0 / (double)cfg->photons) : vec_make(0, 0, 0);
+    trace_ctx tc = {sc, cfg, scene_epsilon(sc), power, chunks, prog};
     parallel_for(threads, nchunks, trace_chunk, &tc);
     int failed = 0;
     uint64_t total = 0;
