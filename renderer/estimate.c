@@ -95,12 +95,13 @@ int est_precompute(const photon_map *m, uint32_t nn, double max_r2, est_rep_layo
 {
     memset(out, 0, sizeof *out);
     out->layout = layout;
+    unsigned nt = threads ? threads : 1; /* scratch buffers, one per worker */
     uint32_t count = m->reps;
     uint32_t *rep_photon = malloc(sizeof(uint32_t) * (count ? count : 1));
     est_rep *rep = malloc(sizeof(est_rep) * (count ? count : 1));
-    est_scratch *scratch = calloc(threads ? threads : 1, sizeof(est_scratch));
+    est_scratch *scratch = calloc(nt, sizeof(est_scratch));
     int rc = (!rep_photon || !rep || !scratch) ? -1 : 0;
-    for (unsigned t = 0; rc == 0 && t < (threads ? threads : 1); t++)
+    for (unsigned t = 0; rc == 0 && t < nt; t++)
         rc = est_scratch_init(&scratch[t], nn);
     if (rc == 0) {
         uint32_t j = 0;
@@ -147,7 +148,7 @@ int est_precompute(const photon_map *m, uint32_t nn, double max_r2, est_rep_layo
         }
     }
     if (scratch)
-        for (unsigned t = 0; t < (threads ? threads : 1); t++)
+        for (unsigned t = 0; t < nt; t++)
             est_scratch_free(&scratch[t]);
     free(scratch);
     free(rep_photon);
