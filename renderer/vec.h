@@ -29,8 +29,6 @@ static inline vec3 vec_norm(vec3 a) { return vec_scale(a, 1.0 / vec_len(a)); }
 /* a + b*s */
 static inline vec3 vec_madd(vec3 a, vec3 b, double s) { return vec_make(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s); }
 static inline double vec_maxc(vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
-static inline double vec_mean(vec3 a) { return (a.x + a.y + a.z) / 3.0; }
-static inline int vec_isfinite(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 
 /* An orthonormal basis (t, b) completing the unit vector n (Duff et al. 2017). */
 static inline void vec_basis(vec3 n, vec3 *t, vec3 *b)
