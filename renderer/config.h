@@ -51,6 +51,9 @@ typedef struct {
 #define CONFIG_MAX_SUBPIXELS 16u
 #define CONFIG_MAX_THREADS 256u
 #define CONFIG_MAX_DEPTH 1000u
+/* A render whose photon map is expected to need more than this share of
+ * physical memory is refused up front (main.c). */
+#define CONFIG_MEMORY_HEADROOM 0.8
 
 /* The defaults above as a struct; never fails. */
 render_config config_defaults(void);

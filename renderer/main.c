@@ -2,6 +2,7 @@
  * `photonmap export-pov SCENE [options]` writes POV-Ray SDL. Exit codes:
  * 0 success, 1 runtime failure (I/O, memory, non-finite image), 2 user
  * input error (bad option or scene file, with file:line:col). */
+#include <assert.h>
 #include <errno.h>
 #include <inttypes.h>
 #include <stdio.h>
@@ -21,32 +22,39 @@
 
 #define EXIT_RUNTIME 1
 #define EXIT_USAGE 2
-#define MEMORY_HEADROOM 0.8 /* refuse renders expected to need more than this share of RAM */
 
-static const char *usage_text =
-    "usage: photonmap render SCENE [options]\n"
-    "       photonmap export-pov SCENE [--width W] [--height H] [--quality fast|reference] [-o out.pov]\n"
-    "\n"
-    "render options (defaults in renderer/config.h):\n"
-    "  --method conventional|precomputed  radiance estimate: paper's eq. 1 or eq. 2 (conventional)\n"
-    "  --photons N       photons emitted from the light, P_e (100000); 0: no photon map, a black\n"
-    "                    image (direct light only with --direct shadow-rays)\n"
-    "  --nn N            nearest photons per estimate / per precompute, n (50)\n"
-    "  --width W --height H   image size (1024x768)\n"
-    "  --subpixels S     SxS subpixel samples per pixel, box filtered (2)\n"
-    "  --threads T       worker threads, 0 = all cores (0)\n"
-    "  --seed S          random seed (1)\n"
-    "  --rep-every K     precomputed: every K-th stored photon is a representative (4)\n"
-    "  --normal-cos C    precomputed: representative normal must agree above this cosine (0.9)\n"
-    "  --rep-tree separate|shared   precomputed: representatives' own kd-tree, or the photon tree by flag\n"
-    "  --max-radius R    search radius cap in scene units (default 0.05 x scene diagonal)\n"
-    "  --direct photons|shadow-rays  direct light from the photon map (paper) or by shadow rays\n"
-    "  --photon-depth D  max photon bounces (64);  --eye-depth D  max specular eye bounces (16)\n"
-    "  -o FILE.exr       linear float RGB OpenEXR\n"
-    "  --png FILE.png    sRGB 8-bit preview;  --exposure E  preview scale (1)\n"
-    "  --stats FILE.json run statistics\n"
-    "  --allow-nonfinite keep an image with NaN/Inf pixels (otherwise exit 1)\n"
-    "  --quiet           no progress bar\n";
+/* Prints the usage, with the defaults of config.h, to f. */
+static void print_usage(FILE *f)
+{
+    render_config d = config_defaults();
+    fprintf(f,
+            "usage: photonmap render SCENE [options]\n"
+            "       photonmap export-pov SCENE [--width W] [--height H] [--quality fast|reference] [-o out.pov]\n"
+            "\n"
+            "render options (defaults in renderer/config.h):\n"
+            "  --method conventional|precomputed  radiance estimate: paper's eq. 1 or eq. 2 (%s)\n"
+            "  --photons N       photons emitted from the light, P_e (%llu); 0: no photon map, a black\n"
+            "                    image (direct light only with --direct shadow-rays)\n"
+            "  --nn N            nearest photons per estimate / per precompute, n (%u)\n"
+            "  --width W --height H   image size (%ux%u)\n"
+            "  --subpixels S     SxS subpixel samples per pixel, box filtered (%u)\n"
+            "  --threads T       worker threads, 0 = all cores (%u)\n"
+            "  --seed S          random seed (%llu)\n"
+            "  --rep-every K     precomputed: every K-th stored photon is a representative (%u)\n"
+            "  --normal-cos C    precomputed: representative normal must agree above this cosine (%g)\n"
+            "  --rep-tree separate|shared   precomputed: representatives' own kd-tree, or the photon tree by flag\n"
+            "  --max-radius R    search radius cap in scene units (default %g x scene diagonal)\n"
+            "  --direct photons|shadow-rays  direct light from the photon map (paper) or by shadow rays (%s)\n"
+            "  --photon-depth D  max photon bounces (%u);  --eye-depth D  max specular eye bounces (%u)\n"
+            "  -o FILE.exr       linear float RGB OpenEXR\n"
+            "  --png FILE.png    sRGB 8-bit preview;  --exposure E  preview scale (1)\n"
+            "  --stats FILE.json run statistics\n"
+            "  --allow-nonfinite keep an image with NaN/Inf pixels (otherwise exit 1)\n"
+            "  --quiet           no progress bar\n",
+            config_method_name(d.method), (unsigned long long)d.photons, d.nn, d.width, d.height, d.subpixels,
+            d.threads, (unsigned long long)d.seed, d.rep_every, d.normal_cos, d.max_radius_frac,
+            config_direct_name(d.direct), d.photon_depth, d.eye_depth);
+}
 
 static int usage_error(const char *fmt, const char *a, const char *b)
 {
@@ -208,6 +216,7 @@ static int parse_render_args(int argc, char **argv, render_config *cfg, render_o
         } else if (!strcmp(a, "--stats")) {
             o->stats = v;
         } else {
+            assert(!"valued[] names an option this chain does not handle");
             return usage_error("unknown option '%s'%s", a, "");
         }
     }
@@ -248,12 +257,12 @@ static int check_memory(const scene *sc, const render_config *cfg)
                 cfg->photons, stored);
         return EXIT_USAGE;
     }
-    if (mem > 0 && bytes > MEMORY_HEADROOM * (double)mem) {
+    if (mem > 0 && bytes > CONFIG_MEMORY_HEADROOM * (double)mem) {
         fprintf(stderr,
                 "photonmap: --photons %" PRIu64 " needs about %.1f GiB (%.2f stored per emitted photon x %zu bytes each, "
                 "peak x3), more than %.0f%% of this machine's %.1f GiB; use fewer photons\n",
                 cfg->photons, bytes / 1073741824.0, per_emitted, (size_t)PHOTON_BYTES_PER_STORED,
-                MEMORY_HEADROOM * 100.0, (double)mem / 1073741824.0);
+                CONFIG_MEMORY_HEADROOM * 100.0, (double)mem / 1073741824.0);
         return EXIT_USAGE;
     }
     return 0;
@@ -344,7 +353,7 @@ static int cmd_render(int argc, char **argv)
 int main(int argc, char **argv)
 {
     if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
-        fputs(usage_text, argc < 2 ? stderr : stdout);
+        print_usage(argc < 2 ? stderr : stdout);
         return argc < 2 ? EXIT_USAGE : 0;
     }
     if (!strcmp(argv[1], "render"))
