@@ -11,6 +11,8 @@ PACKAGES=(
   gnuplot-nox                       # plots
   libnanoflann-dev                  # benchmark comparison (C++ header-only)
   libclang-rt-14-dev                # sanitizer and libFuzzer runtimes for clang
+  time                              # /usr/bin/time: CPU seconds of every table cell
+  valgrind linux-perf python3       # make bench: instruction counts, profile, JSON
 )
 
 missing=()
