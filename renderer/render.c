@@ -78,8 +78,7 @@ static vec3 direct_light(const eye_ctx *c, vec3 p, vec3 n)
     if (cosv <= 0.0)
         return vec_make(0, 0, 0);
     ray sr = {vec_madd(p, n, c->eps), w};
-    double t;
-    if (scene_intersect(c->sc, &sr, c->eps, d - c->eps, &t) >= 0)
+    if (scene_occluded(c->sc, &sr, c->eps, d - c->eps))
         return vec_make(0, 0, 0);
     return vec_scale(c->light_intensity, cosv / d2);
 }

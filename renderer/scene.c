@@ -593,6 +593,15 @@ int scene_intersect(const scene *s, const ray *r, double tmin, double tmax, doub
     return best;
 }
 
+int scene_occluded(const scene *s, const ray *r, double tmin, double tmax)
+{
+    double t;
+    for (size_t i = 0; i < s->nshapes; i++)
+        if (shape_intersect(&s->shapes[i], r, tmin, tmax, &t))
+            return 1;
+    return 0;
+}
+
 double scene_epsilon(const scene *s)
 {
     return 1e-7 * s->scale;

@@ -49,6 +49,9 @@ void scene_free(scene *s);
 /* Nearest hit along r in (tmin, tmax): returns the shape index and sets *t,
  * or returns -1 on a miss. */
 int scene_intersect(const scene *s, const ray *r, double tmin, double tmax, double *t);
+/* 1 if any shape blocks r in (tmin, tmax), else 0; stops at the first hit
+ * (shadow rays need no nearest hit). */
+int scene_occluded(const scene *s, const ray *r, double tmin, double tmax);
 /* The self-intersection epsilon for this scene (relative to its size). */
 double scene_epsilon(const scene *s);
 
