@@ -1,9 +1,11 @@
-# photonmap: build, test and experiment entry points. `make` builds
-# build/photonmap; `make test` runs every test; experiment targets are in
-# experiments/*.mk. Missing Debian packages are installed by
-# scripts/install-deps.sh (once; guarded by build/.deps-stamp).
+# photonmap: the top of the build. Everything a user runs is listed here
+# (`make help` prints the list); the rules behind the experiment and
+# reference targets live in the files included at the bottom, which share
+# the variables of experiments/config.mk. Missing Debian packages are
+# installed by scripts/install-deps.sh, once (stamp: build/.deps-stamp).
 
 CC ?= cc
+CXX ?= c++
 BUILD := build
 DEPS_STAMP := $(BUILD)/.deps-stamp
 
@@ -26,11 +28,27 @@ SAN_OBJ := $(LIB_SRC:renderer/%.c=$(BUILD)/san/%.o)
 TEST_SRC := $(wildcard tests/unit/*.c)
 TEST_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/obj/test_%.o)
 TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
+IMGMETRICS := $(BUILD)/imgmetrics
 
-.PHONY: all deps test unit-tests clean
-all: $(BUILD)/photonmap
+# ---- what users run (`make help`: one line each, from the ## comments) ----
+.PHONY: all deps test help clean reproduce-table figures resolution bench reference reference-small fuzz
+all: $(BUILD)/photonmap $(IMGMETRICS) ## build build/photonmap and build/imgmetrics
+deps: $(DEPS_STAMP) ## install the missing Debian packages (scripts/install-deps.sh, once)
+test: all unit-tests $(BUILD)/san/photonmap ## every test; ends with "N passed, N failed" (README)
+	bash tests/run.sh
+reproduce-table: ## the paper's Table 1 beside ours -> results/table1.{md,csv} (experiments/table.mk)
+figures: ## Figure 3, error maps, trade-off and time plots -> results/figures/ (after reproduce-table)
+resolution: ## cheapest settings per output size -> results/resolution.md
+bench: ## kNN, lookup and eye-pass benchmarks -> results/bench.md
+reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
+reference-small: ## the POV-Ray references except the 1024x768 one
+fuzz: ## run the scene parser's libFuzzer target for FUZZ_SECONDS (60)
+help: ## this list
+	@awk -F':.*## ' '/^[a-z][a-z-]*:.*## / { printf "  make %-17s %s\n", $$1, $$2 }' $(firstword $(MAKEFILE_LIST))
+clean: ## remove the build (not results/ or reference/)
+	rm -rf $(BUILD)/obj $(BUILD)/san $(BUILD)/photonmap $(BUILD)/imgmetrics $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 
-deps: $(DEPS_STAMP)
+# ---- the build ----
 $(DEPS_STAMP): scripts/install-deps.sh
 	@mkdir -p $(BUILD)
 	bash scripts/install-deps.sh
@@ -52,7 +70,19 @@ $(BUILD)/san/test_%.o: tests/unit/%.c tests/unit/*.h renderer/*.h | $(DEPS_STAMP
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_COMMON) $(SAN_FLAGS) -Itests/unit -c $< -o $@
 
+$(BUILD)/obj/imgmetrics.o: scripts/imgmetrics.c renderer/image.h | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_COMMON) $(CFLAGS) -c $< -o $@
+
 $(BUILD)/photonmap: $(LIB_OBJ) $(BUILD)/obj/main.o
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
+# photonmap itself under ASan+UBSan: tests/run.sh runs the command-line and
+# hostile-input tests against it too
+$(BUILD)/san/photonmap: $(SAN_OBJ) $(BUILD)/san/main.o
+	$(CC) $(SAN_FLAGS) -o $@ $^ $(LDLIBS)
+
+$(IMGMETRICS): $(BUILD)/obj/imgmetrics.o $(BUILD)/obj/image.o $(BUILD)/obj/outfile.o
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
 $(BUILD)/unit-tests: $(LIB_OBJ) $(TEST_OBJ)
@@ -61,16 +91,15 @@ $(BUILD)/unit-tests: $(LIB_OBJ) $(TEST_OBJ)
 $(BUILD)/unit-tests-san: $(SAN_OBJ) $(TEST_SAN_OBJ)
 	$(CC) $(SAN_FLAGS) -o $@ $^ $(LDLIBS)
 
+.PHONY: unit-tests
 unit-tests: $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 
-# The one test command (README, .ci/run): unit tests, the same under
-# ASan+UBSan, command-line tests; ends with "N passed, N failed".
-test: all unit-tests
-	bash tests/run.sh
-
-clean:
-	rm -rf $(BUILD)/obj $(BUILD)/san $(BUILD)/photonmap $(BUILD)/unit-tests $(BUILD)/unit-tests-san
-
--include experiments/*.mk
--include reference/*.mk
--include tests/fuzz/*.mk
+# ---- rules of the experiment, benchmark, reference and fuzz targets ----
+# experiments/config.mk holds every variable they share (read first).
+include experiments/config.mk
+include experiments/table.mk
+include experiments/resolution.mk
+include experiments/figures.mk
+include experiments/bench.mk
+include reference/reference.mk
+include tests/fuzz/fuzz.mk

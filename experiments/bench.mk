@@ -2,8 +2,6 @@
 # build/bench/bench (experiments/bench/bench.c on the renderer objects, plus
 # nanoflann behind experiments/bench/nano.cpp) and writes results/bench.md
 # via experiments/bench/run.sh (BENCH_REPS, BENCH_HEAVY_REPS tune it).
-CXX ?= c++
-BENCH_BIN := $(BUILD)/bench/bench
 
 $(BUILD)/bench/nano.o: experiments/bench/nano.cpp | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
@@ -16,7 +14,7 @@ $(BUILD)/bench/bench.o: experiments/bench/bench.c renderer/*.h | $(DEPS_STAMP)
 $(BENCH_BIN): $(LIB_OBJ) $(BUILD)/bench/bench.o $(BUILD)/bench/nano.o
 	$(CXX) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
-.PHONY: bench bench-bin
+.PHONY: bench-bin
 bench-bin: $(BENCH_BIN) $(BUILD)/photonmap
 bench: bench-bin
 	bash experiments/bench/run.sh

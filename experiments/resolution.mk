@@ -10,14 +10,6 @@
 # differs from a converged photon map by a few percent (reference/ notes),
 # which would floor relMSE at a size-dependent level. "pov" uses the POV-Ray
 # render of that size in reference/ where there is one (else ours).
-# (experiments/*.mk are read in name order: this file is read before table.mk)
-RESULTS ?= results
-RES_SIZES ?= 256x192 512x384 1024x768
-RES_TARGETS ?= 0.05 0.03 0.02 0.015 0.01 0.0075
-RES_REF_PHOTONS ?= 2000000
-RES_REF_NN ?= 200
-RES_REPEATS ?= $(REPEATS)
-RES_REF ?= ours
 
 # Our high-photon reference at one size (stem = WxH).
 $(RESULTS)/cells/%-refhigh-p$(RES_REF_PHOTONS)-n$(RES_REF_NN)/image.exr: | $(BUILD)/photonmap
@@ -27,7 +19,6 @@ $(RESULTS)/cells/%-refhigh-p$(RES_REF_PHOTONS)-n$(RES_REF_NN)/image.exr: | $(BUI
 	  --width $(word 1,$(subst x, ,$*)) --height $(word 2,$(subst x, ,$*)) --subpixels $(SUBPIXELS) --threads 0 \
 	  -o $@ --png $(dir $@)image.png --stats $(dir $@)stats.json --quiet
 
-.PHONY: resolution
 resolution: | $(BUILD)/imgmetrics $(BUILD)/photonmap
 	@MAKE="$(MAKE)" RESULTS=$(RESULTS) RES_SIZES="$(RES_SIZES)" RES_TARGETS="$(RES_TARGETS)" \
 	  RES_REF_PHOTONS=$(RES_REF_PHOTONS) RES_REF_NN=$(RES_REF_NN) RES_REPEATS=$(RES_REPEATS) RES_REF=$(RES_REF) \

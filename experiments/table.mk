@@ -13,44 +13,8 @@
 # RESULTS/cells/<W>x<H>-s<S>-t<T>/<method>-p<P_e>-n<n>/summary-r<REPEATS>.tsv,
 # beside the cell's per-repeat stats JSON and its image (first repeat), so an
 # interrupted run resumes where it stopped (repeats already done are kept).
+# Variables: experiments/config.mk.
 
-IMGMETRICS := $(BUILD)/imgmetrics
-all: $(IMGMETRICS)
-
-$(BUILD)/obj/imgmetrics.o: scripts/imgmetrics.c renderer/image.h | $(DEPS_STAMP)
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_COMMON) $(CFLAGS) -c $< -o $@
-
-$(IMGMETRICS): $(BUILD)/obj/imgmetrics.o $(BUILD)/obj/image.o $(BUILD)/obj/outfile.o
-	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
-
-RESULTS ?= results
-SIZE ?= 1024x768
-WIDTH ?= $(word 1,$(subst x, ,$(SIZE)))
-HEIGHT ?= $(word 2,$(subst x, ,$(SIZE)))
-SUBPIXELS ?= 2
-PHOTONS ?= 50000 100000 500000
-NNS ?= 10 20 50 100
-METHODS ?= conventional precomputed
-REPEATS ?= 3
-THREADS ?= 1
-SCENE ?= scenes/cornell.scene
-TABLE ?= $(RESULTS)/table1
-REF ?=
-# The renderer the cells run (copy build/photonmap aside to pin it during a
-# long run; a file PM.commit beside the copy, e.g. `git rev-parse --short HEAD;
-# git status --short renderer`, is quoted in the table as its provenance).
-PM ?= $(BUILD)/photonmap
-
-T_ARG := $(if $(strip $(THREADS)),$(strip $(THREADS)),0)
-T_LABEL := $(if $(strip $(THREADS)),t$(strip $(THREADS)),tall)
-# TAG names a variant run with extra render options PM_ARGS (its cells get
-# their own directory); CONV_CELLROOT is where the ratio's conventional cells
-# are (e.g. the untagged grid when a variant runs METHODS=precomputed only).
-TAG ?=
-PM_ARGS ?=
-CELLROOT := $(RESULTS)/cells/$(WIDTH)x$(HEIGHT)-s$(SUBPIXELS)-$(T_LABEL)$(if $(strip $(TAG)),-$(strip $(TAG)))
-CONV_CELLROOT ?= $(CELLROOT)
 CELLS := $(foreach p,$(PHOTONS),$(foreach n,$(NNS),$(foreach m,$(METHODS),$(m)-p$(p)-n$(n))))
 CELL_FILES := $(foreach c,$(CELLS),$(CELLROOT)/$(c)/summary-r$(REPEATS).tsv)
 
@@ -59,7 +23,7 @@ $(CELLROOT)/%/summary-r$(REPEATS).tsv: | $(BUILD)/photonmap
 	@PM=$(PM) PM_ARGS="$(PM_ARGS)" SCENE=$(SCENE) WIDTH=$(WIDTH) HEIGHT=$(HEIGHT) SUBPIXELS=$(SUBPIXELS) \
 	  THREADS_ARG=$(T_ARG) CELL_LIST="$(CELLS)" bash experiments/cell.sh $* $(CELLROOT)/$* $(REPEATS)
 
-.PHONY: reproduce-table reproduce-cells
+.PHONY: reproduce-cells
 reproduce-cells: $(CELL_FILES)
 reproduce-table: $(CELL_FILES) | $(IMGMETRICS)
 	@PM=$(PM) SCENE=$(SCENE) CELLROOT=$(CELLROOT) CONV_CELLROOT=$(CONV_CELLROOT) PM_ARGS="$(PM_ARGS)" PHOTONS="$(PHOTONS)" NNS="$(NNS)" METHODS="$(METHODS)" REPEATS=$(REPEATS) \

@@ -75,6 +75,6 @@ $(eval $(call ref_render,caustic-nocaustic-128x96,$(REF_CAUSTIC),128,96,2,--qual
   bash scripts/pov-nocaustic.sh $(REF_TMP)/caustic-nocaustic-128x96.pov $(REF_CAUSTIC) 256 192 > $(REF_TMP)/nc.pov && \
   mv $(REF_TMP)/nc.pov $(REF_TMP)/caustic-nocaustic-128x96.pov))
 
-.PHONY: reference reference-small
+
 reference-small: $(REF_SMALL:%=$(REF_DIR)/%.exr)
 reference: reference-small $(REF_LARGE:%=$(REF_DIR)/%.exr)

@@ -13,7 +13,7 @@ FUZZ_FLAGS := -std=c17 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Wpedantic -g -O1
 	-fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Irenderer
 FUZZ_SRC := tests/fuzz/fuzz_scene.c renderer/scene.c renderer/shapes.c
 
-.PHONY: fuzz fuzz-build
+.PHONY: fuzz-build
 fuzz-build: $(BUILD)/fuzz_scene
 
 $(BUILD)/fuzz_scene: $(FUZZ_SRC) renderer/*.h
