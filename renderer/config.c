@@ -1,11 +1,11 @@
 /* config: the default render configuration and the names of its enums. */
 #include "config.h"
 
-render_config config_defaults(void)
+config_render config_defaults(void)
 {
-    render_config c;
-    c.method = METHOD_CONVENTIONAL;
-    c.direct = DIRECT_PHOTONS;
+    config_render c;
+    c.method = CONFIG_METHOD_CONVENTIONAL;
+    c.direct = CONFIG_DIRECT_PHOTONS;
     c.photons = CONFIG_DEFAULT_PHOTONS;
     c.nn = CONFIG_DEFAULT_NN;
     c.width = CONFIG_DEFAULT_WIDTH;
@@ -26,10 +26,10 @@ render_config config_defaults(void)
 
 const char *config_method_name(config_method m)
 {
-    return m == METHOD_PRECOMPUTED ? "precomputed" : "conventional";
+    return m == CONFIG_METHOD_PRECOMPUTED ? "precomputed" : "conventional";
 }
 
 const char *config_direct_name(config_direct d)
 {
-    return d == DIRECT_SHADOW_RAYS ? "shadow-rays" : "photons";
+    return d == CONFIG_DIRECT_SHADOW_RAYS ? "shadow-rays" : "photons";
 }

@@ -1,13 +1,13 @@
 /* config: every user-settable knob of a render and its default value, in one
- * place. The command line (main.c) fills a render_config from these defaults;
+ * place. The command line (main.c) fills a config_render from these defaults;
  * tests build one the same way. */
 #ifndef PM_CONFIG_H
 #define PM_CONFIG_H
 
 #include <stdint.h>
 
-typedef enum { METHOD_CONVENTIONAL = 0, METHOD_PRECOMPUTED = 1 } config_method;
-typedef enum { DIRECT_PHOTONS = 0, DIRECT_SHADOW_RAYS = 1 } config_direct;
+typedef enum { CONFIG_METHOD_CONVENTIONAL = 0, CONFIG_METHOD_PRECOMPUTED = 1 } config_method;
+typedef enum { CONFIG_DIRECT_PHOTONS = 0, CONFIG_DIRECT_SHADOW_RAYS = 1 } config_direct;
 
 typedef struct {
     config_method method;     /* radiance estimate: eq. 1 or eq. 2 of the paper */
@@ -27,7 +27,7 @@ typedef struct {
     int reps_shared;          /* precomputed: 1 = find representatives in the photon tree by flag,
                                  0 = in their own kd-tree (faster, see README) */
     int allow_nonfinite;      /* 1: a non-finite pixel is reported but does not fail the run */
-} render_config;
+} config_render;
 
 #define CONFIG_DEFAULT_PHOTONS 100000u
 #define CONFIG_DEFAULT_NN 50u
@@ -38,6 +38,8 @@ typedef struct {
 #define CONFIG_DEFAULT_REP_EVERY 4u
 #define CONFIG_DEFAULT_NORMAL_COS 0.9
 #define CONFIG_DEFAULT_MAX_RADIUS_FRAC 0.05
+/* The same as text, for the usage line (keep the two equal). */
+#define CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT "0.05"
 #define CONFIG_DEFAULT_PHOTON_DEPTH 64u
 #define CONFIG_DEFAULT_EYE_DEPTH 16u
 /* Eye paths through glass split into reflected and refracted branches; a
@@ -48,6 +50,7 @@ typedef struct {
 #define CONFIG_MAX_PHOTONS 2000000000ull
 #define CONFIG_MAX_NN 100000u
 #define CONFIG_MAX_SIDE 16384u
+#define CONFIG_MAX_PIXELS (64ull * 1024 * 1024)
 #define CONFIG_MAX_SUBPIXELS 16u
 #define CONFIG_MAX_THREADS 256u
 #define CONFIG_MAX_DEPTH 1000u
@@ -56,7 +59,7 @@ typedef struct {
 #define CONFIG_MEMORY_HEADROOM 0.8
 
 /* The defaults above as a struct; never fails. */
-render_config config_defaults(void);
+config_render config_defaults(void);
 /* "conventional"/"precomputed", "photons"/"shadow-rays". */
 const char *config_method_name(config_method m);
 const char *config_direct_name(config_direct d);

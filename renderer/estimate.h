@@ -1,4 +1,4 @@
-/* estimate: the two radiance estimates of the paper. Both return an
+/* estimate: the two radiance estimates of the paper. Both give the
  * irradiance E at a diffuse point; the caller multiplies by rho/pi.
  *  - conventional (eq. 1): E = sum of front-side photon powers among the n
  *    nearest, over pi r^2;
@@ -10,13 +10,13 @@
  * farthest of the n photons found; when fewer than n photons lie within the
  * maximum radius R, r = R (the disc's density); r is clamped below at
  * R * EST_MIN_RADIUS_FRAC so coincident photons give a large finite value.
- * No photon in range, or no agreeing representative in range, gives E = 0. */
+ * No photon in range, or no agreeing representative in range, gives E = 0.
+ * Radii here are in the photon map's frame (photons.h). */
 #ifndef PM_ESTIMATE_H
 #define PM_ESTIMATE_H
 
 #include <stdint.h>
 
-#include "config.h"
 #include "kdtree.h"
 #include "photons.h"
 #include "progress.h"
@@ -24,9 +24,19 @@
 
 #define EST_MIN_RADIUS_FRAC 1e-3
 
+/* A gather: how many photons, and the squared radius cap in the map's
+ * frame (est_gather_make converts from scene units). */
 typedef struct {
-    float irradiance[3];
-    float normal[3]; /* unit */
+    uint32_t nn;
+    double max_r2;
+} est_gather;
+
+/* The gather of nn photons within max_radius scene units on map m. */
+est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius);
+
+typedef struct {
+    float irradiance[3]; /* relative to photons_map.unit / scale^2 */
+    float normal[3];     /* unit */
 } est_rep;
 
 typedef enum { EST_REPS_SEPARATE = 0, EST_REPS_SHARED = 1 } est_rep_layout;
@@ -36,39 +46,43 @@ typedef struct {
     uint32_t count;
     kd_tree tree;     /* separate: the representatives' own tree */
     est_rep *rep;     /* separate: in that tree's leaf order; shared: by rep_of */
-    uint32_t *rep_of; /* shared: photon index -> rep index or KD_NONE */
+    uint32_t *rep_of; /* shared: photon tree index -> rep index or KD_NONE */
 } est_reps;
 
-/* Per-thread buffers for kNN queries of up to nn photons. */
+/* One thread's buffers for kNN queries of up to nn photons. */
 typedef struct {
     uint32_t cap;
     uint32_t *idx;
     float *d2;
+    char pad[64]; /* threads' scratch structs share no cache line */
 } est_scratch;
 
-/* Returns 0, or -1 when memory runs out. */
-int est_scratch_init(est_scratch *s, uint32_t nn);
-void est_scratch_free(est_scratch *s);
+/* Scratch for `threads` workers, each for queries of up to nn photons.
+ * Returns the array, or NULL when memory runs out. */
+est_scratch *est_scratch_new(unsigned threads, uint32_t nn);
+/* Frees what est_scratch_new returned; NULL is fine. */
+void est_scratch_delete(est_scratch *s, unsigned threads);
 
-/* Conventional irradiance at x for unit normal n (facing the side seen),
- * from the nn nearest photons within sqrt(max_r2). *found receives how many
- * photons were gathered (front side or not). */
-vec3 est_irradiance(const photon_map *m, vec3 x, vec3 n, uint32_t nn, double max_r2, est_scratch *s,
-                    uint32_t *found);
+/* Conventional irradiance (W per unit^2 of the scene) at world point x for
+ * unit normal n (facing the side seen). *found receives how many photons
+ * were gathered (front side or not). */
+vec3 est_irradiance(const photons_map *m, vec3 x, vec3 n, const est_gather *g, est_scratch *s, uint32_t *found);
 
-/* Precomputes irradiance at every representative (PHOTON_FLAG_REP; m->reps
- * of them, as photons_build_map counted) of m with
- * est_irradiance, on `threads` threads, deterministically. Returns 0, or -1
- * when memory runs out (out is then empty). */
-int est_precompute(const photon_map *m, uint32_t nn, double max_r2, est_rep_layout layout, unsigned threads,
+/* Precomputes irradiance at every representative of m (m->reps of them)
+ * from its g->nn nearest photons of the map, on `threads` threads,
+ * deterministically. The shared layout needs the representatives in the
+ * photon tree (asserted). Returns 0, or -1 when memory runs out (out is
+ * then empty). */
+int est_precompute(const photons_map *m, const est_gather *g, est_rep_layout layout, unsigned threads,
                    progress *prog, est_reps *out);
-/* Irradiance of the nearest representative within sqrt(max_r2) of x whose
- * normal has cosine > cos_min with n. Returns 0 and sets *found = 0 when none
- * qualifies. */
-vec3 est_lookup(const est_reps *r, const photon_map *m, vec3 x, vec3 n, double cos_min, double max_r2,
+/* Irradiance (W per unit^2) of the nearest representative within the
+ * gather's radius cap of world point x whose normal has cosine > cos_min
+ * with n. Returns 0 and sets *found = 0 when none qualifies. */
+vec3 est_lookup(const est_reps *r, const photons_map *m, vec3 x, vec3 n, double cos_min, const est_gather *g,
                 int *found);
 /* Bytes the representatives hold. */
-size_t est_reps_bytes(const est_reps *r, const photon_map *m);
+size_t est_reps_bytes(const est_reps *r, const photons_map *m);
+/* Frees the representatives; a zeroed struct is fine. */
 void est_reps_free(est_reps *r);
 
 #endif

@@ -15,6 +15,7 @@ typedef struct {
 
 /* Allocates a black image. Returns 0, or -1 when memory runs out. */
 int image_init(image *im, uint32_t width, uint32_t height);
+/* Frees the pixels; the struct is left empty. A zeroed image is fine. */
 void image_free(image *im);
 /* Pixels with a non-finite channel. */
 uint64_t image_count_nonfinite(const image *im);

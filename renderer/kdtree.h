@@ -30,7 +30,7 @@ typedef struct {
  * Returns 0, or -1 when memory runs out (the tree is then empty and safe to
  * kd_free). n may be 0. */
 int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint32_t *perm);
-/* Frees the tree's arrays; the struct is left empty. */
+/* Frees the tree's arrays; the struct is left empty. A zeroed tree is fine. */
 void kd_free(kd_tree *t);
 /* Bytes of memory the tree holds. */
 size_t kd_bytes(const kd_tree *t);

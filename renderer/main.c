@@ -1,15 +1,19 @@
 /* main: the command line. `photonmap render SCENE [options]` renders;
- * `photonmap export-pov SCENE [options]` writes POV-Ray SDL. Exit codes:
- * 0 success, 1 runtime failure (I/O, memory, non-finite image), 2 user
- * input error (bad option or scene file, with file:line:col). */
+ * `photonmap export-pov SCENE [options]` writes POV-Ray SDL. Each
+ * subcommand's options are one table (cli.h) that drives parsing, range
+ * errors and `--help`. Exit codes (cli.h): 0 success, 1 runtime failure
+ * (I/O, memory, non-finite image), 2 user input error (bad option or scene
+ * file, with file:line:col). */
 #include <assert.h>
 #include <errno.h>
 #include <inttypes.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+#include "cli.h"
 #include "config.h"
 #include "image.h"
 #include "outfile.h"
@@ -20,211 +24,76 @@
 #include "scene.h"
 #include "stats.h"
 
-#define EXIT_RUNTIME 1
-#define EXIT_USAGE 2
-
-/* Prints the usage, with the defaults of config.h, to f. */
-static void print_usage(FILE *f)
-{
-    render_config d = config_defaults();
-    fprintf(f,
-            "usage: photonmap render SCENE [options]\n"
-            "       photonmap export-pov SCENE [--width W] [--height H] [--quality fast|reference] [-o out.pov]\n"
-            "\n"
-            "render options (defaults in renderer/config.h):\n"
-            "  --method conventional|precomputed  radiance estimate: paper's eq. 1 or eq. 2 (%s)\n"
-            "  --photons N       photons emitted from the light, P_e (%llu); 0: no photon map, a black\n"
-            "                    image (direct light only with --direct shadow-rays)\n"
-            "  --nn N            nearest photons per estimate / per precompute, n (%u)\n"
-            "  --width W --height H   image size (%ux%u)\n"
-            "  --subpixels S     SxS subpixel samples per pixel, box filtered (%u)\n"
-            "  --threads T       worker threads, 0 = all cores (%u)\n"
-            "  --seed S          random seed (%llu)\n"
-            "  --rep-every K     precomputed: every K-th stored photon is a representative (%u)\n"
-            "  --normal-cos C    precomputed: representative normal must agree above this cosine (%g)\n"
-            "  --rep-tree separate|shared   precomputed: representatives' own kd-tree, or the photon tree by flag\n"
-            "  --max-radius R    search radius cap in scene units (default %g x scene diagonal)\n"
-            "  --direct photons|shadow-rays  direct light from the photon map (paper) or by shadow rays (%s)\n"
-            "  --photon-depth D  max photon bounces (%u);  --eye-depth D  max specular eye bounces (%u)\n"
-            "  -o FILE.exr       linear float RGB OpenEXR\n"
-            "  --png FILE.png    sRGB 8-bit preview;  --exposure E  preview scale (1)\n"
-            "  --stats FILE.json run statistics\n"
-            "  --allow-nonfinite keep an image with NaN/Inf pixels (otherwise exit 1)\n"
-            "  --quiet           no progress bar\n",
-            config_method_name(d.method), (unsigned long long)d.photons, d.nn, d.width, d.height, d.subpixels,
-            d.threads, (unsigned long long)d.seed, d.rep_every, d.normal_cos, d.max_radius_frac,
-            config_direct_name(d.direct), d.photon_depth, d.eye_depth);
-}
-
-static int usage_error(const char *fmt, const char *a, const char *b)
-{
-    fprintf(stderr, "photonmap: ");
-    fprintf(stderr, fmt, a, b);
-    fprintf(stderr, "\n(run 'photonmap --help' for usage)\n");
-    return EXIT_USAGE;
-}
-
-/* Parses a decimal integer in [lo, hi]. Returns 0 or an exit code. */
-static int parse_uint(const char *opt, const char *s, uint64_t lo, uint64_t hi, uint64_t *out)
-{
-    char range[96];
-    snprintf(range, sizeof range, "an integer in [%" PRIu64 ", %" PRIu64 "]", lo, hi);
-    const char *p = s;
-    if (*p == '+')
-        p++;
-    if (*p < '0' || *p > '9') {
-        fprintf(stderr, "photonmap: %s: expected %s, got '%s'\n", opt, range, s);
-        return EXIT_USAGE;
-    }
-    errno = 0;
-    char *end;
-    unsigned long long v = strtoull(p, &end, 10);
-    if (*end != '\0' || errno == ERANGE || v < lo || v > hi) {
-        fprintf(stderr, "photonmap: %s: expected %s, got '%s'\n", opt, range, s);
-        return EXIT_USAGE;
-    }
-    *out = v;
-    return 0;
-}
-
-static int parse_real(const char *opt, const char *s, double lo, double hi, double *out)
-{
-    errno = 0;
-    char *end;
-    double v = strtod(s, &end);
-    if (end == s || *end != '\0' || !isfinite(v) || v < lo || v > hi) {
-        fprintf(stderr, "photonmap: %s: expected a number in [%g, %g], got '%s'\n", opt, lo, hi, s);
-        return EXIT_USAGE;
-    }
-    *out = v;
-    return 0;
-}
+/* ---- render ---- */
 
 typedef struct {
+    config_render cfg;
     const char *scene;
     const char *exr, *png, *stats;
     double exposure;
     int quiet;
-} render_outputs;
+} render_args;
 
-static int parse_render_args(int argc, char **argv, render_config *cfg, render_outputs *o)
+static const char *const method_names[] = {"conventional", "precomputed", NULL};
+static const char *const direct_names[] = {"photons", "shadow-rays", NULL};
+static const char *const rep_tree_names[] = {"separate", "shared", NULL};
+/* the table writes these choices as ints into enum fields */
+_Static_assert(sizeof(config_method) == sizeof(int), "config_method is int-sized");
+_Static_assert(sizeof(config_direct) == sizeof(int), "config_direct is int-sized");
+
+#define RO(field) offsetof(render_args, field)
+#define RC(field) offsetof(render_args, cfg.field)
+static const cli_option render_options[] = {
+    {"--method", CLI_CHOICE, NULL, RC(method), 0, 0, 0, 0, method_names, 0,
+     "radiance estimate: the paper's eq. 1 or eq. 2", NULL},
+    {"--photons", CLI_U64, "N", RC(photons), 0, CONFIG_MAX_PHOTONS, 0, 0, NULL, 0,
+     "photons emitted from the light, P_e; 0: no photon map (a black image, or direct light only "
+     "with --direct shadow-rays)", NULL},
+    {"--nn", CLI_U32, "N", RC(nn), 1, CONFIG_MAX_NN, 0, 0, NULL, 0,
+     "nearest photons per estimate / per precompute, n", NULL},
+    {"--width", CLI_U32, "W", RC(width), 1, CONFIG_MAX_SIDE, 0, 0, NULL, 0, "image width in pixels", NULL},
+    {"--height", CLI_U32, "H", RC(height), 1, CONFIG_MAX_SIDE, 0, 0, NULL, 0, "image height in pixels", NULL},
+    {"--subpixels", CLI_U32, "S", RC(subpixels), 1, CONFIG_MAX_SUBPIXELS, 0, 0, NULL, 0,
+     "SxS subpixel samples per pixel, box filtered", NULL},
+    {"--threads", CLI_U32, "T", RC(threads), 0, CONFIG_MAX_THREADS, 0, 0, NULL, 0,
+     "worker threads, 0 = all cores (the image does not depend on it)", NULL},
+    {"--seed", CLI_U64, "S", RC(seed), 0, UINT64_MAX, 0, 0, NULL, 0, "names every random stream", NULL},
+    {"--rep-every", CLI_U32, "K", RC(rep_every), 1, UINT32_MAX, 0, 0, NULL, 0,
+     "precomputed: every K-th stored photon is a representative", NULL},
+    {"--normal-cos", CLI_REAL, "C", RC(normal_cos), 0, 0, -1.0, 1.0, NULL, 0,
+     "precomputed: a representative's normal must agree above this cosine", NULL},
+    {"--rep-tree", CLI_CHOICE, NULL, RC(reps_shared), 0, 0, 0, 0, rep_tree_names, 0,
+     "precomputed: the representatives' own kd-tree, or the photon tree by flag", NULL},
+    {"--max-radius", CLI_REAL, "R", RC(max_radius), 0, 0, 1e-30, 1e30, NULL, 0,
+     "search radius cap in scene units", CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT " x the scene's bounding-box diagonal"},
+    {"--direct", CLI_CHOICE, NULL, RC(direct), 0, 0, 0, 0, direct_names, 0,
+     "direct light from the photon map (the paper) or by shadow rays", NULL},
+    {"--photon-depth", CLI_U32, "D", RC(photon_depth), 1, CONFIG_MAX_DEPTH, 0, 0, NULL, 0,
+     "maximum bounces of a photon path", NULL},
+    {"--eye-depth", CLI_U32, "D", RC(eye_depth), 0, CONFIG_MAX_DEPTH, 0, 0, NULL, 0,
+     "maximum specular bounces of an eye path", NULL},
+    {"-o", CLI_STRING, "FILE.exr", RO(exr), 0, 0, 0, 0, NULL, 0, "linear float RGB OpenEXR", NULL},
+    {"--png", CLI_STRING, "FILE.png", RO(png), 0, 0, 0, 0, NULL, 0, "sRGB 8-bit preview", NULL},
+    {"--exposure", CLI_REAL, "E", RO(exposure), 0, 0, 0.0, 1e30, NULL, 0, "scale of the PNG preview", NULL},
+    {"--stats", CLI_STRING, "FILE.json", RO(stats), 0, 0, 0, 0, NULL, 0, "run statistics as JSON", NULL},
+    {"--allow-nonfinite", CLI_FLAG, NULL, RC(allow_nonfinite), 0, 0, 0, 0, NULL, 1,
+     "keep an image with NaN/Inf pixels (otherwise exit 1, no image)", NULL},
+    {"--quiet", CLI_FLAG, NULL, RO(quiet), 0, 0, 0, 0, NULL, 1, "no progress bar and no summary line", NULL},
+};
+#undef RO
+#undef RC
+
+static const cli_command render_command = {
+    "render", "renders SCENE by photon mapping (see README.md)", "SCENE", "scene file", offsetof(render_args, scene),
+    render_options, sizeof render_options / sizeof render_options[0]};
+
+static render_args render_defaults(void)
 {
-    uint64_t u;
-    int rc;
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i];
-        if (a[0] != '-' || !strcmp(a, "-")) {
-            if (o->scene)
-                return usage_error("unexpected argument '%s' (scene already given: '%s')", a, o->scene);
-            o->scene = a;
-            continue;
-        }
-        if (!strcmp(a, "--quiet")) {
-            o->quiet = 1;
-            continue;
-        }
-        if (!strcmp(a, "--allow-nonfinite")) {
-            cfg->allow_nonfinite = 1;
-            continue;
-        }
-        static const char *const valued[] = {"--photons", "--nn", "--width", "--height", "--subpixels",
-                                             "--threads", "--seed", "--rep-every", "--photon-depth", "--eye-depth",
-                                             "--normal-cos", "--max-radius", "--exposure", "--method", "--direct",
-                                             "--rep-tree", "-o", "--png", "--stats"};
-        int known = 0;
-        for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
-            known |= !strcmp(a, valued[k]);
-        if (!known)
-            return usage_error("unknown option '%s'%s", a, "");
-        if (i + 1 >= argc)
-            return usage_error("%s needs a value%s", a, "");
-        const char *v = argv[++i];
-        if (!strcmp(a, "--photons")) {
-            if ((rc = parse_uint(a, v, 0, CONFIG_MAX_PHOTONS, &u)))
-                return rc;
-            cfg->photons = u;
-        } else if (!strcmp(a, "--nn")) {
-            if ((rc = parse_uint(a, v, 1, CONFIG_MAX_NN, &u)))
-                return rc;
-            cfg->nn = (uint32_t)u;
-        } else if (!strcmp(a, "--width")) {
-            if ((rc = parse_uint(a, v, 1, CONFIG_MAX_SIDE, &u)))
-                return rc;
-            cfg->width = (uint32_t)u;
-        } else if (!strcmp(a, "--height")) {
-            if ((rc = parse_uint(a, v, 1, CONFIG_MAX_SIDE, &u)))
-                return rc;
-            cfg->height = (uint32_t)u;
-        } else if (!strcmp(a, "--subpixels")) {
-            if ((rc = parse_uint(a, v, 1, CONFIG_MAX_SUBPIXELS, &u)))
-                return rc;
-            cfg->subpixels = (uint32_t)u;
-        } else if (!strcmp(a, "--threads")) {
-            if ((rc = parse_uint(a, v, 0, CONFIG_MAX_THREADS, &u)))
-                return rc;
-            cfg->threads = (uint32_t)u;
-        } else if (!strcmp(a, "--seed")) {
-            if ((rc = parse_uint(a, v, 0, UINT64_MAX, &u)))
-                return rc;
-            cfg->seed = u;
-        } else if (!strcmp(a, "--rep-every")) {
-            if ((rc = parse_uint(a, v, 1, UINT32_MAX, &u)))
-                return rc;
-            cfg->rep_every = (uint32_t)u;
-        } else if (!strcmp(a, "--photon-depth")) {
-            if ((rc = parse_uint(a, v, 1, CONFIG_MAX_DEPTH, &u)))
-                return rc;
-            cfg->photon_depth = (uint32_t)u;
-        } else if (!strcmp(a, "--eye-depth")) {
-            if ((rc = parse_uint(a, v, 0, CONFIG_MAX_DEPTH, &u)))
-                return rc;
-            cfg->eye_depth = (uint32_t)u;
-        } else if (!strcmp(a, "--normal-cos")) {
-            if ((rc = parse_real(a, v, -1.0, 1.0, &cfg->normal_cos)))
-                return rc;
-        } else if (!strcmp(a, "--max-radius")) {
-            if ((rc = parse_real(a, v, 1e-30, 1e30, &cfg->max_radius)))
-                return rc;
-        } else if (!strcmp(a, "--exposure")) {
-            if ((rc = parse_real(a, v, 0.0, 1e30, &o->exposure)))
-                return rc;
-        } else if (!strcmp(a, "--method")) {
-            if (!strcmp(v, "conventional"))
-                cfg->method = METHOD_CONVENTIONAL;
-            else if (!strcmp(v, "precomputed"))
-                cfg->method = METHOD_PRECOMPUTED;
-            else
-                return usage_error("--method: expected conventional or precomputed, got '%s'%s", v, "");
-        } else if (!strcmp(a, "--direct")) {
-            if (!strcmp(v, "photons"))
-                cfg->direct = DIRECT_PHOTONS;
-            else if (!strcmp(v, "shadow-rays"))
-                cfg->direct = DIRECT_SHADOW_RAYS;
-            else
-                return usage_error("--direct: expected photons or shadow-rays, got '%s'%s", v, "");
-        } else if (!strcmp(a, "--rep-tree")) {
-            if (!strcmp(v, "separate"))
-                cfg->reps_shared = 0;
-            else if (!strcmp(v, "shared"))
-                cfg->reps_shared = 1;
-            else
-                return usage_error("--rep-tree: expected separate or shared, got '%s'%s", v, "");
-        } else if (!strcmp(a, "-o")) {
-            o->exr = v;
-        } else if (!strcmp(a, "--png")) {
-            o->png = v;
-        } else if (!strcmp(a, "--stats")) {
-            o->stats = v;
-        } else {
-            assert(!"valued[] names an option this chain does not handle");
-            return usage_error("unknown option '%s'%s", a, "");
-        }
-    }
-    if (!o->scene)
-        return usage_error("render needs a scene file%s%s", "", "");
-    if ((uint64_t)cfg->width * cfg->height > 64ull * 1024 * 1024)
-        return usage_error("image of %s pixels is too large (at most 64 Mpixel)%s", "that many", "");
-    return 0;
+    render_args a;
+    memset(&a, 0, sizeof a);
+    a.cfg = config_defaults();
+    a.exposure = 1.0;
+    return a;
 }
 
 static uint64_t physical_memory(void)
@@ -233,133 +102,228 @@ static uint64_t physical_memory(void)
     return pages > 0 && size > 0 ? (uint64_t)pages * (uint64_t)size : 0;
 }
 
-/* Refuses up front a photon count whose map would not fit in memory: a pilot
- * of a few thousand photons measures stores per emitted photon. */
-static int check_memory(const scene *sc, const render_config *cfg)
+/* Refuses up front a photon count whose map would not fit in memory, from a
+ * pilot of the photon pass. Returns 0 or an exit code. */
+static int check_memory(const scene *sc, const config_render *cfg)
 {
-    render_config pilot = *cfg;
-    pilot.photons = cfg->photons < 4096 ? cfg->photons : 4096;
-    if (pilot.photons == 0)
-        return 0;
-    photon_list l;
-    if (photons_trace(sc, &pilot, 1, NULL, &l)) {
+    photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS, 0};
+    double per_emitted = photons_stored_per_emitted(sc, &pp);
+    if (per_emitted < 0.0) {
         fprintf(stderr, "photonmap: out of memory in the pilot photon pass\n");
-        return EXIT_RUNTIME;
+        return CLI_EXIT_RUNTIME;
     }
-    double per_emitted = (double)l.count / (double)pilot.photons;
-    photons_list_free(&l);
-    /* peak: chunk buffers + joined list + map + permutation */
+    if (per_emitted == 0.0)
+        return 0;
     double stored = per_emitted * (double)cfg->photons * 1.1 + 4096.0;
-    double bytes = stored * (3.0 * (double)PHOTON_BYTES_PER_STORED + sizeof(uint32_t));
+    double bytes = photons_peak_bytes(stored);
     uint64_t mem = physical_memory();
     if (stored > (double)UINT32_MAX - 1.0) {
         fprintf(stderr, "photonmap: --photons %" PRIu64 " would store about %.3g photons; the map holds at most 2^32-1\n",
                 cfg->photons, stored);
-        return EXIT_USAGE;
+        return CLI_EXIT_USAGE;
     }
     if (mem > 0 && bytes > CONFIG_MEMORY_HEADROOM * (double)mem) {
         fprintf(stderr,
-                "photonmap: --photons %" PRIu64 " needs about %.1f GiB (%.2f stored per emitted photon x %zu bytes each, "
-                "peak x3), more than %.0f%% of this machine's %.1f GiB; use fewer photons\n",
-                cfg->photons, bytes / 1073741824.0, per_emitted, (size_t)PHOTON_BYTES_PER_STORED,
-                CONFIG_MEMORY_HEADROOM * 100.0, (double)mem / 1073741824.0);
-        return EXIT_USAGE;
+                "photonmap: --photons %" PRIu64 " needs about %.1f GiB (%.2f stored per emitted photon, %.0f bytes each "
+                "at the peak), more than %.0f%% of this machine's %.1f GiB; use fewer photons\n",
+                cfg->photons, bytes / 1073741824.0, per_emitted, bytes / stored, CONFIG_MEMORY_HEADROOM * 100.0,
+                (double)mem / 1073741824.0);
+        return CLI_EXIT_USAGE;
     }
     return 0;
 }
 
-static int cmd_render(int argc, char **argv)
+/* Claims every output path now, so that an unwritable one fails before the
+ * work. Returns 0 or an exit code. */
+static int claim_outputs(const char *const *paths, int n)
 {
-    render_config cfg = config_defaults();
-    render_outputs o = {NULL, NULL, NULL, NULL, 1.0, 0};
-    int rc = parse_render_args(argc, argv, &cfg, &o);
-    if (rc)
-        return rc;
     char err[1024];
-    scene *sc = NULL;
-    rc = scene_load(o.scene, &sc, err, sizeof err);
-    if (rc != SCENE_OK) {
-        fprintf(stderr, "%s\n", err);
-        return rc == SCENE_ERR_INPUT ? EXIT_USAGE : EXIT_RUNTIME;
-    }
-    if ((rc = check_memory(sc, &cfg))) {
-        scene_free(sc);
-        return rc;
-    }
-    /* claim every output path now, so an unwritable one fails before the work */
-    outfile probe[3];
-    const char *paths[3] = {o.exr, o.png, o.stats};
-    int claimed[3] = {0, 0, 0};
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < n; i++) {
         if (!paths[i])
             continue;
-        if (outfile_begin(&probe[i], paths[i], 0, err, sizeof err)) {
+        outfile probe;
+        if (outfile_begin(&probe, paths[i], 0, err, sizeof err)) {
             fprintf(stderr, "photonmap: %s\n", err);
-            for (int j = 0; j < i; j++)
-                if (claimed[j])
-                    outfile_abort(&probe[j]);
-            scene_free(sc);
-            return EXIT_RUNTIME;
+            return CLI_EXIT_RUNTIME;
         }
-        claimed[i] = 1;
+        outfile_abort(&probe);
     }
-    for (int i = 0; i < 3; i++)
-        if (claimed[i])
-            outfile_abort(&probe[i]);
+    return 0;
+}
 
-    unsigned threads = cfg.threads ? cfg.threads : parallel_cores();
-    int show = !o.quiet && isatty(STDERR_FILENO);
+/* Loads a scene, printing the parser's message on failure. Returns 0 or an
+ * exit code. */
+static int load_scene(const char *path, scene **sc)
+{
+    char err[1024];
+    int rc = scene_load(path, sc, err, sizeof err);
+    if (rc == SCENE_OK)
+        return 0;
+    fprintf(stderr, "%s\n", err);
+    return rc == SCENE_ERR_INPUT ? CLI_EXIT_USAGE : CLI_EXIT_RUNTIME;
+}
+
+/* Writes what a finished render produced. Returns 0 or an exit code. */
+static int write_outputs(const render_args *a, unsigned threads, const image *img, const stats_run *st)
+{
+    char err[1024];
+    int exit_code = 0;
+    if (a->stats) {
+        outfile f;
+        if (outfile_begin(&f, a->stats, 1, err, sizeof err) ||
+            stats_write_json(f.f, a->scene, &a->cfg, threads, st) || outfile_commit(&f, err, sizeof err)) {
+            fprintf(stderr, "photonmap: %s\n", err);
+            exit_code = CLI_EXIT_RUNTIME;
+        }
+    }
+    if (st->nonfinite_pixels > 0 && !a->cfg.allow_nonfinite) {
+        fprintf(stderr, "photonmap: %" PRIu64 " pixels are not finite; no image written (--allow-nonfinite keeps it)\n",
+                st->nonfinite_pixels);
+        return CLI_EXIT_RUNTIME;
+    }
+    if (a->exr && image_write_exr(img, a->exr, err, sizeof err)) {
+        fprintf(stderr, "photonmap: %s\n", err);
+        exit_code = CLI_EXIT_RUNTIME;
+    }
+    if (a->png && image_write_png(img, a->png, a->exposure, err, sizeof err)) {
+        fprintf(stderr, "photonmap: %s\n", err);
+        exit_code = CLI_EXIT_RUNTIME;
+    }
+    return exit_code;
+}
+
+static int cmd_render(int argc, char **argv)
+{
+    render_args a = render_defaults();
+    int rc = cli_parse(&render_command, argc, argv, 2, &a);
+    if (rc != CLI_PARSED)
+        return rc;
+    const config_render *cfg = &a.cfg;
+    if ((uint64_t)cfg->width * cfg->height > CONFIG_MAX_PIXELS)
+        return cli_error(&render_command, "an image of %ux%u pixels is too large (at most %llu pixels)", cfg->width,
+                         cfg->height, (unsigned long long)CONFIG_MAX_PIXELS);
+    scene *sc = NULL;
+    if ((rc = load_scene(a.scene, &sc)))
+        return rc;
+    const char *paths[3] = {a.exr, a.png, a.stats};
+    if ((rc = check_memory(sc, cfg)) || (rc = claim_outputs(paths, 3))) {
+        scene_free(sc);
+        return rc;
+    }
+    unsigned threads = cfg->threads ? cfg->threads : parallel_cores();
+    int show = !a.quiet && isatty(STDERR_FILENO);
     image img;
     stats_run st;
-    if (render_run(sc, &cfg, threads, show, &img, &st)) {
+    if (render_run(sc, cfg, threads, show, &img, &st)) {
         fprintf(stderr, "photonmap: out of memory while rendering\n");
         scene_free(sc);
-        return EXIT_RUNTIME;
+        return CLI_EXIT_RUNTIME;
     }
-    int exit_code = 0;
-    if (o.stats) {
-        outfile f;
-        if (outfile_begin(&f, o.stats, 1, err, sizeof err) ||
-            stats_write_json(f.f, o.scene, &cfg, threads, &st) || outfile_commit(&f, err, sizeof err)) {
-            fprintf(stderr, "photonmap: %s\n", err);
-            exit_code = EXIT_RUNTIME;
-        }
-    }
-    if (st.nonfinite_pixels > 0 && !cfg.allow_nonfinite) {
-        fprintf(stderr, "photonmap: %" PRIu64 " pixels are not finite; no image written (--allow-nonfinite keeps it)\n",
-                st.nonfinite_pixels);
-        exit_code = EXIT_RUNTIME;
-    } else {
-        if (o.exr && image_write_exr(&img, o.exr, err, sizeof err)) {
-            fprintf(stderr, "photonmap: %s\n", err);
-            exit_code = EXIT_RUNTIME;
-        }
-        if (o.png && image_write_png(&img, o.png, o.exposure, err, sizeof err)) {
-            fprintf(stderr, "photonmap: %s\n", err);
-            exit_code = EXIT_RUNTIME;
-        }
-    }
-    if (!o.quiet)
+    rc = write_outputs(&a, threads, &img, &st);
+    if (!a.quiet)
         fprintf(stderr,
                 "%s: %s, %" PRIu64 " photons emitted, %" PRIu64 " stored, n=%u, %ux%u, %u threads: "
                 "trace %.2fs build %.2fs precompute %.2fs render %.2fs total %.2fs\n",
-                o.scene, config_method_name(cfg.method), st.photons_emitted, st.photons_stored, cfg.nn, cfg.width,
-                cfg.height, threads, st.trace, st.build, st.precompute, st.render, st.total);
+                a.scene, config_method_name(cfg->method), st.photons_emitted, st.photons_stored, cfg->nn, cfg->width,
+                cfg->height, threads, st.trace, st.build, st.precompute, st.render, st.total);
     image_free(&img);
     scene_free(sc);
+    return rc;
+}
+
+/* ---- export-pov ---- */
+
+typedef struct {
+    povray_options pov;
+    const char *scene, *out;
+} pov_args;
+
+static const char *const quality_names[] = {"fast", "reference", NULL};
+_Static_assert(sizeof(povray_quality) == sizeof(int), "povray_quality is int-sized");
+
+#define PO(field) offsetof(pov_args, field)
+static const cli_option pov_options_table[] = {
+    {"--width", CLI_U32, "W", PO(pov.width), 1, CONFIG_MAX_SIDE, 0, 0, NULL, 0,
+     "the image width POV-Ray will render (sets the aspect ratio)", NULL},
+    {"--height", CLI_U32, "H", PO(pov.height), 1, CONFIG_MAX_SIDE, 0, 0, NULL, 0,
+     "the image height POV-Ray will render", NULL},
+    {"--quality", CLI_CHOICE, NULL, PO(pov.quality), 0, 0, 0, 0, quality_names, 0,
+     "radiosity and photon settings (reference/README.md)", NULL},
+    {"--no-radiosity", CLI_FLAG, NULL, PO(pov.radiosity), 0, 0, 0, 0, NULL, 0,
+     "no indirect diffuse light (radiosity on unless given)", NULL},
+    {"--no-photons", CLI_FLAG, NULL, PO(pov.photons), 0, 0, 0, 0, NULL, 0,
+     "no caustics; glass still shadows direct light (photons on unless given)", NULL},
+    {"-o", CLI_STRING, "FILE.pov", PO(out), 0, 0, 0, 0, NULL, 0, "where to write the SDL", "standard output"},
+};
+#undef PO
+
+static const cli_command pov_command = {
+    "export-pov", "writes SCENE as POV-Ray 3.7 SDL radiometrically matched to the renderer", "SCENE",
+    "scene file", offsetof(pov_args, scene), pov_options_table, sizeof pov_options_table / sizeof pov_options_table[0]};
+
+static pov_args pov_defaults_args(void)
+{
+    pov_args a;
+    memset(&a, 0, sizeof a);
+    a.pov = povray_defaults();
+    return a;
+}
+
+static int cmd_export_pov(int argc, char **argv)
+{
+    pov_args a = pov_defaults_args();
+    int rc = cli_parse(&pov_command, argc, argv, 2, &a);
+    if (rc != CLI_PARSED)
+        return rc;
+    scene *sc = NULL;
+    if ((rc = load_scene(a.scene, &sc)))
+        return rc;
+    char err[1024];
+    int exit_code = 0;
+    if (!a.out) {
+        if (povray_write(stdout, sc, a.scene, &a.pov) || fflush(stdout)) {
+            fprintf(stderr, "photonmap: writing standard output: %s\n", strerror(errno));
+            exit_code = CLI_EXIT_RUNTIME;
+        }
+    } else {
+        outfile f;
+        if (outfile_begin(&f, a.out, 1, err, sizeof err)) {
+            fprintf(stderr, "photonmap: %s\n", err);
+            exit_code = CLI_EXIT_RUNTIME;
+        } else if (povray_write(f.f, sc, a.scene, &a.pov)) {
+            fprintf(stderr, "photonmap: %s: write error\n", a.out);
+            outfile_abort(&f);
+            exit_code = CLI_EXIT_RUNTIME;
+        } else if (outfile_commit(&f, err, sizeof err)) {
+            fprintf(stderr, "photonmap: %s\n", err);
+            exit_code = CLI_EXIT_RUNTIME;
+        }
+    }
+    scene_free(sc);
     return exit_code;
+}
+
+/* ---- the program ---- */
+
+static void print_usage(FILE *f)
+{
+    render_args r = render_defaults();
+    pov_args p = pov_defaults_args();
+    cli_usage(f, &render_command, &r);
+    fputc('\n', f);
+    cli_usage(f, &pov_command, &p);
 }
 
 int main(int argc, char **argv)
 {
     if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
         print_usage(argc < 2 ? stderr : stdout);
-        return argc < 2 ? EXIT_USAGE : 0;
+        return argc < 2 ? CLI_EXIT_USAGE : CLI_EXIT_OK;
     }
     if (!strcmp(argv[1], "render"))
         return cmd_render(argc, argv);
     if (!strcmp(argv[1], "export-pov"))
-        return povray_main(argc, argv);
-    fprintf(stderr, "photonmap: unknown command '%s' (expected render or export-pov)\n", argv[1]);
-    return EXIT_USAGE;
+        return cmd_export_pov(argc, argv);
+    fprintf(stderr, "photonmap: unknown command '%s' (expected render or export-pov; see photonmap --help)\n", argv[1]);
+    return CLI_EXIT_USAGE;
 }

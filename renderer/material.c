@@ -6,9 +6,9 @@
 const char *material_kind_name(material_kind k)
 {
     switch (k) {
-    case MAT_LAMBERT: return "lambert";
-    case MAT_MIRROR: return "mirror";
-    case MAT_GLASS: return "glass";
+    case MATERIAL_LAMBERT: return "lambert";
+    case MATERIAL_MIRROR: return "mirror";
+    case MATERIAL_GLASS: return "glass";
     }
     return "?";
 }

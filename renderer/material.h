@@ -6,7 +6,7 @@
 
 #include "vec.h"
 
-typedef enum { MAT_LAMBERT = 0, MAT_MIRROR = 1, MAT_GLASS = 2 } material_kind;
+typedef enum { MATERIAL_LAMBERT = 0, MATERIAL_MIRROR = 1, MATERIAL_GLASS = 2 } material_kind;
 
 #define MATERIAL_NAME_MAX 64
 

@@ -1,9 +1,11 @@
-/* photons: the photon pass. Photons are traced in fixed chunks of indices,
- * each chunk into its own buffer, and the buffers are joined in chunk order,
- * so the stored list does not depend on the thread count. */
+/* photons: the photon pass and the map build. Photons are traced in fixed
+ * chunks of indices, each chunk into its own buffer, and the buffers are
+ * joined in chunk order, so the stored list does not depend on the thread
+ * count. The build moves the positions into the map frame (photons.h). */
 #include "photons.h"
 
 #include <assert.h>
+#include <float.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -11,100 +13,96 @@
 #include "parallel.h"
 #include "rng.h"
 
-#define PHOTON_CHUNK 4096u
+#define PHOTONS_CHUNK 4096u
+#define PHOTONS_PILOT 4096u
 
-void photon_pack_dir(double x, double y, double z, int8_t out[3])
+void photons_pack_dir(double x, double y, double z, int8_t out[3])
 {
     out[0] = (int8_t)lrint(fmax(-1.0, fmin(1.0, x)) * 127.0);
     out[1] = (int8_t)lrint(fmax(-1.0, fmin(1.0, y)) * 127.0);
     out[2] = (int8_t)lrint(fmax(-1.0, fmin(1.0, z)) * 127.0);
 }
 
-vec3 photon_unpack_dir(const int8_t d[3])
+vec3 photons_unpack_dir(const int8_t d[3])
 {
     return vec_make(d[0] / 127.0, d[1] / 127.0, d[2] / 127.0);
 }
 
 typedef struct {
     uint64_t count, cap;
-    float *pos;
-    photon *ph;
+    double *pos;
+    photons_record *ph;
     uint64_t truncated, escaped;
     int failed;
-} photon_chunk;
+} photons_chunk;
 
 typedef struct {
     const scene *sc;
-    const render_config *cfg;
-    double eps;   /* scene_epsilon(sc) */
-    vec3 power;   /* each emitted photon's power: light power / cfg->photons */
-    photon_chunk *chunks;
+    const photons_params *p;
+    photons_chunk *chunks;
     progress *prog;
+    vec3 unit;
 } trace_ctx;
 
-static int chunk_store(photon_chunk *c, vec3 p, vec3 dir, vec3 power, vec3 n, unsigned flags)
+/* Appends one photon of relative power `power` to c. Returns -1 when memory
+ * runs out. */
+static int chunk_store(photons_chunk *c, vec3 p, vec3 dir, vec3 power, vec3 n, unsigned flags)
 {
     if (c->count == c->cap) {
-        uint64_t nc = c->cap ? c->cap * 2 : PHOTON_CHUNK;
-        float *np = realloc(c->pos, nc * 3 * sizeof(float));
+        uint64_t nc = c->cap ? c->cap * 2 : PHOTONS_CHUNK;
+        double *np = realloc(c->pos, nc * 3 * sizeof(double));
         if (!np)
             return -1;
         c->pos = np;
-        photon *nph = realloc(c->ph, nc * sizeof(photon));
+        photons_record *nph = realloc(c->ph, nc * sizeof(photons_record));
         if (!nph)
             return -1;
         c->ph = nph;
         c->cap = nc;
     }
-    float *q = c->pos + 3 * c->count;
-    q[0] = (float)p.x;
-    q[1] = (float)p.y;
-    q[2] = (float)p.z;
-    photon *ph = &c->ph[c->count];
+    double *q = c->pos + 3 * c->count;
+    q[0] = p.x;
+    q[1] = p.y;
+    q[2] = p.z;
+    photons_record *ph = &c->ph[c->count];
     ph->power[0] = (float)power.x;
     ph->power[1] = (float)power.y;
     ph->power[2] = (float)power.z;
-    photon_pack_dir(dir.x, dir.y, dir.z, ph->dir);
-    photon_pack_dir(n.x, n.y, n.z, ph->normal);
+    photons_pack_dir(dir.x, dir.y, dir.z, ph->dir);
+    photons_pack_dir(n.x, n.y, n.z, ph->normal);
     ph->flags = (uint8_t)flags;
     ph->pad = 0;
     c->count++;
     return 0;
 }
 
-/* Traces photon `index` into chunk c. Returns -1 when memory runs out. */
-static int trace_one(const trace_ctx *tc, uint64_t index, photon_chunk *c)
+/* Traces photon `index` into chunk c; its power starts at 1 (the list's
+ * unit). Returns -1 when memory runs out. */
+static int trace_one(const trace_ctx *tc, uint64_t index, photons_chunk *c)
 {
     const scene *sc = tc->sc;
-    const render_config *cfg = tc->cfg;
-    rng_stream rs = rng_make(cfg->seed, index);
-    double eps = tc->eps;
+    const photons_params *pp = tc->p;
+    rng_stream rs = rng_make(pp->seed, index);
     /* isotropic emission */
     double u1 = rng_next_double(&rs), u2 = rng_next_double(&rs);
     double z = 1.0 - 2.0 * u1, s = sqrt(fmax(0.0, 1.0 - z * z)), phi = 2.0 * VEC_PI * u2;
-    ray r = {sc->light.position, vec_make(s * cos(phi), s * sin(phi), z)};
-    vec3 power = tc->power;
+    shape_ray r = {sc->light.position, vec_make(s * cos(phi), s * sin(phi), z)};
+    vec3 power = tc->unit;
     unsigned bounces = 0;
     for (uint32_t depth = 0;; depth++) {
-        if (depth >= cfg->photon_depth) {
+        if (depth >= pp->max_depth) {
             c->truncated++;
             return 0;
         }
-        double t;
-        int hit = scene_intersect(sc, &r, eps, INFINITY, &t);
-        if (hit < 0) {
+        scene_hit h;
+        if (!scene_intersect(sc, &r, INFINITY, &h)) {
             c->escaped++;
             return 0;
         }
-        const shape *sh = &sc->shapes[hit];
-        const material *m = &sc->materials[sh->material];
-        vec3 p = vec_madd(r.origin, r.dir, t);
-        vec3 ng = shape_normal(sh, p);
-        int front = vec_dot(ng, r.dir) < 0.0;
-        vec3 n = front ? ng : vec_neg(ng); /* faces where the photon came from */
-        if (m->kind == MAT_LAMBERT) {
-            if (!(cfg->direct == DIRECT_SHADOW_RAYS && bounces == 0)) {
-                if (chunk_store(c, p, r.dir, power, n, bounces == 0 ? PHOTON_FLAG_DIRECT : 0))
+        const material *m = &sc->materials[sc->shapes[h.shape].material];
+        if (m->kind == MATERIAL_LAMBERT) {
+            if (pp->store_first_hits || bounces > 0) {
+                if (chunk_store(c, h.p, r.dir, power, h.n, bounces == 0 ? PHOTONS_FLAG_DIRECT : 0))
                     return -1;
             }
             double pc = vec_maxc(m->color);
@@ -112,26 +110,20 @@ static int trace_one(const trace_ctx *tc, uint64_t index, photon_chunk *c)
                 return 0;
             power = vec_scale(vec_mul(power, m->color), 1.0 / pc);
             double v1 = rng_next_double(&rs), v2 = rng_next_double(&rs);
-            r.dir = material_sample_cosine(n, v1, v2);
-            r.origin = vec_madd(p, n, eps);
-        } else if (m->kind == MAT_MIRROR) {
+            r = scene_spawn(&h, material_sample_cosine(h.n, v1, v2), 1);
+        } else if (m->kind == MATERIAL_MIRROR) {
             power = vec_mul(power, m->color);
             if (vec_maxc(power) <= 0.0)
                 return 0;
-            r.dir = material_reflect(r.dir, n);
-            r.origin = vec_madd(p, n, eps);
+            r = scene_spawn(&h, material_reflect(r.dir, h.n), 1);
         } else {
-            double n1 = front ? 1.0 : m->ior, n2 = front ? m->ior : 1.0;
-            double cos_i = -vec_dot(r.dir, n);
-            double fr = material_fresnel(cos_i, n1, n2);
+            double n1 = h.front ? 1.0 : m->ior, n2 = h.front ? m->ior : 1.0;
+            double fr = material_fresnel(-vec_dot(r.dir, h.n), n1, n2);
             vec3 refr;
-            if (rng_next_double(&rs) < fr || !material_refract(r.dir, n, n1 / n2, &refr)) {
-                r.dir = material_reflect(r.dir, n);
-                r.origin = vec_madd(p, n, eps);
-            } else {
-                r.dir = refr;
-                r.origin = vec_madd(p, n, -eps);
-            }
+            if (rng_next_double(&rs) < fr || !material_refract(r.dir, h.n, n1 / n2, &refr))
+                r = scene_spawn(&h, material_reflect(r.dir, h.n), 1);
+            else
+                r = scene_spawn(&h, refr, 0);
         }
         bounces++;
     }
@@ -141,9 +133,9 @@ static void trace_chunk(uint64_t chunk, unsigned thread, void *arg)
 {
     (void)thread;
     trace_ctx *tc = arg;
-    photon_chunk *c = &tc->chunks[chunk];
-    uint64_t lo = chunk * PHOTON_CHUNK;
-    uint64_t hi = lo + PHOTON_CHUNK < tc->cfg->photons ? lo + PHOTON_CHUNK : tc->cfg->photons;
+    photons_chunk *c = &tc->chunks[chunk];
+    uint64_t lo = chunk * PHOTONS_CHUNK;
+    uint64_t hi = lo + PHOTONS_CHUNK < tc->p->photons ? lo + PHOTONS_CHUNK : tc->p->photons;
     for (uint64_t i = lo; i < hi && !c->failed; i++) {
         if (trace_one(tc, i, c))
             c->failed = 1;
@@ -151,15 +143,15 @@ static void trace_chunk(uint64_t chunk, unsigned thread, void *arg)
     progress_add(tc->prog, hi - lo);
 }
 
-int photons_trace(const scene *sc, const render_config *cfg, unsigned threads, progress *prog, photon_list *out)
+int photons_trace(const scene *sc, const photons_params *p, unsigned threads, progress *prog, photons_list *out)
 {
     memset(out, 0, sizeof *out);
-    uint64_t nchunks = (cfg->photons + PHOTON_CHUNK - 1) / PHOTON_CHUNK;
-    photon_chunk *chunks = calloc(nchunks ? nchunks : 1, sizeof(photon_chunk));
+    uint64_t nchunks = (p->photons + PHOTONS_CHUNK - 1) / PHOTONS_CHUNK;
+    photons_chunk *chunks = calloc(nchunks ? nchunks : 1, sizeof(photons_chunk));
     if (!chunks)
         return -1;
-    vec3 power = cfg->photons ? vec_scale(sc->light.power, 1.0 / (double)cfg->photons) : vec_make(0, 0, 0);
-    trace_ctx tc = {sc, cfg, scene_epsilon(sc), power, chunks, prog};
+    vec3 unit = p->photons ? vec_scale(sc->light.power, 1.0 / (double)p->photons) : vec_make(0, 0, 0);
+    trace_ctx tc = {sc, p, chunks, prog, unit};
     parallel_for(threads, nchunks, trace_chunk, &tc);
     int failed = 0;
     uint64_t total = 0;
@@ -170,15 +162,15 @@ int photons_trace(const scene *sc, const render_config *cfg, unsigned threads, p
         out->escaped += chunks[i].escaped;
     }
     if (!failed) {
-        out->pos = malloc((total ? total : 1) * 3 * sizeof(float));
-        out->ph = malloc((total ? total : 1) * sizeof(photon));
+        out->pos = malloc((total ? total : 1) * 3 * sizeof(double));
+        out->ph = malloc((total ? total : 1) * sizeof(photons_record));
         failed = !out->pos || !out->ph;
     }
     uint64_t at = 0;
     for (uint64_t i = 0; i < nchunks; i++) {
         if (!failed && chunks[i].count) {
-            memcpy(out->pos + 3 * at, chunks[i].pos, chunks[i].count * 3 * sizeof(float));
-            memcpy(out->ph + at, chunks[i].ph, chunks[i].count * sizeof(photon));
+            memcpy(out->pos + 3 * at, chunks[i].pos, chunks[i].count * 3 * sizeof(double));
+            memcpy(out->ph + at, chunks[i].ph, chunks[i].count * sizeof(photons_record));
             at += chunks[i].count;
         }
         free(chunks[i].pos);
@@ -190,49 +182,161 @@ int photons_trace(const scene *sc, const render_config *cfg, unsigned threads, p
         return -1;
     }
     out->count = total;
-    if (cfg->method == METHOD_PRECOMPUTED && cfg->rep_every > 0) {
-        for (uint64_t i = 0; i < total; i += cfg->rep_every)
-            out->ph[i].flags |= PHOTON_FLAG_REP;
+    out->unit = vec_make(1, 1, 1);
+    if (p->rep_every > 0) {
+        for (uint64_t i = 0; i < total; i += p->rep_every)
+            out->ph[i].flags |= PHOTONS_FLAG_REP;
     }
     return 0;
 }
 
-void photons_list_free(photon_list *l)
+void photons_list_free(photons_list *l)
 {
     free(l->pos);
     free(l->ph);
     memset(l, 0, sizeof *l);
 }
 
-int photons_build_map(photon_list *l, photon_map *m)
+/* The map frame of a list: the centre of its bounding box and the power of
+ * two at or above its half-diagonal (1 for an empty or one-point list). */
+static void map_frame(const photons_list *l, vec3 *centre, double *scale)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint64_t i = 0; i < l->count; i++) {
+        for (int a = 0; a < 3; a++) {
+            double v = l->pos[3 * i + (uint64_t)a];
+            lo[a] = v < lo[a] ? v : lo[a];
+            hi[a] = v > hi[a] ? v : hi[a];
+        }
+    }
+    if (1) {
+        *centre = vec_make(0, 0, 0);
+        *scale = 1.0;
+        return;
+    }
+    *centre = vec_make(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2]));
+    double half = 0.5 * sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                             (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    if (!(half > 0.0) || !isfinite(half)) {
+        *scale = 1.0;
+        return;
+    }
+    int e;
+    frexp(half, &e); /* half = f * 2^e, f in [0.5, 1) */
+    *scale = ldexp(1.0, e);
+}
+
+void photons_map_point(const photons_map *m, vec3 x, float q[3])
+{
+    double inv = 1.0 / m->scale; /* exact: a power of two */
+    q[0] = (float)((x.x - m->centre.x) * inv);
+    q[1] = (float)((x.y - m->centre.y) * inv);
+    q[2] = (float)((x.z - m->centre.z) * inv);
+}
+
+int photons_build_map(photons_list *l, int leave_out_reps, photons_map *m)
 {
     memset(m, 0, sizeof *m);
     if (l->count > UINT32_MAX - 1) {
         photons_list_free(l);
         return -1;
     }
-    uint32_t n = (uint32_t)l->count;
+    m->unit = l->unit;
+    m->stored = l->count;
+    map_frame(l, &m->centre, &m->scale);
+    uint32_t nreps = 0;
+    for (uint64_t i = 0; i < l->count; i++)
+        nreps += (l->ph[i].flags & PHOTONS_FLAG_REP) != 0;
+    uint32_t n = (uint32_t)l->count - (leave_out_reps ? nreps : 0);
+    float *pts = malloc(sizeof(float) * 3 * (n ? n : 1));
+    uint32_t *src = malloc(sizeof(uint32_t) * (n ? n : 1)); /* tree input index -> list index */
     uint32_t *perm = malloc(sizeof(uint32_t) * (n ? n : 1));
-    m->ph = malloc(sizeof(photon) * (n ? n : 1));
-    if (!perm || !m->ph || kd_build(&m->tree, l->pos, n, KD_DEFAULT_LEAF, perm)) {
-        free(perm);
-        photons_list_free(l);
-        photons_map_free(m);
-        return -1;
+    m->ph = malloc(sizeof(photons_record) * (n ? n : 1));
+    m->rep = malloc(sizeof(photons_rep) * (nreps ? nreps : 1));
+    int rc = (!pts || !src || !perm || !m->ph || !m->rep) ? -1 : 0;
+    if (rc == 0) {
+        uint32_t j = 0, r = 0;
+        for (uint32_t i = 0; i < (uint32_t)l->count; i++) {
+            int is_rep = (l->ph[i].flags & PHOTONS_FLAG_REP) != 0;
+            vec3 x = vec_make(l->pos[3 * (size_t)i], l->pos[3 * (size_t)i + 1], l->pos[3 * (size_t)i + 2]);
+            float q[3];
+            photons_map_point(m, x, q);
+            if (is_rep && leave_out_reps) {
+                photons_rep *rp = &m->rep[r++];
+                memcpy(rp->pos, q, sizeof q);
+                memcpy(rp->normal, l->ph[i].normal, 3);
+                rp->pad = 0;
+                rp->tree_index = KD_NONE;
+                continue;
+            }
+            memcpy(pts + 3 * (size_t)j, q, sizeof q);
+            src[j++] = i;
+        }
+        assert(j == n && (!leave_out_reps || r == nreps));
+        rc = kd_build(&m->tree, pts, n, KD_DEFAULT_LEAF, perm);
     }
-    for (uint32_t i = 0; i < n; i++) {
-        m->ph[i] = l->ph[perm[i]];
-        m->reps += (m->ph[i].flags & PHOTON_FLAG_REP) != 0;
+    if (rc == 0) {
+        uint32_t r = 0;
+        for (uint32_t i = 0; i < n; i++) {
+            const photons_record *p = &l->ph[src[perm[i]]];
+            m->ph[i] = *p;
+            if (!leave_out_reps && (p->flags & PHOTONS_FLAG_REP)) {
+                photons_rep *rp = &m->rep[r++];
+                rp->pos[0] = m->tree.x[i];
+                rp->pos[1] = m->tree.y[i];
+                rp->pos[2] = m->tree.z[i];
+                memcpy(rp->normal, p->normal, 3);
+                rp->pad = 0;
+                rp->tree_index = i;
+            }
+        }
+        assert(leave_out_reps || r == nreps);
+        m->count = n;
+        m->reps = nreps;
     }
-    m->count = n;
+    free(pts);
+    free(src);
     free(perm);
     photons_list_free(l);
-    return 0;
+    if (rc != 0)
+        photons_map_free(m);
+    return rc;
 }
 
-void photons_map_free(photon_map *m)
+void photons_map_free(photons_map *m)
 {
     kd_free(&m->tree);
     free(m->ph);
+    free(m->rep);
     memset(m, 0, sizeof *m);
+}
+
+size_t photons_map_bytes(const photons_map *m)
+{
+    return kd_bytes(&m->tree) + (size_t)m->count * sizeof(photons_record) + (size_t)m->reps * sizeof(photons_rep);
+}
+
+double photons_peak_bytes(double stored)
+{
+    /* the trace's chunk buffers and the joined list (double positions), then
+     * the build: the list, the map-frame copy, the kd-tree's working copy
+     * and its arrays, the permutations, the payload */
+    double list = 3.0 * sizeof(double) + sizeof(photons_record);
+    double build = list + 3.0 * sizeof(float) + 16.0 + 3.0 * sizeof(float) + 2.0 * sizeof(uint32_t) +
+                   sizeof(photons_record);
+    return stored * fmax(2.0 * list, build);
+}
+
+double photons_stored_per_emitted(const scene *sc, const photons_params *p)
+{
+    photons_params pilot = *p;
+    pilot.photons = p->photons < PHOTONS_PILOT ? p->photons : PHOTONS_PILOT;
+    if (pilot.photons == 0)
+        return 0.0;
+    photons_list l;
+    if (photons_trace(sc, &pilot, 1, NULL, &l))
+        return -1.0;
+    double per = (double)l.count / (double)pilot.photons;
+    photons_list_free(&l);
+    return per;
 }

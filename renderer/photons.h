@@ -1,69 +1,113 @@
-/* photons: emitting photons from the point light, tracing them through
- * mirror and glass, storing one at every diffuse hit, flagging
- * representatives, and the built photon map (kd-tree + payload in the
- * tree's leaf order). */
+/* photons: the photon pass (emitting photons from the point light, tracing
+ * them through mirror and glass, storing one at every diffuse hit, flagging
+ * representatives by the rule it is given) and the built photon map: a
+ * kd-tree over the stored positions in the map's own frame, the payload in
+ * the tree's leaf order, and the representatives.
+ *
+ * The map's frame: positions are stored as 32-bit floats relative to the
+ * centre of the photons' bounding box and divided by a power of two near its
+ * size, so the map's precision does not depend on where the scene sits or on
+ * its scale (a room at x = 1e9, or one 1e-25 units wide, is stored exactly as
+ * precisely as one at the origin). Powers are stored relative to the emitted
+ * photon's power for the same reason. */
 #ifndef PM_PHOTONS_H
 #define PM_PHOTONS_H
 
 #include <stddef.h>
 #include <stdint.h>
 
-#include "config.h"
 #include "kdtree.h"
 #include "progress.h"
 #include "scene.h"
+#include "vec.h"
 
-#define PHOTON_FLAG_REP 1u    /* a representative (precomputed method) */
-#define PHOTON_FLAG_DIRECT 2u /* arrived straight from the light, no bounce before */
+#define PHOTONS_FLAG_REP 1u    /* a representative (precomputed method) */
+#define PHOTONS_FLAG_DIRECT 2u /* arrived straight from the light, no bounce before */
 
 /* A stored photon's payload; its position lives in the kd-tree. 20 bytes:
- * power as floats (any light power from 1e-30 to 1e30 W stays representable),
+ * power as floats relative to the emitted photon's power (photons_map.unit),
  * directions quantised to 3 signed bytes (x127), which keeps the front-side
  * and normal tests accurate to about half a degree. */
 typedef struct {
-    float power[3];   /* watts */
+    float power[3];   /* x photons_map.unit watts */
     int8_t dir[3];    /* direction of travel when it arrived */
-    uint8_t flags;    /* PHOTON_FLAG_* */
+    uint8_t flags;    /* PHOTONS_FLAG_* */
     int8_t normal[3]; /* surface normal on the side it arrived from */
     uint8_t pad;
-} photon;
+} photons_record;
 
-/* Bytes of memory one stored photon costs in a built map (payload + position). */
-#define PHOTON_BYTES_PER_STORED (sizeof(photon) + 3 * sizeof(float))
+/* What the photon pass is asked to do. */
+typedef struct {
+    uint64_t photons;      /* P_e: photons emitted from the light */
+    uint64_t seed;         /* photon i draws from random stream (seed, i) */
+    uint32_t max_depth;    /* bounces before a path is cut */
+    int store_first_hits;  /* 0: direct light comes from shadow rays, store bounced light only */
+    uint32_t rep_every;    /* the representative rule: every K-th stored photon (trace order); 0: none */
+} photons_params;
 
+/* The photon pass's output: positions in world coordinates (double), in
+ * trace order. */
 typedef struct {
     uint64_t count;
-    float *pos;  /* 3 * count, in trace order */
-    photon *ph;  /* count */
+    double *pos;         /* 3 * count */
+    photons_record *ph;  /* count */
+    vec3 unit;           /* the emitted photon's power: records' power is relative to it */
     uint64_t truncated, escaped;
-} photon_list;
+} photons_list;
+
+/* A representative: its position in the map frame, its surface normal, and
+ * where it sits in the photon tree (KD_NONE when the map leaves it out). */
+typedef struct {
+    float pos[3];
+    int8_t normal[3];
+    uint8_t pad;
+    uint32_t tree_index;
+} photons_rep;
 
 typedef struct {
-    kd_tree tree; /* positions */
-    photon *ph;   /* payload, tree leaf order */
-    uint32_t count;
-    uint32_t reps; /* photons flagged PHOTON_FLAG_REP */
-} photon_map;
+    kd_tree tree;           /* positions in the map frame */
+    photons_record *ph;     /* payload, tree leaf order */
+    uint32_t count;         /* photons in the tree */
+    uint64_t stored;        /* photons stored by the pass (count + those left out) */
+    photons_rep *rep;       /* representatives: tree leaf order, then those left out in trace order */
+    uint32_t reps;
+    vec3 unit;              /* watts of power 1.0 in a record */
+    vec3 centre;            /* world = centre + scale * map */
+    double scale;           /* a power of two; 1 when the map is empty */
+} photons_map;
+
+/* Bytes of memory one stored photon costs in a built map (payload + position). */
+#define PHOTONS_BYTES_PER_STORED (sizeof(photons_record) + 3 * sizeof(float))
 
 /* Quantises a unit vector to 3 signed bytes and back. */
-void photon_pack_dir(double x, double y, double z, int8_t out[3]);
-vec3 photon_unpack_dir(const int8_t d[3]);
+void photons_pack_dir(double x, double y, double z, int8_t out[3]);
+vec3 photons_unpack_dir(const int8_t d[3]);
 
-/* Emits cfg->photons photons from the scene's light and traces them (seeded
- * by cfg->seed, photon i drawing from stream i, so the list is the same for
- * any thread count). Stores at every diffuse hit (not the first one when
- * cfg->direct is DIRECT_SHADOW_RAYS) and flags every cfg->rep_every-th stored
- * photon as a representative when cfg->method is METHOD_PRECOMPUTED.
- * Returns 0, or -1 when memory runs out (out is then empty). */
-int photons_trace(const scene *sc, const render_config *cfg, unsigned threads, progress *prog,
-                  photon_list *out);
+/* Emits p->photons photons from the scene's light and traces them into out
+ * (the list is the same for any thread count). Returns 0, or -1 when memory
+ * runs out (out is then empty). */
+int photons_trace(const scene *sc, const photons_params *p, unsigned threads, progress *prog, photons_list *out);
 /* Frees a list; a zeroed list is fine. */
-void photons_list_free(photon_list *l);
-/* Builds the map from a list (which it consumes and frees) and counts its
- * representatives. Returns 0, or -1
- * when memory runs out or the list exceeds 2^32-1 photons. */
-int photons_build_map(photon_list *l, photon_map *m);
+void photons_list_free(photons_list *l);
+/* Builds the map from a list, which it consumes and frees. With
+ * leave_out_reps the tree holds only the photons that are not
+ * representatives (the representatives are still listed in m->rep). Returns
+ * 0, or -1 when memory runs out or the list exceeds 2^32-1 photons (m is
+ * then empty). */
+int photons_build_map(photons_list *l, int leave_out_reps, photons_map *m);
 /* Frees a map; a zeroed map is fine. */
-void photons_map_free(photon_map *m);
+void photons_map_free(photons_map *m);
+/* x (world) in the map frame, as the tree's floats. */
+void photons_map_point(const photons_map *m, vec3 x, float q[3]);
+/* Bytes the map holds (tree, payload and representatives). */
+size_t photons_map_bytes(const photons_map *m);
+
+/* Peak bytes of a photon pass and map build that store `stored` photons
+ * (trace buffers, the joined list, the build's working copies, the map). */
+double photons_peak_bytes(double stored);
+/* Traces a pilot of min(p->photons, 4096) photons on one thread and returns
+ * the photons stored per emitted photon (0 for no photons), or -1 when
+ * memory runs out. */
+double photons_stored_per_emitted(const scene *sc, const photons_params *p);
 
 #endif

@@ -1,7 +1,7 @@
 /* povray: exporting a scene as POV-Ray 3.7 SDL that renders, as linear
  * OpenEXR (+FE), the same radiance our renderer computes. This file owns the
- * mapping of units and conventions (see reference/README.md and
- * shared/notes/povray-reference.md for the measured facts behind it):
+ * mapping of units and conventions (reference/README.md, "What POV-Ray
+ * does", has the measured facts behind it):
  *   - coordinates: POV-Ray is left-handed, so z is negated everywhere;
  *   - camera: `right x*W/H`, `up y`, `sky`, `angle` (horizontal FOV), then
  *     `look_at`; the image plane then matches render_camera_ray exactly;
@@ -28,8 +28,6 @@
 #include "scene.h"
 #include "vec.h"
 
-#define POV_EXIT_RUNTIME 1
-#define POV_EXIT_USAGE 2
 /* fade_distance in scene units: the light's 2/(1+(d/D)^2) is 2 D^2/d^2 to a
  * relative error (D/d)^2, far below half-float precision at room scale. */
 #define POV_FADE_DISTANCE 1e-3
@@ -40,14 +38,14 @@
 #define POV_PROXY_SHRINK 1e-4
 
 /* Returns "fast" or "reference". */
-const char *pov_quality_name(pov_quality q) { return q == POV_QUALITY_REFERENCE ? "reference" : "fast"; }
+const char *povray_quality_name(povray_quality q) { return q == POVRAY_QUALITY_REFERENCE ? "reference" : "fast"; }
 
-pov_options pov_defaults(void)
+povray_options povray_defaults(void)
 {
-    pov_options o;
+    povray_options o;
     o.width = CONFIG_DEFAULT_WIDTH;
     o.height = CONFIG_DEFAULT_HEIGHT;
-    o.quality = POV_QUALITY_FAST;
+    o.quality = POVRAY_QUALITY_FAST;
     o.radiosity = 1;
     o.photons = 1;
     return o;
@@ -93,13 +91,13 @@ static void put_comment_text(FILE *f, const char *s)
         fputc(*s >= 0x20 && *s < 0x7f ? *s : '?', f);
 }
 
-static void put_header(FILE *f, const scene *sc, const char *scene_name, const pov_options *o)
+static void put_header(FILE *f, const scene *sc, const char *scene_name, const povray_options *o)
 {
     fprintf(f, "// POV-Ray 3.7 SDL exported by `photonmap export-pov` from ");
     put_comment_text(f, scene_name);
     fputc('\n', f);
     fprintf(f, "// settings: %ux%u, quality %s, radiosity %s, photons %s\n", o->width, o->height,
-            pov_quality_name(o->quality), o->radiosity ? "on" : "off", o->photons ? "on" : "off");
+            povray_quality_name(o->quality), o->radiosity ? "on" : "off", o->photons ? "on" : "off");
     fprintf(f, "// Render single-threaded for reproducibility, linear OpenEXR, no antialiasing:\n");
     fprintf(f, "//   povray +I<this> +O<out>.exr +FE +W%u +H%u -A -J +WT1 -D -V +GS\n", o->width, o->height);
     fprintf(f, "// (for the renderer's 2x2 subpixels render at 2W x 2H and box-downsample by 2).\n");
@@ -113,7 +111,7 @@ static void put_header(FILE *f, const scene *sc, const char *scene_name, const p
     fprintf(f, "  max_trace_level 32\n");
     fprintf(f, "  adc_bailout 1e-4\n");
     if (o->radiosity) {
-        int ref = o->quality == POV_QUALITY_REFERENCE;
+        int ref = o->quality == POVRAY_QUALITY_REFERENCE;
         fprintf(f, "  radiosity {\n");
         fprintf(f, "    pretrace_start 0.08\n");
         fprintf(f, "    pretrace_end 0.02\n");
@@ -148,7 +146,7 @@ static void put_header(FILE *f, const scene *sc, const char *scene_name, const p
     fprintf(f, "#default { finish { ambient 0 emission 0 diffuse 1 brilliance 1 specular 0 phong 0 } }\n\n");
 }
 
-static void put_camera(FILE *f, const scene *sc, const pov_options *o)
+static void put_camera(FILE *f, const scene *sc, const povray_options *o)
 {
     const scene_camera *c = &sc->camera;
     fprintf(f, "camera {\n  perspective\n  location ");
@@ -164,7 +162,7 @@ static void put_camera(FILE *f, const scene *sc, const pov_options *o)
     fprintf(f, "\n}\n\n");
 }
 
-static void put_light(FILE *f, const scene *sc, const pov_options *o)
+static void put_light(FILE *f, const scene *sc, const povray_options *o)
 {
     const double d = POV_FADE_DISTANCE;
     vec3 intensity = vec_scale(sc->light.power, 1.0 / (4.0 * VEC_PI));
@@ -189,17 +187,17 @@ static void put_materials(FILE *f, const scene *sc)
         const material *m = &sc->materials[i];
         fprintf(f, "// material '%s' (%s)\n#declare PM_Mat%zu = material {\n", m->name, material_kind_name(m->kind), i);
         switch (m->kind) {
-        case MAT_LAMBERT:
+        case MATERIAL_LAMBERT:
             fprintf(f, "  texture { pigment { rgb ");
             put_triple(f, m->color);
             fprintf(f, " } finish { diffuse 1 brilliance 1 ambient 0 } }\n");
             break;
-        case MAT_MIRROR:
+        case MATERIAL_MIRROR:
             fprintf(f, "  texture { pigment { rgb 0 } finish { diffuse 0 ambient 0 reflection { rgb ");
             put_triple(f, m->color);
             fprintf(f, " } } }\n");
             break;
-        case MAT_GLASS:
+        case MATERIAL_GLASS:
             fprintf(f, "  texture { pigment { rgbf <1, 1, 1, 1> }\n");
             fprintf(f, "            finish { diffuse 0 ambient 0 reflection { 0, 1 fresnel on } conserve_energy } }\n");
             fprintf(f, "  interior { ior ");
@@ -215,9 +213,9 @@ static void put_materials(FILE *f, const scene *sc)
 /* The object-level photons block for a shape of material kind k. */
 static void put_photon_block(FILE *f, material_kind k)
 {
-    if (k == MAT_MIRROR)
+    if (k == MATERIAL_MIRROR)
         fprintf(f, "  photons { target reflection on refraction off collect off }\n");
-    else if (k == MAT_GLASS)
+    else if (k == MATERIAL_GLASS)
         fprintf(f, "  photons { target reflection on refraction on collect off }\n");
 }
 
@@ -273,7 +271,7 @@ static void put_geometry(FILE *f, const scene *sc, const shape *s, int proxy)
     }
 }
 
-static void put_shapes(FILE *f, const scene *sc, const pov_options *o)
+static void put_shapes(FILE *f, const scene *sc, const povray_options *o)
 {
     for (size_t i = 0; i < sc->nshapes; i++) {
         const shape *s = &sc->shapes[i];
@@ -283,7 +281,7 @@ static void put_shapes(FILE *f, const scene *sc, const pov_options *o)
         fprintf(f, "  material { PM_Mat%d }  // %s\n", s->material, m->name);
         put_photon_block(f, m->kind);
         fprintf(f, "}\n");
-        if (m->kind == MAT_GLASS && !o->photons) {
+        if (m->kind == MATERIAL_GLASS && !o->photons) {
             /* Without photons POV-Ray lets direct light straight through
              * glass; the renderer treats light through glass as a caustic
              * (photons only). An opaque twin just inside, invisible to
@@ -297,7 +295,7 @@ static void put_shapes(FILE *f, const scene *sc, const pov_options *o)
     }
 }
 
-int pov_write(FILE *f, const scene *sc, const char *scene_name, const pov_options *o)
+int povray_write(FILE *f, const scene *sc, const char *scene_name, const povray_options *o)
 {
     assert(f && sc && scene_name && o && o->width > 0 && o->height > 0);
     put_header(f, sc, scene_name, o);
@@ -306,99 +304,4 @@ int pov_write(FILE *f, const scene *sc, const char *scene_name, const pov_option
     put_materials(f, sc);
     put_shapes(f, sc, o);
     return ferror(f) ? -1 : 0;
-}
-
-static int pov_usage(const char *fmt, const char *a)
-{
-    fprintf(stderr, "photonmap: ");
-    fprintf(stderr, fmt, a);
-    fprintf(stderr, "\n(run 'photonmap --help' for usage)\n");
-    return POV_EXIT_USAGE;
-}
-
-/* Parses a side length in [1, CONFIG_MAX_SIDE]. Returns 0 or an exit code. */
-static int parse_side(const char *opt, const char *s, unsigned *out)
-{
-    char *end;
-    errno = 0;
-    unsigned long v = (*s >= '0' && *s <= '9') ? strtoul(s, &end, 10) : 0;
-    if (*s < '0' || *s > '9' || *end != '\0' || errno == ERANGE || v < 1 || v > CONFIG_MAX_SIDE) {
-        fprintf(stderr, "photonmap: %s: expected an integer in [1, %u], got '%s'\n", opt, CONFIG_MAX_SIDE, s);
-        return POV_EXIT_USAGE;
-    }
-    *out = (unsigned)v;
-    return 0;
-}
-
-int povray_main(int argc, char **argv)
-{
-    pov_options o = pov_defaults();
-    const char *scene_path = NULL, *out_path = NULL;
-    int rc;
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i];
-        if (a[0] != '-' || !strcmp(a, "-")) {
-            if (scene_path)
-                return pov_usage("unexpected argument '%s'", a);
-            scene_path = a;
-        } else if (!strcmp(a, "--no-radiosity")) {
-            o.radiosity = 0;
-        } else if (!strcmp(a, "--no-photons")) {
-            o.photons = 0;
-        } else if (!strcmp(a, "--width") || !strcmp(a, "--height") || !strcmp(a, "--quality") || !strcmp(a, "-o")) {
-            if (i + 1 >= argc)
-                return pov_usage("%s needs a value", a);
-            const char *v = argv[++i];
-            if (!strcmp(a, "--width")) {
-                if ((rc = parse_side(a, v, &o.width)))
-                    return rc;
-            } else if (!strcmp(a, "--height")) {
-                if ((rc = parse_side(a, v, &o.height)))
-                    return rc;
-            } else if (!strcmp(a, "--quality")) {
-                if (!strcmp(v, "fast"))
-                    o.quality = POV_QUALITY_FAST;
-                else if (!strcmp(v, "reference"))
-                    o.quality = POV_QUALITY_REFERENCE;
-                else
-                    return pov_usage("--quality: expected fast or reference, got '%s'", v);
-            } else {
-                out_path = v;
-            }
-        } else {
-            return pov_usage("unknown option '%s'", a);
-        }
-    }
-    if (!scene_path)
-        return pov_usage("export-pov needs a scene file%s", "");
-
-    char err[1024];
-    scene *sc = NULL;
-    rc = scene_load(scene_path, &sc, err, sizeof err);
-    if (rc != SCENE_OK) {
-        fprintf(stderr, "%s\n", err);
-        return rc == SCENE_ERR_INPUT ? POV_EXIT_USAGE : POV_EXIT_RUNTIME;
-    }
-    int exit_code = 0;
-    if (!out_path) {
-        if (pov_write(stdout, sc, scene_path, &o) || fflush(stdout)) {
-            fprintf(stderr, "photonmap: writing standard output: %s\n", strerror(errno));
-            exit_code = POV_EXIT_RUNTIME;
-        }
-    } else {
-        outfile f;
-        if (outfile_begin(&f, out_path, 1, err, sizeof err)) {
-            fprintf(stderr, "photonmap: %s\n", err);
-            exit_code = POV_EXIT_RUNTIME;
-        } else if (pov_write(f.f, sc, scene_path, &o)) {
-            fprintf(stderr, "photonmap: %s: write error\n", out_path);
-            outfile_abort(&f);
-            exit_code = POV_EXIT_RUNTIME;
-        } else if (outfile_commit(&f, err, sizeof err)) {
-            fprintf(stderr, "photonmap: %s\n", err);
-            exit_code = POV_EXIT_RUNTIME;
-        }
-    }
-    scene_free(sc);
-    return exit_code;
 }

@@ -23,17 +23,17 @@ typedef struct {
 /* The camera of sc for images of height/width = aspect_h_over_w. */
 render_camera render_camera_make(const scene *sc, double aspect_h_over_w);
 /* The ray through image-plane point (u, v) in [0,1]^2, v down. */
-ray render_camera_at(const render_camera *cam, double u, double v);
+shape_ray render_camera_at(const render_camera *cam, double u, double v);
 /* Both in one call (for tests and tools; the eye pass makes the camera once). */
-ray render_camera_ray(const scene *sc, double aspect_h_over_w, double u, double v);
+shape_ray render_camera_ray(const scene *sc, double aspect_h_over_w, double u, double v);
 
 /* The search radius cap in scene units for cfg on sc. */
-double render_max_radius(const scene *sc, const render_config *cfg);
+double render_max_radius(const scene *sc, const config_render *cfg);
 
 /* Renders sc with cfg into *out (allocated here; image_free it) and fills
  * *st. `threads` workers (>= 1); progress bars on stderr if show_progress.
  * Returns 0, or -1 when memory runs out (out is then empty). */
-int render_run(const scene *sc, const render_config *cfg, unsigned threads, int show_progress, image *out,
+int render_run(const scene *sc, const config_render *cfg, unsigned threads, int show_progress, image *out,
                stats_run *st);
 
 #endif

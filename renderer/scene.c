@@ -9,6 +9,7 @@
 #include <assert.h>
 #include <errno.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -40,6 +41,8 @@ typedef struct {
     int camera_line, light_line;
     size_t cap_materials, cap_shapes;
     int *material_line; /* line each material was defined on */
+    int *name_index;    /* hash table of material indices (-1: empty), name_cap slots */
+    size_t name_cap;    /* 0 or a power of two */
 } parser;
 
 static int perr(parser *p, int col, const char *fmt, ...)
@@ -167,61 +170,91 @@ static int parse_number(parser *p, int i, double lo, double hi, double *out)
 
 typedef enum { F_NUM, F_VEC, F_NAME } field_kind;
 
+/* One field of a statement: its key, kind and range (numbers). */
 typedef struct {
     const char *key;
     field_kind kind;
     double lo, hi;
-    /* filled by parse_fields */
-    int seen;
-    int col;  /* column of the first value */
+} field_spec;
+
+/* What parse_fields found for one field. */
+typedef struct {
+    int col;  /* column of the first value; 0 while not seen */
     vec3 v;   /* F_VEC; F_NUM in v.x */
     int name; /* F_NAME: token index */
-} field;
+} field_val;
 
-/* Parses "key value..." pairs from token `first` on into fields. */
-static int parse_fields(parser *p, int first, field *f, int nf, const char *stmt)
+#define COORD(key) {key, F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD}
+static const field_spec camera_fields[] = {COORD("position"), COORD("look_at"), COORD("up"),
+                                           {"fov", F_NUM, 0.01, 179.0}};
+static const field_spec light_fields[] = {COORD("position"), {"power", F_VEC, 0.0, SCENE_MAX_POWER}};
+static const field_spec sphere_fields[] = {COORD("center"), {"radius", F_NUM, 0.0, SCENE_MAX_COORD},
+                                           {"material", F_NAME, 0, 0}};
+static const field_spec rect_fields[] = {COORD("corner"), COORD("edge1"), COORD("edge2"), {"material", F_NAME, 0, 0}};
+#undef COORD
+enum { CAM_POSITION, CAM_LOOK_AT, CAM_UP, CAM_FOV };
+enum { LIGHT_POSITION, LIGHT_POWER };
+enum { SPHERE_CENTER, SPHERE_RADIUS, SPHERE_MATERIAL };
+enum { RECT_CORNER, RECT_EDGE1, RECT_EDGE2, RECT_MATERIAL };
+#define NFIELDS(a) ((int)(sizeof a / sizeof a[0]))
+
+/* The material kinds: each has one field. */
+typedef struct {
+    const char *name;
+    material_kind kind;
+    field_spec field;
+} material_spec;
+static const material_spec material_specs[] = {
+    {"lambert", MATERIAL_LAMBERT, {"rho", F_VEC, 0.0, 1.0}},
+    {"mirror", MATERIAL_MIRROR, {"reflectance", F_VEC, 0.0, 1.0}},
+    {"glass", MATERIAL_GLASS, {"ior", F_NUM, 1.0, 10.0}},
+};
+
+/* Parses "key value..." pairs from token `first` on into val[] (nf fields
+ * of spec[]): every field exactly once. */
+static int parse_fields(parser *p, int first, const field_spec *spec, field_val *val, int nf, const char *stmt)
 {
     char buf[64];
+    for (int k = 0; k < nf; k++)
+        val[k].col = 0;
     for (int i = first; i < p->ntok;) {
         int k;
         for (k = 0; k < nf; k++)
-            if (tok_is(p, i, f[k].key))
+            if (tok_is(p, i, spec[k].key))
                 break;
         if (k == nf) {
             char msg[256] = "";
             for (int j = 0; j < nf; j++) {
                 strncat(msg, j ? ", " : "", sizeof msg - strlen(msg) - 1);
-                strncat(msg, f[j].key, sizeof msg - strlen(msg) - 1);
+                strncat(msg, spec[j].key, sizeof msg - strlen(msg) - 1);
             }
             return perr(p, p->tok[i].col, "unknown %s field '%s' (expected %s)", stmt,
                         tok_str(p, i, buf, sizeof buf), msg);
         }
-        if (f[k].seen)
-            return perr(p, p->tok[i].col, "%s field '%s' given twice", stmt, f[k].key);
-        int arity = f[k].kind == F_VEC ? 3 : 1;
+        if (val[k].col)
+            return perr(p, p->tok[i].col, "%s field '%s' given twice", stmt, spec[k].key);
+        int arity = spec[k].kind == F_VEC ? 3 : 1;
         if (i + arity >= p->ntok) {
             int col = (int)(p->tok[p->ntok - 1].col + p->tok[p->ntok - 1].len);
-            return perr(p, col, "%s field '%s' needs %d value%s", stmt, f[k].key, arity,
-                        arity > 1 ? "s" : "");
+            return perr(p, col, "%s field '%s' needs %d value%s", stmt, spec[k].key, arity, arity > 1 ? "s" : "");
         }
-        f[k].seen = 1;
-        f[k].col = p->tok[i + 1].col;
-        if (f[k].kind == F_NAME) {
-            f[k].name = i + 1;
+        val[k].col = p->tok[i + 1].col;
+        if (spec[k].kind == F_NAME) {
+            val[k].name = i + 1;
         } else {
             double c[3] = {0, 0, 0};
             for (int j = 0; j < arity; j++) {
-                int rc = parse_number(p, i + 1 + j, f[k].lo, f[k].hi, &c[j]);
+                int rc = parse_number(p, i + 1 + j, spec[k].lo, spec[k].hi, &c[j]);
                 if (rc)
                     return rc;
             }
-            f[k].v = vec_make(c[0], c[1], c[2]);
+            val[k].v = vec_make(c[0], c[1], c[2]);
         }
         i += 1 + arity;
     }
     for (int k = 0; k < nf; k++)
-        if (!f[k].seen)
-            return perr(p, p->tok[0].col, "%s is missing field '%s'", stmt, f[k].key);
+        if (!val[k].col)
+            return perr(p, p->tok[0].col, "%s is missing field '%s'", stmt, spec[k].key);
     return SCENE_OK;
 }
 
@@ -242,59 +275,103 @@ static int is_name(const parser *p, int i)
     return 1;
 }
 
+/* ---- material names: an open-addressing hash table of material indices,
+ * so that defining and using N materials costs O(N), not O(N^2) ---- */
+
+static uint64_t name_hash(const char *s, size_t n)
+{
+    uint64_t h = 0xcbf29ce484222325ull; /* FNV-1a */
+    for (size_t i = 0; i < n; i++) {
+        h ^= (unsigned char)s[i];
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}
+
+/* The slot of token i's name: its material's slot, or the empty slot where it
+ * would go. The table is never full (load <= 1/2). */
+static size_t name_slot(const parser *p, int i)
+{
+    const char *s = p->text + p->tok[i].start;
+    size_t n = p->tok[i].len, mask = p->name_cap - 1;
+    assert(p->name_cap > 0 && (p->name_cap & mask) == 0);
+    for (size_t j = (size_t)name_hash(s, n) & mask;; j = (j + 1) & mask) {
+        int m = p->name_index[j];
+        if (m < 0 || tok_is(p, i, p->sc->materials[m].name))
+            return j;
+    }
+}
+
 static int find_material(const parser *p, int i)
 {
+    return p->name_cap ? p->name_index[name_slot(p, i)] : -1;
+}
+
+/* Makes room for one more name (rehashing into a table twice the size when
+ * half full). Returns 0, or -1 when memory runs out. */
+static int names_reserve(parser *p)
+{
+    if (2 * (p->sc->nmaterials + 1) <= p->name_cap)
+        return 0;
+    size_t cap = p->name_cap ? 2 * p->name_cap : 64;
+    int *idx = malloc(cap * sizeof(int));
+    if (!idx)
+        return -1;
+    for (size_t j = 0; j < cap; j++)
+        idx[j] = -1;
     for (size_t m = 0; m < p->sc->nmaterials; m++) {
-        if (tok_is(p, i, p->sc->materials[m].name))
-            return (int)m;
+        const char *name = p->sc->materials[m].name;
+        size_t j = (size_t)name_hash(name, strlen(name)) & (cap - 1);
+        while (idx[j] >= 0)
+            j = (j + 1) & (cap - 1);
+        idx[j] = (int)m;
     }
-    return -1;
+    free(p->name_index);
+    p->name_index = idx;
+    p->name_cap = cap;
+    return 0;
 }
 
 static int parse_camera(parser *p)
 {
-    field f[] = {{"position", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
-                 {"look_at", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
-                 {"up", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
-                 {"fov", F_NUM, 0.01, 179.0, 0, 0, {0, 0, 0}, 0}};
+    field_val f[NFIELDS(camera_fields)];
     if (p->camera_line)
         return perr(p, p->tok[0].col, "second camera (the first is on line %d)", p->camera_line);
-    int rc = parse_fields(p, 1, f, 4, "camera");
+    int rc = parse_fields(p, 1, camera_fields, f, NFIELDS(camera_fields), "camera");
     if (rc)
         return rc;
-    vec3 dir = vec_sub(f[1].v, f[0].v);
+    vec3 dir = vec_sub(f[CAM_LOOK_AT].v, f[CAM_POSITION].v);
     /* relative to the position only, not to 1: a whole scene scaled by 1e-15
      * was rejected here (tests/unit/test_stability.c) */
-    if (vec_len(dir) <= 1e-12 * vec_len(f[0].v))
-        return perr(p, f[1].col, "camera look_at equals its position");
-    if (vec_len(f[2].v) == 0.0)
-        return perr(p, f[2].col, "camera up vector is zero");
-    vec3 side = vec_cross(vec_norm(dir), vec_norm(f[2].v));
+    if (vec_len(dir) <= 1e-12 * vec_len(f[CAM_POSITION].v))
+        return perr(p, f[CAM_LOOK_AT].col, "camera look_at equals its position");
+    if (vec_len(f[CAM_UP].v) == 0.0)
+        return perr(p, f[CAM_UP].col, "camera up vector is zero");
+    vec3 side = vec_cross(vec_norm(dir), vec_norm(f[CAM_UP].v));
     if (vec_len(side) < 1e-6)
-        return perr(p, f[2].col, "camera up vector is parallel to the view direction");
-    p->sc->camera.position = f[0].v;
-    p->sc->camera.look_at = f[1].v;
-    p->sc->camera.up = f[2].v;
-    p->sc->camera.hfov_deg = f[3].v.x;
+        return perr(p, f[CAM_UP].col, "camera up vector is parallel to the view direction");
+    p->sc->camera.position = f[CAM_POSITION].v;
+    p->sc->camera.look_at = f[CAM_LOOK_AT].v;
+    p->sc->camera.up = f[CAM_UP].v;
+    p->sc->camera.hfov_deg = f[CAM_FOV].v.x;
     p->camera_line = p->line;
     return SCENE_OK;
 }
 
 static int parse_light(parser *p)
 {
-    field f[] = {{"position", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
-                 {"power", F_VEC, 0.0, SCENE_MAX_POWER, 0, 0, {0, 0, 0}, 0}};
+    field_val f[NFIELDS(light_fields)];
     if (p->light_line)
         return perr(p, p->tok[0].col, "second light (one point light is supported; the first is on line %d)",
                     p->light_line);
     if (p->ntok < 2 || !tok_is(p, 1, "point"))
         return perr(p, p->ntok < 2 ? (int)(p->tok[0].col + p->tok[0].len) : p->tok[1].col,
                     "expected 'light point ...' (the only light type)");
-    int rc = parse_fields(p, 2, f, 2, "light");
+    int rc = parse_fields(p, 2, light_fields, f, NFIELDS(light_fields), "light");
     if (rc)
         return rc;
-    p->sc->light.position = f[0].v;
-    p->sc->light.power = f[1].v;
+    p->sc->light.position = f[LIGHT_POSITION].v;
+    p->sc->light.power = f[LIGHT_POWER].v;
     p->light_line = p->line;
     return SCENE_OK;
 }
@@ -328,37 +405,28 @@ static int parse_material(parser *p)
                     p->material_line[prev]);
     if (sc->nmaterials >= SCENE_MAX_ITEMS)
         return perr(p, p->tok[0].col, "too many materials (at most %d)", SCENE_MAX_ITEMS);
-    material m;
-    memset(&m, 0, sizeof m);
-    m.color = vec_make(1, 1, 1);
-    m.ior = 1.0;
-    int rc;
-    if (tok_is(p, 2, "lambert")) {
-        field f[] = {{"rho", F_VEC, 0.0, 1.0, 0, 0, {0, 0, 0}, 0}};
-        if ((rc = parse_fields(p, 3, f, 1, "lambert material")))
-            return rc;
-        m.kind = MAT_LAMBERT;
-        m.color = f[0].v;
-    } else if (tok_is(p, 2, "mirror")) {
-        field f[] = {{"reflectance", F_VEC, 0.0, 1.0, 0, 0, {0, 0, 0}, 0}};
-        if ((rc = parse_fields(p, 3, f, 1, "mirror material")))
-            return rc;
-        m.kind = MAT_MIRROR;
-        m.color = f[0].v;
-    } else if (tok_is(p, 2, "glass")) {
-        field f[] = {{"ior", F_NUM, 1.0, 10.0, 0, 0, {0, 0, 0}, 0}};
-        if ((rc = parse_fields(p, 3, f, 1, "glass material")))
-            return rc;
-        m.kind = MAT_GLASS;
-        m.ior = f[0].v.x;
-    } else {
+    const material_spec *ms = NULL;
+    for (size_t k = 0; k < sizeof material_specs / sizeof material_specs[0]; k++)
+        if (tok_is(p, 2, material_specs[k].name))
+            ms = &material_specs[k];
+    if (!ms)
         return perr(p, p->tok[2].col, "unknown material kind '%s' (expected lambert, mirror or glass)",
                     tok_str(p, 2, buf, sizeof buf));
-    }
+    char stmt[32];
+    snprintf(stmt, sizeof stmt, "%s material", ms->name);
+    field_val f;
+    int rc = parse_fields(p, 3, &ms->field, &f, 1, stmt);
+    if (rc)
+        return rc;
+    material m;
+    memset(&m, 0, sizeof m);
+    m.kind = ms->kind;
+    m.color = ms->field.kind == F_VEC ? f.v : vec_make(1, 1, 1);
+    m.ior = ms->field.kind == F_NUM ? f.v.x : 1.0;
     memcpy(m.name, p->text + p->tok[1].start, p->tok[1].len);
     m.name[p->tok[1].len] = '\0';
     size_t cap = p->cap_materials;
-    if (grow((void **)&sc->materials, &p->cap_materials, sc->nmaterials, sizeof(material)))
+    if (grow((void **)&sc->materials, &p->cap_materials, sc->nmaterials, sizeof(material)) || names_reserve(p))
         return SCENE_ERR_RUNTIME;
     if (p->cap_materials != cap) {
         int *q = realloc(p->material_line, p->cap_materials * sizeof(int));
@@ -367,11 +435,13 @@ static int parse_material(parser *p)
         p->material_line = q;
     }
     p->material_line[sc->nmaterials] = p->line;
-    sc->materials[sc->nmaterials++] = m;
+    size_t slot = name_slot(p, 1); /* the empty slot for this name */
+    sc->materials[sc->nmaterials] = m;
+    p->name_index[slot] = (int)sc->nmaterials++;
     return SCENE_OK;
 }
 
-static int resolve_material(parser *p, const field *f, int *out)
+static int resolve_material(parser *p, const field_val *f, int *out)
 {
     char buf[64];
     int m = find_material(p, f->name);
@@ -394,40 +464,36 @@ static int add_shape(parser *p, shape s)
 
 static int parse_sphere(parser *p)
 {
-    field f[] = {{"center", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
-                 {"radius", F_NUM, 0.0, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
-                 {"material", F_NAME, 0, 0, 0, 0, {0, 0, 0}, 0}};
-    int rc = parse_fields(p, 1, f, 3, "sphere");
+    field_val f[NFIELDS(sphere_fields)];
+    int rc = parse_fields(p, 1, sphere_fields, f, NFIELDS(sphere_fields), "sphere");
     if (rc)
         return rc;
-    if (!(f[1].v.x >= SCENE_MIN_LENGTH))
-        return perr(p, f[1].col, "sphere radius must be positive and at least %g", SCENE_MIN_LENGTH);
+    if (!(f[SPHERE_RADIUS].v.x >= SCENE_MIN_LENGTH))
+        return perr(p, f[SPHERE_RADIUS].col, "sphere radius must be positive and at least %g", SCENE_MIN_LENGTH);
     int m;
-    if ((rc = resolve_material(p, &f[2], &m)))
+    if ((rc = resolve_material(p, &f[SPHERE_MATERIAL], &m)))
         return rc;
-    return add_shape(p, shape_sphere(f[0].v, f[1].v.x, m));
+    return add_shape(p, shape_sphere(f[SPHERE_CENTER].v, f[SPHERE_RADIUS].v.x, m));
 }
 
 static int parse_rect(parser *p)
 {
-    field f[] = {{"corner", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
-                 {"edge1", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
-                 {"edge2", F_VEC, -SCENE_MAX_COORD, SCENE_MAX_COORD, 0, 0, {0, 0, 0}, 0},
-                 {"material", F_NAME, 0, 0, 0, 0, {0, 0, 0}, 0}};
-    int rc = parse_fields(p, 1, f, 4, "rect");
+    field_val f[NFIELDS(rect_fields)];
+    int rc = parse_fields(p, 1, rect_fields, f, NFIELDS(rect_fields), "rect");
     if (rc)
         return rc;
-    double l1 = vec_len(f[1].v), l2 = vec_len(f[2].v);
+    vec3 e1 = f[RECT_EDGE1].v, e2 = f[RECT_EDGE2].v;
+    double l1 = vec_len(e1), l2 = vec_len(e2);
     if (!(l1 >= SCENE_MIN_LENGTH))
-        return perr(p, f[1].col, "rect edge1 is zero or shorter than %g", SCENE_MIN_LENGTH);
+        return perr(p, f[RECT_EDGE1].col, "rect edge1 is zero or shorter than %g", SCENE_MIN_LENGTH);
     if (!(l2 >= SCENE_MIN_LENGTH))
-        return perr(p, f[2].col, "rect edge2 is zero or shorter than %g", SCENE_MIN_LENGTH);
-    if (fabs(vec_dot(f[1].v, f[2].v)) > 1e-9 * l1 * l2)
-        return perr(p, f[2].col, "rect edges are not perpendicular");
+        return perr(p, f[RECT_EDGE2].col, "rect edge2 is zero or shorter than %g", SCENE_MIN_LENGTH);
+    if (fabs(vec_dot(e1, e2)) > 1e-9 * l1 * l2)
+        return perr(p, f[RECT_EDGE2].col, "rect edges are not perpendicular");
     int m;
-    if ((rc = resolve_material(p, &f[3], &m)))
+    if ((rc = resolve_material(p, &f[RECT_MATERIAL], &m)))
         return rc;
-    return add_shape(p, shape_rect(f[0].v, f[1].v, f[2].v, m));
+    return add_shape(p, shape_rect(f[RECT_CORNER].v, e1, e2, m));
 }
 
 static int parse_line(parser *p)
@@ -504,6 +570,7 @@ int scene_parse_buffer(const char *name, const char *text, size_t len, scene **o
     if (rc == SCENE_ERR_RUNTIME)
         snprintf(err, errlen, "%s: out of memory while parsing", name);
     free(p.material_line);
+    free(p.name_index);
     if (rc != SCENE_OK) {
         scene_free(p.sc);
         return rc;
@@ -578,31 +645,46 @@ void scene_free(scene *s)
     free(s);
 }
 
-int scene_intersect(const scene *s, const ray *r, double tmin, double tmax, double *t)
+/* The self-intersection epsilon, relative to the scene's size (stage A). */
+static double scene_epsilon(const scene *s)
+{
+    return 1e-7 * s->scale;
+}
+
+int scene_intersect(const scene *s, const shape_ray *r, double tmax, scene_hit *h)
 {
     int best = -1;
-    double tt;
+    double tt, eps = scene_epsilon(s);
     for (size_t i = 0; i < s->nshapes; i++) {
-        if (shape_intersect(&s->shapes[i], r, tmin, tmax, &tt)) {
+        if (shape_intersect(&s->shapes[i], r, eps, tmax, &tt)) {
             tmax = tt;
             best = (int)i;
         }
     }
-    if (best >= 0)
-        *t = tmax;
-    return best;
+    if (best < 0)
+        return 0;
+    const shape *sh = &s->shapes[best];
+    h->shape = best;
+    h->t = tmax;
+    h->p = vec_madd(r->origin, r->dir, tmax);
+    vec3 ng = shape_normal(sh, h->p);
+    h->front = vec_dot(ng, r->dir) < 0.0;
+    h->n = h->front ? ng : vec_neg(ng);
+    h->eps = eps;
+    return 1;
 }
 
-int scene_occluded(const scene *s, const ray *r, double tmin, double tmax)
+int scene_occluded(const scene *s, const shape_ray *r, double tmax)
 {
-    double t;
+    double t, eps = scene_epsilon(s);
     for (size_t i = 0; i < s->nshapes; i++)
-        if (shape_intersect(&s->shapes[i], r, tmin, tmax, &t))
+        if (shape_intersect(&s->shapes[i], r, eps, tmax, &t))
             return 1;
     return 0;
 }
 
-double scene_epsilon(const scene *s)
+shape_ray scene_spawn(const scene_hit *h, vec3 dir, int same_side)
 {
-    return 1e-7 * s->scale;
+    shape_ray r = {vec_madd(h->p, h->n, same_side ? h->eps : -h->eps), dir};
+    return r;
 }

@@ -46,13 +46,27 @@ int scene_load(const char *path, scene **out, char *err, size_t errlen);
 /* Frees a scene; NULL is fine. */
 void scene_free(scene *s);
 
-/* Nearest hit along r in (tmin, tmax): returns the shape index and sets *t,
- * or returns -1 on a miss. */
-int scene_intersect(const scene *s, const ray *r, double tmin, double tmax, double *t);
-/* 1 if any shape blocks r in (tmin, tmax), else 0; stops at the first hit
+/* A ray's hit: the shape, where, and the normal facing the side the ray
+ * came from. */
+typedef struct {
+    int shape;   /* index into scene.shapes */
+    double t;    /* distance along the ray */
+    vec3 p;      /* the point */
+    vec3 n;      /* unit normal on the ray's side */
+    int front;   /* 1 when the ray met the geometric normal's side (outside of a sphere) */
+    double eps;  /* how far a spawned ray's origin moves off the surface (scene_spawn) */
+} scene_hit;
+
+/* The nearest hit of r closer than tmax: returns 1 and fills *h, or 0 on a
+ * miss. */
+int scene_intersect(const scene *s, const shape_ray *r, double tmax, scene_hit *h);
+/* 1 if any shape blocks r closer than tmax, else 0; stops at the first hit
  * (shadow rays need no nearest hit). */
-int scene_occluded(const scene *s, const ray *r, double tmin, double tmax);
-/* The self-intersection epsilon for this scene (relative to its size). */
-double scene_epsilon(const scene *s);
+int scene_occluded(const scene *s, const shape_ray *r, double tmax);
+/* A ray leaving the hit h in direction dir: from the side it came from
+ * (same_side = 1: reflection) or through the surface (0: refraction), its
+ * origin moved off the surface by h->eps so it cannot hit the surface it
+ * leaves again. */
+shape_ray scene_spawn(const scene_hit *h, vec3 dir, int same_side);
 
 #endif

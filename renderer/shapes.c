@@ -32,7 +32,7 @@ shape shape_rect(vec3 corner, vec3 edge1, vec3 edge2, int material)
     return s;
 }
 
-static int sphere_intersect(const shape *s, const ray *r, double tmin, double tmax, double *t)
+static int sphere_intersect(const shape *s, const shape_ray *r, double tmin, double tmax, double *t)
 {
     vec3 oc = vec_sub(r->origin, s->center);
     double b = vec_dot(oc, r->dir);
@@ -66,7 +66,7 @@ static int sphere_intersect(const shape *s, const ray *r, double tmin, double tm
     return 0;
 }
 
-static int rect_intersect(const shape *s, const ray *r, double tmin, double tmax, double *t)
+static int rect_intersect(const shape *s, const shape_ray *r, double tmin, double tmax, double *t)
 {
     double denom = vec_dot(r->dir, s->normal);
     if (denom == 0.0)
@@ -83,7 +83,7 @@ static int rect_intersect(const shape *s, const ray *r, double tmin, double tmax
     return 1;
 }
 
-int shape_intersect(const shape *s, const ray *r, double tmin, double tmax, double *t)
+int shape_intersect(const shape *s, const shape_ray *r, double tmin, double tmax, double *t)
 {
     return s->kind == SHAPE_SPHERE ? sphere_intersect(s, r, tmin, tmax, t)
                                    : rect_intersect(s, r, tmin, tmax, t);

@@ -24,7 +24,7 @@ typedef struct {
 typedef struct {
     vec3 origin;
     vec3 dir; /* unit length */
-} ray;
+} shape_ray;
 
 /* A sphere; radius > 0 (asserted). */
 shape shape_sphere(vec3 center, double radius, int material);
@@ -33,7 +33,7 @@ shape shape_rect(vec3 corner, vec3 edge1, vec3 edge2, int material);
 
 /* Nearest hit of r with s at distance t in (tmin, tmax). Returns 1 and sets *t
  * on a hit, 0 on a miss (including a ray exactly parallel to a rectangle). */
-int shape_intersect(const shape *s, const ray *r, double tmin, double tmax, double *t);
+int shape_intersect(const shape *s, const shape_ray *r, double tmin, double tmax, double *t);
 /* Unit geometric normal of s at point p on it: outward for spheres, edge1 x
  * edge2 for rectangles (not oriented to any ray). */
 vec3 shape_normal(const shape *s, vec3 p);

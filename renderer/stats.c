@@ -25,7 +25,7 @@ static void json_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
-int stats_write_json(FILE *f, const char *scene_path, const render_config *cfg, unsigned threads,
+int stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, unsigned threads,
                      const stats_run *st)
 {
     fprintf(f, "{\n  \"scene\": ");

@@ -27,7 +27,7 @@ typedef struct {
 /* Monotonic time in nanoseconds. */
 int64_t stats_now_ns(void);
 /* Writes the run as one JSON object to f. Returns 0, or -1 on a write error. */
-int stats_write_json(FILE *f, const char *scene_path, const render_config *cfg, unsigned threads,
+int stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, unsigned threads,
                      const stats_run *st);
 
 #endif

@@ -37,6 +37,30 @@ precomputed_ok() {
 check "precomputed method runs and reports representatives" precomputed_ok
 
 check "no arguments: usage, exit 2" expect_exit 2 "usage" $PM
+
+# --help of each subcommand: exit 0, every option with its default (and its
+# range for numbers), from the one option table that also parses
+help_lists() { # subcommand, options...
+  local sub=$1; shift
+  $PM "$sub" --help > "$TMP/help.txt" || { echo "exit $?"; return 1; }
+  for o in "$@"; do
+    grep -A1 -E "^  $o( |\$)" "$TMP/help.txt" | grep -q "(default: " || { echo "$o missing or without a default"; return 1; }
+  done
+  # every option block has a default; every numeric one a range
+  local blocks defaults
+  blocks=$(grep -cE '^  -' "$TMP/help.txt"); defaults=$(grep -c '(default: ' "$TMP/help.txt")
+  [ "$blocks" -eq $((defaults + 1)) ] || { echo "$blocks options, $defaults defaults"; return 1; }
+  ! grep -E '^      .*\(default: [0-9.e+-]+\)$' "$TMP/help.txt" | grep -v -- '--exposure' | grep -q . ||
+    { echo "a number without its range:"; grep -E '\(default: [0-9.e+-]+\)$' "$TMP/help.txt"; return 1; }
+}
+check "render --help: exit 0, every option with default and range" help_lists render --method --photons --nn --width \
+  --height --subpixels --threads --seed --rep-every --normal-cos --rep-tree --max-radius --direct --photon-depth \
+  --eye-depth -o --png --exposure --stats --allow-nonfinite --quiet
+check "export-pov --help: exit 0, every option with default and range" help_lists export-pov --width --height \
+  --quality --no-radiosity --no-photons -o
+check "photonmap --help: both subcommands, exit 0" bash -c "$PM --help | grep -q 'usage: photonmap render' && $PM --help | grep -q 'usage: photonmap export-pov'"
+check "export-pov: malformed option, same message style as render, exit 2" \
+  expect_exit 2 "^photonmap: --width: expected an integer in \[1, 16384\], got 'wide'" $PM export-pov scenes/cornell.scene --width wide
 check "unknown command: exit 2" expect_exit 2 "unknown command 'draw'" $PM draw
 check "--nn 0: exit 2" expect_exit 2 "--nn: expected an integer in \[1," $PM render scenes/cornell.scene --nn 0
 check "--photons -5: exit 2" expect_exit 2 "--photons: expected an integer" $PM render scenes/cornell.scene --photons -5

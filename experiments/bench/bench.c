@@ -91,38 +91,30 @@ static double median(double *v, int n)
 static qset eye_points(const scene *sc, uint32_t w, uint32_t h)
 {
     qset q = {0, malloc(sizeof(float) * 3 * w * h), malloc(sizeof(float) * 3 * w * h)};
-    double eps = scene_epsilon(sc), aspect = (double)h / w;
+    double aspect = (double)h / w;
     for (uint32_t ty = 0; ty < (h + TILE - 1) / TILE; ty++)
         for (uint32_t tx = 0; tx < (w + TILE - 1) / TILE; tx++)
             for (uint32_t y = ty * TILE; y < h && y < ty * TILE + TILE; y++)
                 for (uint32_t x = tx * TILE; x < w && x < tx * TILE + TILE; x++) {
-                    ray r = render_camera_ray(sc, aspect, (x + 0.5) / w, (y + 0.5) / h);
+                    shape_ray r = render_camera_ray(sc, aspect, (x + 0.5) / w, (y + 0.5) / h);
                     for (int depth = 0; depth < 16; depth++) {
-                        double t;
-                        int hit = scene_intersect(sc, &r, eps, INFINITY, &t);
-                        if (hit < 0)
+                        scene_hit hit;
+                        if (!scene_intersect(sc, &r, INFINITY, &hit))
                             break;
-                        const shape *s = &sc->shapes[hit];
-                        const material *m = &sc->materials[s->material];
-                        vec3 p = vec_madd(r.origin, r.dir, t), ng = shape_normal(s, p);
-                        int front = vec_dot(ng, r.dir) < 0.0;
-                        vec3 n = front ? ng : vec_neg(ng);
-                        if (m->kind == MAT_LAMBERT) {
+                        const material *m = &sc->materials[sc->shapes[hit.shape].material];
+                        if (m->kind == MATERIAL_LAMBERT) {
                             float *o = q.p + 3 * q.n, *on = q.nr + 3 * q.n;
-                            o[0] = (float)p.x, o[1] = (float)p.y, o[2] = (float)p.z;
-                            on[0] = (float)n.x, on[1] = (float)n.y, on[2] = (float)n.z;
+                            o[0] = (float)hit.p.x, o[1] = (float)hit.p.y, o[2] = (float)hit.p.z;
+                            on[0] = (float)hit.n.x, on[1] = (float)hit.n.y, on[2] = (float)hit.n.z;
                             q.n++;
                             break;
                         }
                         vec3 d;
-                        if (m->kind == MAT_GLASS &&
-                            material_refract(r.dir, n, front ? 1.0 / m->ior : m->ior, &d)) {
-                            r.origin = vec_madd(p, n, -eps);
-                            r.dir = d;
-                        } else {
-                            r.origin = vec_madd(p, n, eps);
-                            r.dir = material_reflect(r.dir, n);
-                        }
+                        if (m->kind == MATERIAL_GLASS &&
+                            material_refract(r.dir, hit.n, hit.front ? 1.0 / m->ior : m->ior, &d))
+                            r = scene_spawn(&hit, d, 0);
+                        else
+                            r = scene_spawn(&hit, material_reflect(r.dir, hit.n), 1);
                     }
                 }
     return q;
@@ -158,15 +150,15 @@ static uint64_t ours_knn_batch(const kd_tree *t, const float *q, uint32_t nq, ui
     return total;
 }
 
-static uint64_t lookup_batch(const est_reps *r, const photon_map *m, const qset *q, uint32_t nq, double cos_min,
-                             double max_r2, double *esum)
+static uint64_t lookup_batch(const est_reps *r, const photons_map *m, const qset *q, uint32_t nq, double cos_min,
+                             const est_gather *g, double *esum)
 {
     uint64_t found = 0;
     double s = 0.0;
     for (uint32_t i = 0; i < nq; i++) {
         const float *p = q->p + 3 * (size_t)i, *n = q->nr + 3 * (size_t)i;
         int f;
-        vec3 e = est_lookup(r, m, vec_make(p[0], p[1], p[2]), vec_make(n[0], n[1], n[2]), cos_min, max_r2, &f);
+        vec3 e = est_lookup(r, m, vec_make(p[0], p[1], p[2]), vec_make(n[0], n[1], n[2]), cos_min, g, &f);
         found += (uint64_t)f;
         s += e.x;
     }
@@ -209,9 +201,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench: %s\n", err);
         return 1;
     }
-    render_config cfg = config_defaults();
+    config_render cfg = config_defaults();
     double max_r = render_max_radius(sc, &cfg);
-    float max_d2 = (float)(max_r * max_r);
     qset tiles = eye_points(sc, qw, qh);
     qset shuf = shuffled(&tiles, 1);
     if (icount) { /* every m-th query of each order, so the sample covers the whole view */
@@ -240,21 +231,37 @@ int main(int argc, char **argv)
         printf("|---:|---:|---:|---|---:|---:|---:|---:|\n");
     }
     for (int si = 0; si < nsizes; si++) {
-        render_config c = cfg;
-        c.photons = sizes[si];
-        c.method = METHOD_PRECOMPUTED; /* flags representatives; positions are the same either way */
-        photon_list list;
-        photon_map map;
-        if (photons_trace(sc, &c, 1, NULL, &list)) {
+        photons_params pp = {sizes[si], cfg.seed, cfg.photon_depth, 1, cfg.rep_every};
+        photons_list list;
+        photons_map map;
+        if (photons_trace(sc, &pp, 1, NULL, &list)) {
             fprintf(stderr, "bench: out of memory\n");
             return 1;
         }
-        float *pos = malloc(sizeof(float) * 3 * list.count);
-        memcpy(pos, list.pos, sizeof(float) * 3 * list.count);
         uint32_t stored = (uint32_t)list.count;
-        if (photons_build_map(&list, &map)) {
+        if (photons_build_map(&list, 0, &map)) {
             fprintf(stderr, "bench: out of memory\n");
             return 1;
+        }
+        /* both trees hold the map's points (its frame); the queries and the
+         * radius cap move into that frame too */
+        float *pos = malloc(sizeof(float) * 3 * stored);
+        for (uint32_t i = 0; i < stored; i++) {
+            pos[3 * (size_t)i] = map.tree.x[i];
+            pos[3 * (size_t)i + 1] = map.tree.y[i];
+            pos[3 * (size_t)i + 2] = map.tree.z[i];
+        }
+        est_gather gather = est_gather_make(&map, cfg.nn, max_r);
+        float max_d2 = (float)gather.max_r2;
+        qset mq[2];
+        for (int o = 0; o < 2; o++) {
+            mq[o].n = orders[o]->n;
+            mq[o].p = malloc(sizeof(float) * 3 * mq[o].n);
+            mq[o].nr = NULL;
+            for (uint32_t i = 0; i < mq[o].n; i++) {
+                const float *w = orders[o]->p + 3 * (size_t)i;
+                photons_map_point(&map, vec_make(w[0], w[1], w[2]), mq[o].p + 3 * (size_t)i);
+            }
         }
         void *nano = nano_build(pos, stored, KD_DEFAULT_LEAF);
         if (icount)
@@ -262,7 +269,7 @@ int main(int argc, char **argv)
         for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ki++) {
             uint32_t k = ks[ki];
             for (int o = 0; o < 2; o++) {
-                const float *q = orders[o]->p;
+                const float *q = mq[o].p;
                 if (icount) {
                     char label[96];
                     double s = 0;
@@ -299,11 +306,13 @@ int main(int argc, char **argv)
             CALLGRIND_STOP_INSTRUMENTATION;
         nano_free(nano);
         free(pos);
+        free(mq[0].p);
+        free(mq[1].p);
 
         if (!icount) {
             /* representatives: precompute with the defaults, then the lookup */
             est_reps rp;
-            if (est_precompute(&map, cfg.nn, (double)max_d2, EST_REPS_SEPARATE, 1, NULL, &rp)) {
+            if (est_precompute(&map, &gather, EST_REPS_SEPARATE, 1, NULL, &rp)) {
                 fprintf(stderr, "bench: out of memory\n");
                 return 1;
             }
@@ -317,12 +326,12 @@ int main(int argc, char **argv)
                 uint64_t f = 0;
                 for (int r = 0; r < reps && r < 64; r++) {
                     double t0 = now_s();
-                    f = lookup_batch(&rp, &map, orders[o], nq, cfg.normal_cos, (double)max_d2, &es);
+                    f = lookup_batch(&rp, &map, orders[o], nq, cfg.normal_cos, &gather, &es);
                     t[r] = now_s() - t0;
                 }
                 printf("| %u | %u | %s | %.3f | %.3f | %.2f | %.2f |\n", sizes[si], rp.count, order_name[o],
                        nq / median(t, reps) * 1e-6, (double)f / nq,
-                       (double)(kd_bytes(&map.tree) + (size_t)map.count * sizeof(photon)) / map.count,
+                       (double)(kd_bytes(&map.tree) + (size_t)map.count * sizeof(photons_record)) / map.count,
                        (double)est_reps_bytes(&rp, &map) / rp.count);
             }
             est_reps_free(&rp);
@@ -355,11 +364,11 @@ int main(int argc, char **argv)
         printf("| method | 1 thread (Msamples/s) | 2 threads (Msamples/s) | wall scaling | compute-loop scaling "
                "| CPU us/sample 1 thr | CPU us/sample 2 thr | CPU ratio |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
         for (int m = 0; m < 2; m++) {
-            render_config c = cfg;
+            config_render c = cfg;
             c.width = ew;
             c.height = eh;
-            c.method = m ? METHOD_PRECOMPUTED : METHOD_CONVENTIONAL;
-            render_config tiny = c;
+            c.method = m ? CONFIG_METHOD_PRECOMPUTED : CONFIG_METHOD_CONVENTIONAL;
+            config_render tiny = c;
             tiny.width = tiny.height = 16;
             double rate[2], cpu[2], spin[2][64];
             for (unsigned th = 1; th <= 2; th++) {
@@ -397,7 +406,7 @@ int main(int argc, char **argv)
         }
         printf("\nPHOTON_BYTES_PER_STORED = %zu (payload %zu + position %zu); the tree adds %.2f bytes/photon "
                "of inner nodes and leaf offsets (see the table above).\n",
-               (size_t)PHOTON_BYTES_PER_STORED, sizeof(photon), 3 * sizeof(float),
+               (size_t)PHOTONS_BYTES_PER_STORED, sizeof(photons_record), 3 * sizeof(float),
                0.0 + (double)(sizeof(float) + 1 + sizeof(uint32_t)) / KD_DEFAULT_LEAF);
     }
     free(tiles.p), free(tiles.nr), free(shuf.p), free(shuf.nr);

@@ -32,8 +32,6 @@ static void check_scene(const scene *s)
         finding("SCENE_OK without a scene");
     if (!(isfinite(s->scale) && s->scale > 0.0))
         finding("scene size is zero or not finite");
-    if (!(scene_epsilon(s) > 0.0))
-        finding("scene epsilon is not positive");
     const scene_camera *c = &s->camera;
     if (!vec_finite(c->position) || !vec_finite(c->look_at) || !vec_finite(c->up) || !isfinite(c->hfov_deg))
         finding("camera not finite");

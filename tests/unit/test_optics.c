@@ -11,17 +11,17 @@ void test_sphere_hits(void)
 {
     shape s = shape_sphere(vec_make(0, 0, 5), 1.0, 0);
     double t;
-    ray r = {vec_make(0, 0, 0), vec_make(0, 0, 1)};
+    shape_ray r = {vec_make(0, 0, 0), vec_make(0, 0, 1)};
     CHECK(shape_intersect(&s, &r, 1e-9, INFINITY, &t) && fabs(t - 4.0) < 1e-12); /* outside */
-    ray in = {vec_make(0, 0, 5), vec_make(0, 1, 0)};
+    shape_ray in = {vec_make(0, 0, 5), vec_make(0, 1, 0)};
     CHECK(shape_intersect(&s, &in, 1e-9, INFINITY, &t) && fabs(t - 1.0) < 1e-12); /* inside */
     vec3 p = vec_madd(in.origin, in.dir, t);
     CHECK_NEAR(vec_dot(shape_normal(&s, p), vec_make(0, 1, 0)), 1.0, 1e-12);
-    ray behind = {vec_make(0, 0, 0), vec_make(0, 0, -1)};
-    CHECK(!shape_intersect(&s, &behind, 1e-9, INFINITY, &t)); /* sphere behind the ray */
-    ray graze_in = {vec_make(1.0 - 1e-9, 0, 0), vec_make(0, 0, 1)};
+    shape_ray behind = {vec_make(0, 0, 0), vec_make(0, 0, -1)};
+    CHECK(!shape_intersect(&s, &behind, 1e-9, INFINITY, &t)); /* sphere behind the shape_ray */
+    shape_ray graze_in = {vec_make(1.0 - 1e-9, 0, 0), vec_make(0, 0, 1)};
     CHECK(shape_intersect(&s, &graze_in, 1e-9, INFINITY, &t) && fabs(t - 5.0) < 1e-3); /* grazing, inside */
-    ray graze_out = {vec_make(1.0 + 1e-9, 0, 0), vec_make(0, 0, 1)};
+    shape_ray graze_out = {vec_make(1.0 + 1e-9, 0, 0), vec_make(0, 0, 1)};
     CHECK(!shape_intersect(&s, &graze_out, 1e-9, INFINITY, &t)); /* grazing, just outside */
     CHECK(!shape_intersect(&s, &r, 1e-9, 3.9, &t));               /* beyond tmax */
     /* far away ray, small sphere: precise root */
@@ -34,20 +34,20 @@ void test_rect_hits(void)
     shape q = shape_rect(vec_make(-1, 0, -1), vec_make(2, 0, 0), vec_make(0, 0, 2), 0); /* floor, normal -y */
     CHECK_NEAR(q.normal.y, -1.0, 1e-15);
     double t;
-    ray down = {vec_make(0.5, 3, 0.5), vec_make(0, -1, 0)};
+    shape_ray down = {vec_make(0.5, 3, 0.5), vec_make(0, -1, 0)};
     CHECK(shape_intersect(&q, &down, 1e-9, INFINITY, &t) && fabs(t - 3.0) < 1e-12); /* from the front */
-    ray up = {vec_make(0.5, -2, 0.5), vec_make(0, 1, 0)};
+    shape_ray up = {vec_make(0.5, -2, 0.5), vec_make(0, 1, 0)};
     CHECK(shape_intersect(&q, &up, 1e-9, INFINITY, &t) && fabs(t - 2.0) < 1e-12); /* from behind: two-sided */
-    ray away = {vec_make(0.5, 3, 0.5), vec_make(0, 1, 0)};
-    CHECK(!shape_intersect(&q, &away, 1e-9, INFINITY, &t)); /* plane behind the ray */
-    ray miss = {vec_make(1.5, 3, 0.5), vec_make(0, -1, 0)};
+    shape_ray away = {vec_make(0.5, 3, 0.5), vec_make(0, 1, 0)};
+    CHECK(!shape_intersect(&q, &away, 1e-9, INFINITY, &t)); /* plane behind the shape_ray */
+    shape_ray miss = {vec_make(1.5, 3, 0.5), vec_make(0, -1, 0)};
     CHECK(!shape_intersect(&q, &miss, 1e-9, INFINITY, &t)); /* outside the rectangle */
-    ray parallel = {vec_make(0, 0, 0), vec_make(1, 0, 0)};
+    shape_ray parallel = {vec_make(0, 0, 0), vec_make(1, 0, 0)};
     CHECK(!shape_intersect(&q, &parallel, 1e-9, INFINITY, &t)); /* in the plane, parallel */
     vec3 g = vec_norm(vec_make(1, -1e-6, 0));
-    ray grazing = {vec_make(-0.5, 1e-6, 0.5), g};
+    shape_ray grazing = {vec_make(-0.5, 1e-6, 0.5), g};
     CHECK(shape_intersect(&q, &grazing, 1e-9, INFINITY, &t) && fabs(t - 1.0) < 1e-6); /* grazing */
-    ray edge = {vec_make(1.0, 1, 1.0), vec_make(0, -1, 0)};
+    shape_ray edge = {vec_make(1.0, 1, 1.0), vec_make(0, -1, 0)};
     CHECK(shape_intersect(&q, &edge, 1e-9, INFINITY, &t)); /* exactly on the corner */
 }
 

@@ -14,48 +14,49 @@
 
 /* Appends n photons uniformly on the square [x0,x0+w] x [y0,y0+w] of the
  * plane given by (origin, e1, e2) with normal nrm, arriving along -nrm. */
-static void add_square(photon_list *l, uint64_t n, vec3 origin, vec3 e1, vec3 e2, vec3 nrm, float power,
+static void add_square(photons_list *l, uint64_t n, vec3 origin, vec3 e1, vec3 e2, vec3 nrm, float power,
                        uint64_t seed)
 {
-    l->pos = realloc(l->pos, sizeof(float) * 3 * (l->count + n));
-    l->ph = realloc(l->ph, sizeof(photon) * (l->count + n));
+    l->pos = realloc(l->pos, sizeof(double) * 3 * (l->count + n));
+    l->ph = realloc(l->ph, sizeof(photons_record) * (l->count + n));
     rng_stream s = rng_make(seed, 0);
     for (uint64_t i = 0; i < n; i++) {
         vec3 p = vec_add(origin, vec_add(vec_scale(e1, rng_next_double(&s)), vec_scale(e2, rng_next_double(&s))));
-        float *q = l->pos + 3 * (l->count + i);
-        q[0] = (float)p.x;
-        q[1] = (float)p.y;
-        q[2] = (float)p.z;
-        photon *ph = &l->ph[l->count + i];
+        double *q = l->pos + 3 * (l->count + i);
+        q[0] = p.x;
+        q[1] = p.y;
+        q[2] = p.z;
+        photons_record *ph = &l->ph[l->count + i];
         memset(ph, 0, sizeof *ph);
         ph->power[0] = ph->power[1] = ph->power[2] = power;
-        photon_pack_dir(-nrm.x, -nrm.y, -nrm.z, ph->dir);
-        photon_pack_dir(nrm.x, nrm.y, nrm.z, ph->normal);
+        photons_pack_dir(-nrm.x, -nrm.y, -nrm.z, ph->dir);
+        photons_pack_dir(nrm.x, nrm.y, nrm.z, ph->normal);
     }
     l->count += n;
+    l->unit = vec_make(1, 1, 1);
 }
 
-static void flag_every(photon_list *l, uint64_t k)
+static void flag_every(photons_list *l, uint64_t k)
 {
     for (uint64_t i = 0; i < l->count; i += k)
-        l->ph[i].flags |= PHOTON_FLAG_REP;
+        l->ph[i].flags |= PHOTONS_FLAG_REP;
 }
 
 void test_precomputed_equals_conventional_on_uniform_plane(void)
 {
     /* 200k photons of 1e-5 W on a 2x2 square: E = 200000 * 1e-5 / 4 = 0.5 */
-    photon_list l = {0};
+    photons_list l = {0};
     add_square(&l, 200000, vec_make(-1, 0, -1), vec_make(2, 0, 0), vec_make(0, 0, 2), vec_make(0, 1, 0), 1e-5f, 1);
     flag_every(&l, 1);
-    photon_map m;
-    CHECK(photons_build_map(&l, &m) == 0);
+    photons_map m;
+    CHECK(photons_build_map(&l, 0, &m) == 0);
     est_reps reps;
     const uint32_t nn = 100;
-    double max_r2 = 0.2 * 0.2;
-    CHECK(est_precompute(&m, nn, max_r2, EST_REPS_SEPARATE, 2, NULL, &reps) == 0);
+    est_gather g = est_gather_make(&m, nn, 0.2);
+    CHECK(est_precompute(&m, &g, EST_REPS_SEPARATE, 2, NULL, &reps) == 0);
     CHECK(reps.count == 200000);
-    est_scratch s;
-    CHECK(est_scratch_init(&s, nn) == 0);
+    est_scratch *s = est_scratch_new(1, nn);
+    CHECK(s != NULL);
     rng_stream q = rng_make(2, 0);
     double sum_c = 0, sum_p = 0, sum_d2 = 0;
     int N = 400;
@@ -63,8 +64,8 @@ void test_precomputed_equals_conventional_on_uniform_plane(void)
         vec3 x = vec_make(rng_next_double(&q) - 0.5, 0, rng_next_double(&q) - 0.5); /* away from the edges */
         uint32_t found;
         int ok;
-        vec3 ec = est_irradiance(&m, x, vec_make(0, 1, 0), nn, max_r2, &s, &found);
-        vec3 ep = est_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, max_r2, &ok);
+        vec3 ec = est_irradiance(&m, x, vec_make(0, 1, 0), &g, s, &found);
+        vec3 ep = est_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, &g, &ok);
         CHECK(found == nn && ok);
         sum_c += ec.y;
         sum_p += ep.y;
@@ -77,16 +78,16 @@ void test_precomputed_equals_conventional_on_uniform_plane(void)
     CHECK_MSG(sqrt(sum_d2 / N) < 0.5 * 0.2, "rms difference %.4f", sqrt(sum_d2 / N));
     /* the same with representatives found in the photon tree by flag */
     est_reps shared;
-    CHECK(est_precompute(&m, nn, max_r2, EST_REPS_SHARED, 1, NULL, &shared) == 0);
+    CHECK(est_precompute(&m, &g, EST_REPS_SHARED, 1, NULL, &shared) == 0);
     for (int i = 0; i < 50; i++) {
         vec3 x = vec_make(rng_next_double(&q) - 0.5, 0, rng_next_double(&q) - 0.5);
         int a, b;
-        vec3 e1 = est_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, max_r2, &a);
-        vec3 e2 = est_lookup(&shared, &m, x, vec_make(0, 1, 0), 0.9, max_r2, &b);
+        vec3 e1 = est_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, &g, &a);
+        vec3 e2 = est_lookup(&shared, &m, x, vec_make(0, 1, 0), 0.9, &g, &b);
         CHECK(a && b && e1.y == e2.y);
     }
     est_reps_free(&shared);
-    est_scratch_free(&s);
+    est_scratch_delete(s, 1);
     est_reps_free(&reps);
     photons_map_free(&m);
 }
@@ -120,7 +121,7 @@ void test_precomputed_converges_on_cornell(void)
     const uint64_t counts[3] = {50000, 500000, 50000};
     const uint32_t nns[3] = {10, 100, 100};
     for (int i = 0; i < 3; i++) {
-        render_config cfg = config_defaults();
+        config_render cfg = config_defaults();
         cfg.photons = counts[i];
         cfg.nn = nns[i];
         cfg.width = 48;
@@ -128,7 +129,7 @@ void test_precomputed_converges_on_cornell(void)
         image conv, pre;
         stats_run st;
         CHECK(render_run(sc, &cfg, 2, 0, &conv, &st) == 0);
-        cfg.method = METHOD_PRECOMPUTED;
+        cfg.method = CONFIG_METHOD_PRECOMPUTED;
         CHECK(render_run(sc, &cfg, 2, 0, &pre, &st) == 0);
         CHECK(st.representatives > 0 && st.nonfinite_pixels == 0);
         diff[i] = rel_rmse(&pre, &conv);
@@ -146,23 +147,23 @@ void test_precomputed_normal_test_at_corner(void)
     /* floor y=0 (normal +y) with dense dim photons, back wall z=0 (normal +z)
      * with sparse bright ones: a floor point next to the corner is nearer to
      * wall representatives, yet must take a floor value */
-    photon_list l = {0};
+    photons_list l = {0};
     add_square(&l, 40000, vec_make(-1, 0, 0), vec_make(2, 0, 0), vec_make(0, 0, 2), vec_make(0, 1, 0), 1e-5f, 3);
     add_square(&l, 4000, vec_make(-1, 0, 0), vec_make(2, 0, 0), vec_make(0, 2, 0), vec_make(0, 0, 1), 1e-2f, 4);
     flag_every(&l, 3);
-    photon_map m;
-    CHECK(photons_build_map(&l, &m) == 0);
+    photons_map m;
+    CHECK(photons_build_map(&l, 0, &m) == 0);
     est_reps reps;
-    double max_r2 = 0.3 * 0.3;
-    CHECK(est_precompute(&m, 50, max_r2, EST_REPS_SEPARATE, 1, NULL, &reps) == 0);
+    est_gather g = est_gather_make(&m, 50, 0.3);
+    CHECK(est_precompute(&m, &g, EST_REPS_SEPARATE, 1, NULL, &reps) == 0);
     /* floor E ~ 40000*1e-5/4 = 0.1; wall E ~ 4000*1e-2/4 = 10 */
     rng_stream q = rng_make(9, 0);
     int floor_ok = 1, wall_ok = 1;
     for (int i = 0; i < 500; i++) {
         double t = rng_next_double(&q) * 0.01, u = rng_next_double(&q) - 0.5;
         int f1, f2;
-        vec3 on_floor = est_lookup(&reps, &m, vec_make(u, 0, t), vec_make(0, 1, 0), 0.9, max_r2, &f1);
-        vec3 on_wall = est_lookup(&reps, &m, vec_make(u, t, 0), vec_make(0, 0, 1), 0.9, max_r2, &f2);
+        vec3 on_floor = est_lookup(&reps, &m, vec_make(u, 0, t), vec_make(0, 1, 0), 0.9, &g, &f1);
+        vec3 on_wall = est_lookup(&reps, &m, vec_make(u, t, 0), vec_make(0, 0, 1), 0.9, &g, &f2);
         floor_ok &= f1 && on_floor.y < 1.0;
         wall_ok &= f2 && on_wall.y > 1.0;
     }
@@ -170,7 +171,7 @@ void test_precomputed_normal_test_at_corner(void)
     CHECK(wall_ok);
     /* a tilted normal that agrees with neither (cos 0.707 < 0.9): defined zero */
     int f;
-    vec3 e = est_lookup(&reps, &m, vec_make(0, 0.001, 0.001), vec_norm(vec_make(0, 1, 1)), 0.9, max_r2, &f);
+    vec3 e = est_lookup(&reps, &m, vec_make(0, 0.001, 0.001), vec_norm(vec_make(0, 1, 1)), 0.9, &g, &f);
     CHECK(!f && e.x == 0.0 && e.y == 0.0 && e.z == 0.0);
     est_reps_free(&reps);
     photons_map_free(&m);
@@ -183,8 +184,8 @@ void test_precomputed_extremes(void)
     CHECK_MSG(scene_load("scenes/cornell.scene", &sc, err, sizeof err) == SCENE_OK, "%s", err);
     if (!sc)
         return;
-    render_config cfg = config_defaults();
-    cfg.method = METHOD_PRECOMPUTED;
+    config_render cfg = config_defaults();
+    cfg.method = CONFIG_METHOD_PRECOMPUTED;
     cfg.photons = 5000;
     cfg.width = 32;
     cfg.height = 24;

@@ -24,33 +24,32 @@ static const char *closed_box =
 void test_photon_power_closed_box(void)
 {
     scene *sc = helper_scene(closed_box);
-    render_config cfg = config_defaults();
-    cfg.photons = 100003; /* not a multiple of the chunk size */
-    photon_list l;
-    CHECK(photons_trace(sc, &cfg, 2, NULL, &l) == 0);
+    photons_params pp = {100003, 1, 64, 1, 0}; /* P_e not a multiple of the chunk size */
+    photons_list l;
+    CHECK(photons_trace(sc, &pp, 2, NULL, &l) == 0);
     double sum[3] = {0, 0, 0};
     uint64_t first = 0;
     for (uint64_t i = 0; i < l.count; i++) {
-        if (l.ph[i].flags & PHOTON_FLAG_DIRECT) {
+        if (l.ph[i].flags & PHOTONS_FLAG_DIRECT) {
             first++;
             for (int c = 0; c < 3; c++)
-                sum[c] += l.ph[i].power[c];
+                sum[c] += l.ph[i].power[c] * (c == 0 ? l.unit.x : c == 1 ? l.unit.y : l.unit.z);
         }
     }
-    CHECK(first == cfg.photons); /* every photon's first hit is diffuse and stored */
+    CHECK(first == pp.photons); /* every photon's first hit is diffuse and stored */
     CHECK(l.escaped == 0);
     CHECK_REL(sum[0], 3.0, 1e-6);
     CHECK_REL(sum[1], 2.0, 1e-6);
     CHECK_REL(sum[2], 1.0, 1e-6);
     /* albedo 0.5: on average 1/(1-0.5) = 2 stored photons per emitted one */
-    CHECK_NEAR((double)l.count / cfg.photons, 2.0, 0.02);
+    CHECK_NEAR((double)l.count / pp.photons, 2.0, 0.02);
     photons_list_free(&l);
     /* shadow-ray mode stores no first hits */
-    cfg.direct = DIRECT_SHADOW_RAYS;
-    CHECK(photons_trace(sc, &cfg, 1, NULL, &l) == 0);
+    pp.store_first_hits = 0;
+    CHECK(photons_trace(sc, &pp, 1, NULL, &l) == 0);
     uint64_t direct = 0;
     for (uint64_t i = 0; i < l.count; i++)
-        direct += (l.ph[i].flags & PHOTON_FLAG_DIRECT) != 0;
+        direct += (l.ph[i].flags & PHOTONS_FLAG_DIRECT) != 0;
     CHECK(direct == 0 && l.count > 0);
     photons_list_free(&l);
     scene_free(sc);
@@ -68,12 +67,12 @@ void test_furnace_sphere(void)
                              "material g lambert rho 0.5 0.5 0.5\n"
                              "sphere center 0 0 0 radius 1 material g\n");
     for (int method = 0; method < 2; method++) {
-        render_config cfg = config_defaults();
+        config_render cfg = config_defaults();
         cfg.photons = 400000;
         cfg.nn = 4000; /* relative noise 1/sqrt(n) = 1.6% per estimate */
         cfg.width = 32;
         cfg.height = 24;
-        cfg.method = method ? METHOD_PRECOMPUTED : METHOD_CONVENTIONAL;
+        cfg.method = method ? CONFIG_METHOD_PRECOMPUTED : CONFIG_METHOD_CONVENTIONAL;
         cfg.rep_every = 64;
         image im;
         stats_run st;
@@ -103,12 +102,12 @@ void test_diffuse_plane_matches_analytic(void)
                              "rect corner -5 0 -5 edge1 10 0 0 edge2 0 0 10 material w\n");
     double I = 10.0 / (4.0 * VEC_PI);
     for (int mode = 0; mode < 2; mode++) {
-        render_config cfg = config_defaults();
+        config_render cfg = config_defaults();
         cfg.photons = mode ? 1000 : 1000000;
         cfg.nn = 400;
         cfg.width = 48;
         cfg.height = 36;
-        cfg.direct = mode ? DIRECT_SHADOW_RAYS : DIRECT_PHOTONS;
+        cfg.direct = mode ? CONFIG_DIRECT_SHADOW_RAYS : CONFIG_DIRECT_PHOTONS;
         image im;
         stats_run st;
         CHECK(render_run(sc, &cfg, 2, 0, &im, &st) == 0);
@@ -120,7 +119,7 @@ void test_diffuse_plane_matches_analytic(void)
                 double want = 0;
                 for (int s = 0; s < 4; s++) {
                     double u = (x + (s % 2 + 0.5) / 2) / cfg.width, v = (y + (s / 2 + 0.5) / 2) / cfg.height;
-                    ray r = render_camera_ray(sc, (double)cfg.height / cfg.width, u, v);
+                    shape_ray r = render_camera_ray(sc, (double)cfg.height / cfg.width, u, v);
                     double t = -r.origin.y / r.dir.y;
                     vec3 p = vec_madd(r.origin, r.dir, t);
                     vec3 to = vec_sub(sc->light.position, p);
@@ -154,13 +153,13 @@ void test_cornell_finite_and_deterministic(void)
     if (!sc)
         return;
     for (int method = 0; method < 2; method++) {
-        render_config cfg = config_defaults();
+        config_render cfg = config_defaults();
         cfg.photons = 20000;
         cfg.nn = 20;
         cfg.width = 64;
         cfg.height = 48;
         cfg.seed = 99;
-        cfg.method = method ? METHOD_PRECOMPUTED : METHOD_CONVENTIONAL;
+        cfg.method = method ? CONFIG_METHOD_PRECOMPUTED : CONFIG_METHOD_CONVENTIONAL;
         image a, b, c;
         stats_run sa, sb, sc3;
         CHECK(render_run(sc, &cfg, 1, 0, &a, &sa) == 0);

@@ -20,9 +20,9 @@ void test_scene_parses_cornell(void)
     int lambert = 0, mirror = 0, glass = 0;
     for (size_t i = 0; i < s->nshapes; i++) {
         material_kind k = s->materials[s->shapes[i].material].kind;
-        lambert += k == MAT_LAMBERT;
-        mirror += k == MAT_MIRROR;
-        glass += k == MAT_GLASS;
+        lambert += k == MATERIAL_LAMBERT;
+        mirror += k == MATERIAL_MIRROR;
+        glass += k == MATERIAL_GLASS;
     }
     CHECK(lambert == 6 && mirror == 2 && glass == 1);
     CHECK_NEAR(s->bounds_lo.x, -1, 0);
