@@ -20,8 +20,8 @@ typedef struct {
     uint64_t seed;            /* names every random stream */
     uint32_t rep_every;       /* precomputed: every K-th stored photon is a representative */
     double normal_cos;        /* precomputed: representative's normal must agree above this cosine */
-    double max_radius;        /* search radius cap in scene units; <= 0: derived from the scene */
-    double max_radius_frac;   /* the derived cap: this fraction of the scene's bounding-box diagonal */
+    double max_radius;        /* search radius cap in scene units; <= 0: derived from the photon map */
+    double max_radius_frac;   /* the derived cap: this fraction of the photons' bounding-box diagonal */
     uint32_t photon_depth;    /* maximum bounces of a photon path */
     uint32_t eye_depth;       /* maximum specular bounces of an eye path */
     int reps_shared;          /* precomputed: 1 = find representatives in the photon tree by flag,

@@ -6,6 +6,7 @@
  * file, with file:line:col). */
 #include <assert.h>
 #include <errno.h>
+#include <float.h>
 #include <inttypes.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -65,7 +66,7 @@ static const cli_option render_options[] = {
     {"--rep-tree", CLI_CHOICE, NULL, RC(reps_shared), 0, 0, 0, 0, rep_tree_names, 0,
      "precomputed: the representatives' own kd-tree, or the photon tree by flag", NULL},
     {"--max-radius", CLI_REAL, "R", RC(max_radius), 0, 0, 1e-30, 1e30, NULL, 0,
-     "search radius cap in scene units", CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT " x the scene's bounding-box diagonal"},
+     "search radius cap in scene units", CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT " x the diagonal of the photons' bounding box"},
     {"--direct", CLI_CHOICE, NULL, RC(direct), 0, 0, 0, 0, direct_names, 0,
      "direct light from the photon map (the paper) or by shadow rays", NULL},
     {"--photon-depth", CLI_U32, "D", RC(photon_depth), 1, CONFIG_MAX_DEPTH, 0, 0, NULL, 0,
@@ -77,7 +78,8 @@ static const cli_option render_options[] = {
     {"--exposure", CLI_REAL, "E", RO(exposure), 0, 0, 0.0, 1e30, NULL, 0, "scale of the PNG preview", NULL},
     {"--stats", CLI_STRING, "FILE.json", RO(stats), 0, 0, 0, 0, NULL, 0, "run statistics as JSON", NULL},
     {"--allow-nonfinite", CLI_FLAG, NULL, RC(allow_nonfinite), 0, 0, 0, 0, NULL, 1,
-     "keep an image with NaN/Inf pixels (otherwise exit 1, no image)", NULL},
+     "keep an image whose radiance leaves the float range (Inf, or below the smallest normal float; "
+     "otherwise exit 2, no image)", NULL},
     {"--quiet", CLI_FLAG, NULL, RO(quiet), 0, 0, 0, 0, NULL, 1, "no progress bar and no summary line", NULL},
 };
 #undef RO
@@ -134,10 +136,16 @@ static int check_memory(const scene *sc, const config_render *cfg)
 }
 
 /* Claims every output path now, so that an unwritable one fails before the
- * work. Returns 0 or an exit code. */
-static int claim_outputs(const char *const *paths, int n)
+ * work, and refuses two outputs on one file. `names` are the options that
+ * gave them. Returns 0 or an exit code. */
+static int claim_outputs(const cli_command *cmd, const char *const *paths, const char *const *names, int n)
 {
     char err[1024];
+    for (int i = 0; i < n; i++)
+        for (int j = i + 1; j < n; j++)
+            if (paths[i] && paths[j] && outfile_same_target(paths[i], paths[j]))
+                return cli_error(cmd, "%s and %s name the same file '%s'; each output needs its own", names[i],
+                                 names[j], paths[j]);
     for (int i = 0; i < n; i++) {
         if (!paths[i])
             continue;
@@ -176,10 +184,22 @@ static int write_outputs(const render_args *a, unsigned threads, const image *im
             exit_code = CLI_EXIT_RUNTIME;
         }
     }
-    if (st->nonfinite_pixels > 0 && !a->cfg.allow_nonfinite) {
-        fprintf(stderr, "photonmap: %" PRIu64 " pixels are not finite; no image written (--allow-nonfinite keeps it)\n",
-                st->nonfinite_pixels);
-        return CLI_EXIT_RUNTIME;
+    if ((st->nonfinite_pixels > 0 || st->underflow_pixels > 0) && !a->cfg.allow_nonfinite) {
+        /* radiance scales as power / size^2: a scene whose radiance leaves
+         * the float range of the image is refused rather than written wrong */
+        if (st->nonfinite_pixels > 0)
+            fprintf(stderr,
+                    "%s: %" PRIu64 " pixels' radiance is beyond the largest float (%g): the light is too strong for "
+                    "the scene's size (radiance ~ power / size^2); scale the power down. No image written "
+                    "(--allow-nonfinite keeps it)\n",
+                    a->scene, st->nonfinite_pixels, (double)FLT_MAX);
+        else
+            fprintf(stderr,
+                    "%s: %" PRIu64 " pixels' radiance is below the smallest normal float (%g): the light is too weak "
+                    "for the scene's size (radiance ~ power / size^2); scale the power up. No image written "
+                    "(--allow-nonfinite keeps it)\n",
+                    a->scene, st->underflow_pixels, (double)FLT_MIN);
+        return CLI_EXIT_USAGE;
     }
     if (a->exr && image_write_exr(img, a->exr, err, sizeof err)) {
         fprintf(stderr, "photonmap: %s\n", err);
@@ -205,8 +225,8 @@ static int cmd_render(int argc, char **argv)
     scene *sc = NULL;
     if ((rc = load_scene(a.scene, &sc)))
         return rc;
-    const char *paths[3] = {a.exr, a.png, a.stats};
-    if ((rc = check_memory(sc, cfg)) || (rc = claim_outputs(paths, 3))) {
+    const char *paths[3] = {a.exr, a.png, a.stats}, *names[3] = {"-o", "--png", "--stats"};
+    if ((rc = check_memory(sc, cfg)) || (rc = claim_outputs(&render_command, paths, names, 3))) {
         scene_free(sc);
         return rc;
     }
@@ -214,10 +234,14 @@ static int cmd_render(int argc, char **argv)
     int show = !a.quiet && isatty(STDERR_FILENO);
     image img;
     stats_run st;
-    if (render_run(sc, cfg, threads, show, &img, &st)) {
-        fprintf(stderr, "photonmap: out of memory while rendering\n");
+    char err[1024];
+    if ((rc = render_run(sc, cfg, threads, show, &img, &st, err, sizeof err)) != RENDER_OK) {
+        if (rc == RENDER_ERR_INPUT)
+            fprintf(stderr, "%s: %s\n", a.scene, err);
+        else
+            fprintf(stderr, "photonmap: %s\n", err);
         scene_free(sc);
-        return CLI_EXIT_RUNTIME;
+        return rc == RENDER_ERR_INPUT ? CLI_EXIT_USAGE : CLI_EXIT_RUNTIME;
     }
     rc = write_outputs(&a, threads, &img, &st);
     if (!a.quiet)

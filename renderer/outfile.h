@@ -1,7 +1,10 @@
 /* outfile: result files that appear whole or not at all. Data goes to a
  * temporary name in the same directory and is renamed over the final path
  * only when complete, so a failed or killed run never leaves a half-written
- * result and an existing file is only replaced by a complete one. */
+ * result and an existing file is only replaced by a complete one. On
+ * SIGINT, SIGTERM or SIGHUP the temporaries still open are removed before
+ * the process dies of the signal (SIGKILL cannot be caught: a temporary
+ * name.tmp.PID may then remain, but never a half-written name). */
 #ifndef PM_OUTFILE_H
 #define PM_OUTFILE_H
 
@@ -13,6 +16,7 @@ typedef struct {
     char path[OUTFILE_PATH_MAX]; /* final name */
     char tmp[OUTFILE_PATH_MAX];  /* temporary name beside it */
     FILE *f;                     /* open on tmp when a stream was asked for */
+    int slot;                    /* where the signal handler finds tmp (-1: nowhere) */
 } outfile;
 
 /* Prepares writing `path`: creates the temporary file (so an unwritable
@@ -24,5 +28,8 @@ int outfile_begin(outfile *o, const char *path, int stream, char *err, size_t er
 int outfile_commit(outfile *o, char *err, size_t errlen);
 /* Closes and removes the temporary; the final path is untouched. */
 void outfile_abort(outfile *o);
+/* 1 when paths a and b name the same file (the same string, the same
+ * existing file, or the same name in the same resolved directory), else 0. */
+int outfile_same_target(const char *a, const char *b);
 
 #endif

@@ -41,7 +41,6 @@ typedef struct {
     const photons_params *p;
     photons_chunk *chunks;
     progress *prog;
-    vec3 unit;
 } trace_ctx;
 
 /* Appends one photon of relative power `power` to c. Returns -1 when memory
@@ -87,7 +86,7 @@ static int trace_one(const trace_ctx *tc, uint64_t index, photons_chunk *c)
     double u1 = rng_next_double(&rs), u2 = rng_next_double(&rs);
     double z = 1.0 - 2.0 * u1, s = sqrt(fmax(0.0, 1.0 - z * z)), phi = 2.0 * VEC_PI * u2;
     shape_ray r = {sc->light.position, vec_make(s * cos(phi), s * sin(phi), z)};
-    vec3 power = tc->unit;
+    vec3 power = vec_make(1, 1, 1);
     unsigned bounces = 0;
     for (uint32_t depth = 0;; depth++) {
         if (depth >= pp->max_depth) {
@@ -150,8 +149,7 @@ int photons_trace(const scene *sc, const photons_params *p, unsigned threads, pr
     photons_chunk *chunks = calloc(nchunks ? nchunks : 1, sizeof(photons_chunk));
     if (!chunks)
         return -1;
-    vec3 unit = p->photons ? vec_scale(sc->light.power, 1.0 / (double)p->photons) : vec_make(0, 0, 0);
-    trace_ctx tc = {sc, p, chunks, prog, unit};
+    trace_ctx tc = {sc, p, chunks, prog};
     parallel_for(threads, nchunks, trace_chunk, &tc);
     int failed = 0;
     uint64_t total = 0;
@@ -182,7 +180,7 @@ int photons_trace(const scene *sc, const photons_params *p, unsigned threads, pr
         return -1;
     }
     out->count = total;
-    out->unit = vec_make(1, 1, 1);
+    out->unit = p->photons ? vec_scale(sc->light.power, 1.0 / (double)p->photons) : vec_make(0, 0, 0);
     if (p->rep_every > 0) {
         for (uint64_t i = 0; i < total; i += p->rep_every)
             out->ph[i].flags |= PHOTONS_FLAG_REP;
@@ -198,8 +196,9 @@ void photons_list_free(photons_list *l)
 }
 
 /* The map frame of a list: the centre of its bounding box and the power of
- * two at or above its half-diagonal (1 for an empty or one-point list). */
-static void map_frame(const photons_list *l, vec3 *centre, double *scale)
+ * two at or above its half-diagonal (1 for an empty or one-point list), and
+ * the box's diagonal. */
+static void map_frame(const photons_list *l, vec3 *centre, double *scale, double *extent)
 {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (uint64_t i = 0; i < l->count; i++) {
@@ -209,7 +208,8 @@ static void map_frame(const photons_list *l, vec3 *centre, double *scale)
             hi[a] = v > hi[a] ? v : hi[a];
         }
     }
-    if (1) {
+    *extent = 0.0;
+    if (l->count == 0) {
         *centre = vec_make(0, 0, 0);
         *scale = 1.0;
         return;
@@ -221,6 +221,7 @@ static void map_frame(const photons_list *l, vec3 *centre, double *scale)
         *scale = 1.0;
         return;
     }
+    *extent = 2.0 * half;
     int e;
     frexp(half, &e); /* half = f * 2^e, f in [0.5, 1) */
     *scale = ldexp(1.0, e);
@@ -243,7 +244,7 @@ int photons_build_map(photons_list *l, int leave_out_reps, photons_map *m)
     }
     m->unit = l->unit;
     m->stored = l->count;
-    map_frame(l, &m->centre, &m->scale);
+    map_frame(l, &m->centre, &m->scale, &m->extent);
     uint32_t nreps = 0;
     for (uint64_t i = 0; i < l->count; i++)
         nreps += (l->ph[i].flags & PHOTONS_FLAG_REP) != 0;

@@ -74,6 +74,7 @@ typedef struct {
     vec3 unit;              /* watts of power 1.0 in a record */
     vec3 centre;            /* world = centre + scale * map */
     double scale;           /* a power of two; 1 when the map is empty */
+    double extent;          /* diagonal of all stored photons' bounding box, scene units (0: fewer than 2 places) */
 } photons_map;
 
 /* Bytes of memory one stored photon costs in a built map (payload + position). */

@@ -4,6 +4,8 @@
 #include "render.h"
 
 #include <assert.h>
+#include <float.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,8 +18,8 @@
 #define RENDER_TILE 16u
 
 typedef struct {
-    uint64_t samples, depth_hits, empty;
-    char pad[128 - 3 * sizeof(uint64_t)]; /* one per thread: no two threads' counters share a cache line */
+    uint64_t samples, depth_hits, empty, underflow;
+    char pad[128 - 4 * sizeof(uint64_t)]; /* one per thread: no two threads' counters share a cache line */
 } eye_counts;
 
 typedef struct {
@@ -62,9 +64,11 @@ shape_ray render_camera_ray(const scene *sc, double aspect_h_over_w, double u, d
     return render_camera_at(&cam, u, v);
 }
 
-double render_max_radius(const scene *sc, const config_render *cfg)
+double render_max_radius(const scene *sc, const config_render *cfg, const photons_map *m)
 {
-    return cfg->max_radius > 0.0 ? cfg->max_radius : cfg->max_radius_frac * sc->scale;
+    if (cfg->max_radius > 0.0)
+        return cfg->max_radius;
+    return cfg->max_radius_frac * (m->extent > 0.0 ? m->extent : sc->scale);
 }
 
 /* Direct light at the hit h by one shadow ray. */
@@ -161,6 +165,10 @@ static void eye_tile(uint64_t tile, unsigned thread, void *arg)
             px[0] = (float)(sum.x * inv);
             px[1] = (float)(sum.y * inv);
             px[2] = (float)(sum.z * inv);
+            /* a radiance the float cannot hold but as 0 or a subnormal */
+            c->counts[thread].underflow += (sum.x > 0.0 && !(px[0] >= FLT_MIN)) ||
+                                           (sum.y > 0.0 && !(px[1] >= FLT_MIN)) ||
+                                           (sum.z > 0.0 && !(px[2] >= FLT_MIN));
         }
     }
     c->counts[thread].samples += (uint64_t)(x1 - x0) * (y1 - y0) * S * S;
@@ -214,9 +222,40 @@ static int step_build(render_state *rs)
         return -1;
     rs->st->build = seconds_since(t0);
     rs->st->bytes_photon_map = photons_map_bytes(&rs->map);
-    rs->max_radius = render_max_radius(rs->sc, rs->cfg);
+    rs->max_radius = render_max_radius(rs->sc, rs->cfg, &rs->map);
     rs->st->max_radius = rs->max_radius;
     return 0;
+}
+
+/* Largest |coordinate| of v. */
+static double max_abs(vec3 v)
+{
+    return fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
+}
+
+/* Refuses a scene whose lit part is too small for double precision where it
+ * sits: the photons' bounding box (the scene's, without photons) must span
+ * at least RENDER_MIN_RELATIVE_EXTENT of its distance from the origin.
+ * Returns RENDER_OK, or RENDER_ERR_INPUT with the reason in err. */
+static int check_precision(const render_state *rs, char *err, size_t errlen)
+{
+    const scene *sc = rs->sc;
+    double extent = rs->map.extent, far;
+    if (extent > 0.0) {
+        far = max_abs(rs->map.centre) + 0.5 * extent;
+    } else {
+        extent = sc->scale;
+        far = fmax(max_abs(sc->bounds_lo), max_abs(sc->bounds_hi));
+    }
+    far = fmax(far, max_abs(sc->camera.position));
+    if (extent >= RENDER_MIN_RELATIVE_EXTENT * far)
+        return RENDER_OK;
+    snprintf(err, errlen,
+             "the lit part of the scene spans %.3g units but lies %.3g from the origin, where doubles are %.2g "
+             "apart; renders are exact to 0.5%% only while the span is at least 2^-38 (%.2g) of that distance: "
+             "move the scene toward the origin",
+             extent, far, far * DBL_EPSILON, RENDER_MIN_RELATIVE_EXTENT);
+    return RENDER_ERR_INPUT;
 }
 
 /* Step 3 (precomputed method): irradiance at the representatives. Returns
@@ -269,6 +308,7 @@ static int step_eye(render_state *rs, image *out)
             rs->st->samples += c.counts[t].samples;
             rs->st->eye_depth_limit_hits += c.counts[t].depth_hits;
             rs->st->empty_estimates += c.counts[t].empty;
+            rs->st->underflow_pixels += c.counts[t].underflow;
         }
         rs->st->nonfinite_pixels = image_count_nonfinite(out);
     }
@@ -278,7 +318,7 @@ static int step_eye(render_state *rs, image *out)
 }
 
 int render_run(const scene *sc, const config_render *cfg, unsigned threads, int show_progress, image *out,
-               stats_run *st)
+               stats_run *st, char *err, size_t errlen)
 {
     assert(threads >= 1 && cfg->width > 0 && cfg->height > 0 && cfg->subpixels > 0);
     memset(st, 0, sizeof *st);
@@ -291,20 +331,22 @@ int render_run(const scene *sc, const config_render *cfg, unsigned threads, int 
     rs.show_progress = show_progress;
     rs.st = st;
     int64_t t_start = stats_now_ns();
-    int rc = step_trace(&rs);
-    if (rc == 0)
-        rc = step_build(&rs);
-    if (rc == 0 && cfg->method == CONFIG_METHOD_PRECOMPUTED)
-        rc = step_precompute(&rs);
-    if (rc == 0)
-        rc = step_eye(&rs, out);
+    int rc = step_trace(&rs) || step_build(&rs) ? RENDER_ERR_MEMORY : RENDER_OK;
+    if (rc == RENDER_OK)
+        rc = check_precision(&rs, err, errlen);
+    if (rc == RENDER_OK && cfg->method == CONFIG_METHOD_PRECOMPUTED && step_precompute(&rs))
+        rc = RENDER_ERR_MEMORY;
+    if (rc == RENDER_OK && step_eye(&rs, out))
+        rc = RENDER_ERR_MEMORY;
     est_reps_free(&rs.reps);
     photons_map_free(&rs.map);
     photons_list_free(&rs.list);
-    if (rc != 0) {
+    if (rc == RENDER_ERR_MEMORY)
+        snprintf(err, errlen, "out of memory while rendering");
+    if (rc != RENDER_OK) {
         image_free(out);
-        return -1;
+        return rc;
     }
     st->total = seconds_since(t_start);
-    return 0;
+    return RENDER_OK;
 }

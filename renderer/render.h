@@ -7,8 +7,11 @@
 #ifndef PM_RENDER_H
 #define PM_RENDER_H
 
+#include <stddef.h>
+
 #include "config.h"
 #include "image.h"
+#include "photons.h"
 #include "scene.h"
 #include "stats.h"
 
@@ -27,13 +30,26 @@ shape_ray render_camera_at(const render_camera *cam, double u, double v);
 /* Both in one call (for tests and tools; the eye pass makes the camera once). */
 shape_ray render_camera_ray(const scene *sc, double aspect_h_over_w, double u, double v);
 
-/* The search radius cap in scene units for cfg on sc. */
-double render_max_radius(const scene *sc, const config_render *cfg);
+/* The search radius cap in scene units: cfg->max_radius if set, else
+ * cfg->max_radius_frac of the photon map's extent (of the scene's
+ * bounding-box diagonal when the photons lie at fewer than two places), so
+ * that geometry no photon reaches does not change it. */
+double render_max_radius(const scene *sc, const config_render *cfg, const photons_map *m);
+
+/* The smallest span of the lit scene, relative to its distance from the
+ * origin, that renders within 0.5% of the same scene at the origin (2^-38:
+ * about 16,000 doubles across the span; measured in results/stability.md). */
+#define RENDER_MIN_RELATIVE_EXTENT 0x1p-38
+
+/* Results of render_run: done, out of memory, or a scene the renderer
+ * cannot render faithfully (a user input error). */
+enum { RENDER_OK = 0, RENDER_ERR_MEMORY = 1, RENDER_ERR_INPUT = 2 };
 
 /* Renders sc with cfg into *out (allocated here; image_free it) and fills
  * *st. `threads` workers (>= 1); progress bars on stderr if show_progress.
- * Returns 0, or -1 when memory runs out (out is then empty). */
+ * Returns RENDER_OK, or RENDER_ERR_MEMORY / RENDER_ERR_INPUT with the
+ * reason in err (out is then empty). */
 int render_run(const scene *sc, const config_render *cfg, unsigned threads, int show_progress, image *out,
-               stats_run *st);
+               stats_run *st, char *err, size_t errlen);
 
 #endif

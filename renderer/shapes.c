@@ -5,6 +5,14 @@
 
 #include <assert.h>
 
+/* Largest |coordinate| of s's bounds. */
+static double bounds_magnitude(const shape *s)
+{
+    vec3 lo, hi;
+    shape_bounds(s, &lo, &hi);
+    return fmax(fmax(fmax(fabs(lo.x), fabs(lo.y)), fmax(fabs(lo.z), fabs(hi.x))), fmax(fabs(hi.y), fabs(hi.z)));
+}
+
 shape shape_sphere(vec3 center, double radius, int material)
 {
     assert(radius > 0.0 && isfinite(radius));
@@ -13,6 +21,7 @@ shape shape_sphere(vec3 center, double radius, int material)
     s.material = material;
     s.center = center;
     s.radius = radius;
+    s.magnitude = bounds_magnitude(&s);
     return s;
 }
 
@@ -29,6 +38,7 @@ shape shape_rect(vec3 corner, vec3 edge1, vec3 edge2, int material)
     s.normal = vec_norm(vec_cross(edge1, edge2));
     s.inv_len2_1 = 1.0 / l1;
     s.inv_len2_2 = 1.0 / l2;
+    s.magnitude = bounds_magnitude(&s);
     return s;
 }
 
@@ -87,6 +97,17 @@ int shape_intersect(const shape *s, const shape_ray *r, double tmin, double tmax
 {
     return s->kind == SHAPE_SPHERE ? sphere_intersect(s, r, tmin, tmax, t)
                                    : rect_intersect(s, r, tmin, tmax, t);
+}
+
+vec3 shape_hit_point(const shape *s, const shape_ray *r, double t)
+{
+    vec3 p = vec_madd(r->origin, r->dir, t);
+    if (s->kind == SHAPE_SPHERE) {
+        vec3 d = vec_sub(p, s->center);
+        double len = vec_len(d);
+        return len > 0.0 ? vec_madd(s->center, d, s->radius / len) : p;
+    }
+    return vec_madd(p, s->normal, -vec_dot(vec_sub(p, s->corner), s->normal));
 }
 
 vec3 shape_normal(const shape *s, vec3 p)

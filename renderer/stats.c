@@ -1,7 +1,10 @@
 /* stats: clock and JSON writer. */
 #include "stats.h"
 
+#include <string.h>
 #include <time.h>
+
+#include "utf8.h"
 
 int64_t stats_now_ns(void)
 {
@@ -10,17 +13,29 @@ int64_t stats_now_ns(void)
     return (int64_t)ts.tv_sec * 1000000000LL + ts.tv_nsec;
 }
 
+/* Writes s as a JSON string: valid UTF-8 as is, control characters
+ * escaped, and each byte that is not valid UTF-8 (a path may hold any bytes)
+ * as U+FFFD, so the file always parses. */
 static void json_string(FILE *f, const char *s)
 {
+    const unsigned char *p = (const unsigned char *)s;
+    size_t n = strlen(s);
     fputc('"', f);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
+    while (n > 0) {
+        unsigned char c = *p;
+        size_t l = utf8_sequence_len(p, n);
+        if (l == 0) {
+            fputs("\\ufffd", f);
+            l = 1;
+        } else if (c == '"' || c == '\\') {
             fprintf(f, "\\%c", c);
-        else if (c < 0x20)
+        } else if (c < 0x20) {
             fprintf(f, "\\u%04x", c);
-        else
-            fputc(c, f);
+        } else {
+            fwrite(p, 1, l, f);
+        }
+        p += l;
+        n -= l;
     }
     fputc('"', f);
 }
@@ -53,6 +68,7 @@ int stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, 
     fprintf(f, "  \"empty_estimates\": %llu,\n", (unsigned long long)st->empty_estimates);
     fprintf(f, "  \"bytes_photon_map\": %llu,\n", (unsigned long long)st->bytes_photon_map);
     fprintf(f, "  \"bytes_representatives\": %llu,\n", (unsigned long long)st->bytes_representatives);
+    fprintf(f, "  \"underflow_pixels\": %llu,\n", (unsigned long long)st->underflow_pixels);
     fprintf(f, "  \"nonfinite_pixels\": %llu\n}\n", (unsigned long long)st->nonfinite_pixels);
     return ferror(f) ? -1 : 0;
 }

@@ -19,6 +19,7 @@ typedef struct {
     uint64_t eye_depth_limit_hits;/* specular chains cut at the depth limit */
     uint64_t empty_estimates;     /* diffuse hits with no photon / no agreeing representative in range */
     uint64_t nonfinite_pixels;
+    uint64_t underflow_pixels;    /* a non-zero radiance below the smallest normal float (stored as 0 or subnormal) */
     double max_radius;            /* search radius cap used, scene units */
     uint64_t bytes_photon_map;    /* photon map (tree + payload) */
     uint64_t bytes_representatives;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The test runner behind `make test`: the unit tests, the same unit tests
 # under AddressSanitizer + UndefinedBehaviorSanitizer, then every
-# tests/*.test.sh script. Each part prints "N passed, N failed"; this script
+# tests/*.test.sh script, then the command-line and hostile-input scripts
+# again against build/san/photonmap (photonmap itself under ASan+UBSan). Each part prints "N passed, N failed"; this script
 # adds them up, prints the total last, and exits non-zero on any failure.
 set -u
 cd "$(dirname "$0")/.."
@@ -36,6 +37,11 @@ UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
 for t in tests/*.test.sh; do
   [ -e "$t" ] || continue
   run_part "$t" bash "$t"
+done
+for t in tests/cli.test.sh tests/hostile.test.sh; do
+  ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0} \
+  UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
+  PM=build/san/photonmap run_part "$t (photonmap under ASan+UBSan)" bash "$t"
 done
 
 echo

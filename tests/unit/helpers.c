@@ -1,5 +1,7 @@
-/* helpers: scene-from-text for the unit tests. */
+/* helpers: scene-from-text and renders for the unit tests. */
 #include "helpers.h"
+
+#include "render.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,4 +16,13 @@ scene *helper_scene(const char *text)
         abort();
     }
     return s;
+}
+
+int helper_render(const scene *sc, const config_render *cfg, unsigned threads, image *out, stats_run *st)
+{
+    char err[512];
+    int rc = render_run(sc, cfg, threads, 0, out, st, err, sizeof err);
+    if (rc != RENDER_OK)
+        fprintf(stderr, "  render_run: %s\n", err);
+    return rc;
 }

@@ -128,9 +128,9 @@ void test_precomputed_converges_on_cornell(void)
         cfg.height = 36;
         image conv, pre;
         stats_run st;
-        CHECK(render_run(sc, &cfg, 2, 0, &conv, &st) == 0);
+        CHECK(helper_render(sc, &cfg, 2, &conv, &st) == 0);
         cfg.method = CONFIG_METHOD_PRECOMPUTED;
-        CHECK(render_run(sc, &cfg, 2, 0, &pre, &st) == 0);
+        CHECK(helper_render(sc, &cfg, 2, &pre, &st) == 0);
         CHECK(st.representatives > 0 && st.nonfinite_pixels == 0);
         diff[i] = rel_rmse(&pre, &conv);
         image_free(&conv);
@@ -193,7 +193,7 @@ void test_precomputed_extremes(void)
     stats_run st;
     /* one representative in the whole map */
     cfg.rep_every = 1000000000u;
-    CHECK(render_run(sc, &cfg, 2, 0, &im, &st) == 0);
+    CHECK(helper_render(sc, &cfg, 2, &im, &st) == 0);
     CHECK(st.representatives == 1 && st.nonfinite_pixels == 0);
     CHECK(st.empty_estimates > 0); /* almost every point has no representative in range: black */
     image_free(&im);
@@ -201,13 +201,13 @@ void test_precomputed_extremes(void)
     cfg.rep_every = 4;
     cfg.nn = 100000;
     cfg.photons = 2000;
-    CHECK(render_run(sc, &cfg, 2, 0, &im, &st) == 0);
+    CHECK(helper_render(sc, &cfg, 2, &im, &st) == 0);
     CHECK(st.photons_stored < cfg.nn && st.nonfinite_pixels == 0);
     image_free(&im);
     /* a normal threshold no representative can meet: defined black image */
     cfg.nn = 10;
     cfg.normal_cos = 1.0;
-    CHECK(render_run(sc, &cfg, 2, 0, &im, &st) == 0);
+    CHECK(helper_render(sc, &cfg, 2, &im, &st) == 0);
     CHECK(st.nonfinite_pixels == 0);
     double sum = 0;
     for (size_t i = 0; i < (size_t)cfg.width * cfg.height * 3; i++)

@@ -76,7 +76,7 @@ void test_furnace_sphere(void)
         cfg.rep_every = 64;
         image im;
         stats_run st;
-        CHECK(render_run(sc, &cfg, 2, 0, &im, &st) == 0);
+        CHECK(helper_render(sc, &cfg, 2, &im, &st) == 0);
         double mean = 0, worst = 0;
         size_t n = (size_t)cfg.width * cfg.height * 3;
         for (size_t i = 0; i < n; i++) {
@@ -110,7 +110,7 @@ void test_diffuse_plane_matches_analytic(void)
         cfg.direct = mode ? CONFIG_DIRECT_SHADOW_RAYS : CONFIG_DIRECT_PHOTONS;
         image im;
         stats_run st;
-        CHECK(render_run(sc, &cfg, 2, 0, &im, &st) == 0);
+        CHECK(helper_render(sc, &cfg, 2, &im, &st) == 0);
         double sum_ratio = 0, worst = 0;
         int count = 0;
         for (uint32_t y = 0; y < cfg.height; y++) {
@@ -162,9 +162,9 @@ void test_cornell_finite_and_deterministic(void)
         cfg.method = method ? CONFIG_METHOD_PRECOMPUTED : CONFIG_METHOD_CONVENTIONAL;
         image a, b, c;
         stats_run sa, sb, sc3;
-        CHECK(render_run(sc, &cfg, 1, 0, &a, &sa) == 0);
-        CHECK(render_run(sc, &cfg, 2, 0, &b, &sb) == 0);
-        CHECK(render_run(sc, &cfg, 3, 0, &c, &sc3) == 0);
+        CHECK(helper_render(sc, &cfg, 1, &a, &sa) == 0);
+        CHECK(helper_render(sc, &cfg, 2, &b, &sb) == 0);
+        CHECK(helper_render(sc, &cfg, 3, &c, &sc3) == 0);
         size_t bytes = (size_t)cfg.width * cfg.height * 3 * sizeof(float);
         CHECK_MSG(memcmp(a.rgb, b.rgb, bytes) == 0, "method %d: 1 vs 2 threads differ", method);
         CHECK_MSG(memcmp(a.rgb, c.rgb, bytes) == 0, "method %d: 1 vs 3 threads differ", method);
@@ -179,7 +179,7 @@ void test_cornell_finite_and_deterministic(void)
         cfg.seed = 100;
         image d;
         stats_run sd;
-        CHECK(render_run(sc, &cfg, 2, 0, &d, &sd) == 0);
+        CHECK(helper_render(sc, &cfg, 2, &d, &sd) == 0);
         CHECK(memcmp(a.rgb, d.rgb, bytes) != 0);
         image_free(&a);
         image_free(&b);

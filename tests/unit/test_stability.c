@@ -249,13 +249,13 @@ void test_stability_photon_counts(void)
         /* n = 1 */
         config_render c = small_cfg(4000, 1);
         c.method = meth;
-        CHECK(render_run(sc, &c, 2, 0, &im, &st) == 0);
+        CHECK(helper_render(sc, &c, 2, &im, &st) == 0);
         CHECK(st.nonfinite_pixels == 0 && mean_radiance(&im) > 0.0);
         image_free(&im);
         /* P_e = 1: a handful of stored photons, n far beyond them */
         c = small_cfg(1, 50);
         c.method = meth;
-        CHECK(render_run(sc, &c, 2, 0, &im, &st) == 0);
+        CHECK(helper_render(sc, &c, 2, &im, &st) == 0);
         CHECK(st.photons_stored >= 1 && st.photons_stored < 50);
         CHECK(st.nonfinite_pixels == 0);
         CHECK(st.empty_estimates > 0);
@@ -263,26 +263,26 @@ void test_stability_photon_counts(void)
         /* n = and > the stored count: r = R everywhere a photon is in range */
         c = small_cfg(20, 1);
         c.method = meth;
-        CHECK(render_run(sc, &c, 2, 0, &im, &st) == 0);
+        CHECK(helper_render(sc, &c, 2, &im, &st) == 0);
         uint32_t stored = (uint32_t)st.photons_stored;
         image_free(&im);
         for (uint32_t extra = 0; extra < 2; extra++) {
             c = small_cfg(20, stored + extra * 1000);
             c.method = meth;
-            CHECK(render_run(sc, &c, 2, 0, &im, &st) == 0);
+            CHECK(helper_render(sc, &c, 2, &im, &st) == 0);
             CHECK(st.photons_stored == stored && st.nonfinite_pixels == 0);
             image_free(&im);
         }
         /* P_e = 0: documented black image (photons, shadow-ray direct light aside) */
         c = small_cfg(0, 50);
         c.method = meth;
-        CHECK(render_run(sc, &c, 2, 0, &im, &st) == 0);
+        CHECK(helper_render(sc, &c, 2, &im, &st) == 0);
         CHECK(st.photons_stored == 0 && st.nonfinite_pixels == 0);
         CHECK(mean_radiance(&im) == 0.0);
         CHECK(st.empty_estimates > 0);
         image_free(&im);
         c.direct = CONFIG_DIRECT_SHADOW_RAYS;
-        CHECK(render_run(sc, &c, 2, 0, &im, &st) == 0);
+        CHECK(helper_render(sc, &c, 2, &im, &st) == 0);
         CHECK(st.nonfinite_pixels == 0 && mean_radiance(&im) > 0.0); /* direct light only */
         image_free(&im);
     }
@@ -292,7 +292,7 @@ void test_stability_photon_counts(void)
 /* Renders and returns the image (caller frees) with stats. */
 static void render_small(const scene *sc, const config_render *c, image *im, stats_run *st)
 {
-    CHECK(render_run(sc, c, 2, 0, im, st) == 0);
+    CHECK(helper_render(sc, c, 2, im, st) == 0);
     CHECK_MSG(st->nonfinite_pixels == 0, "%llu non-finite pixels", (unsigned long long)st->nonfinite_pixels);
 }
 
@@ -336,16 +336,16 @@ void test_stability_scene_scale(void)
     image ref;
     stats_run st;
     render_small(sc, &c, &ref, &st);
-    double mref = mean_radiance(&ref), rref = render_max_radius(sc, &c);
+    double mref = mean_radiance(&ref), rref = st.max_radius;
     CHECK(mref > 0.0);
     scene_free(sc);
     const double scales[] = {1e-3, 1e3, 1e-15};
     for (int k = 0; k < 3; k++) {
         double s = scales[k];
         sc = cornell(s, 12.566371);
-        CHECK_REL(render_max_radius(sc, &c), s * rref, 1e-12);
         image im;
         render_small(sc, &c, &im, &st);
+        CHECK_REL(st.max_radius, s * rref, 1e-6);
         CHECK_REL(mean_radiance(&im) * s * s, mref, 1e-3);
         /* per pixel: the same photon paths; rare pixels may differ by an
          * epsilon decision, so compare the fraction of pixels that differ */
