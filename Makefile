@@ -31,7 +31,7 @@ TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 IMGMETRICS := $(BUILD)/imgmetrics
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
-.PHONY: all deps test help clean reproduce-table figures resolution bench reference reference-small fuzz
+.PHONY: all deps test help clean reproduce-table figures resolution estimator-bias bench reference reference-small fuzz
 all: $(BUILD)/photonmap $(IMGMETRICS) ## build build/photonmap and build/imgmetrics
 deps: $(DEPS_STAMP) ## install the missing Debian packages (scripts/install-deps.sh, once)
 test: all unit-tests $(BUILD)/san/photonmap ## every test; ends with "N passed, N failed" (README)
@@ -39,6 +39,7 @@ test: all unit-tests $(BUILD)/san/photonmap ## every test; ends with "N passed, 
 reproduce-table: ## the paper's Table 1 beside ours -> results/table1.{md,csv} (experiments/table.mk)
 figures: ## Figure 3, error maps, trade-off and time plots -> results/figures/ (after reproduce-table)
 resolution: ## cheapest settings per output size -> results/resolution.md
+estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias.md
 bench: ## kNN, lookup and eye-pass benchmarks -> results/bench.md
 reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one
@@ -100,6 +101,7 @@ include experiments/config.mk
 include experiments/table.mk
 include experiments/resolution.mk
 include experiments/figures.mk
+include experiments/estimator-bias.mk
 include experiments/bench.mk
 include reference/reference.mk
 include tests/fuzz/fuzz.mk

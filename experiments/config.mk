@@ -44,5 +44,17 @@ RES_REF ?= ours
 # make figures
 FIG_SIZE ?= 1024x768
 
+# make estimator-bias: the analytic scene, every n, method and estimate
+BIAS_SCENE ?= scenes/furnace.scene
+BIAS_NNS ?= 2 3 5 10 20 50 100 200
+BIAS_SEEDS ?= 20
+BIAS_PHOTONS ?= 50000
+BIAS_SIZE ?= 48x36
+BIAS_DIR ?= $(RESULTS)/cells/estimator-bias
+BIAS_OUT ?= $(RESULTS)/estimator-bias
+
+# the statistics (numpy, scipy, pandas) run on Debian's Python
+PYTHON ?= /usr/bin/python3
+
 # make bench
 BENCH_BIN := $(BUILD)/bench/bench

@@ -1,6 +1,8 @@
 /* config: the default render configuration and the names of its enums. */
 #include "config.h"
 
+#include <stddef.h>
+
 config_render config_defaults(void)
 {
     config_render c;
@@ -21,7 +23,27 @@ config_render config_defaults(void)
     c.eye_depth = CONFIG_DEFAULT_EYE_DEPTH;
     c.reps_shared = 0;
     c.allow_nonfinite = 0;
+    c.bias_correction = 0;
     return c;
+}
+
+const char *config_check(const config_render *c)
+{
+    if (c->nn < CONFIG_MIN_NN)
+        return "--nn 1: the estimate has no finite mean (1/r^2 of the nearest photon diverges); use --nn 2 or more";
+    if (c->method != CONFIG_METHOD_PRECOMPUTED)
+        return NULL;
+    if (!c->bias_correction && c->nn < 3)
+        return "--method precomputed with --nn 2: a representative is its own nearest photon, so r is the "
+               "distance to one other photon and the estimate has no finite mean (it follows n/(n-2)); use --nn 3 "
+               "or more, or --bias-correction";
+    if (c->bias_correction && c->rep_every < 2)
+        return "--bias-correction with --method precomputed estimates at representatives from the photons that "
+               "are not representatives; --rep-every 1 leaves none: use --rep-every 2 or more";
+    if (c->bias_correction && c->reps_shared)
+        return "--bias-correction with --method precomputed keeps the representatives out of the photon tree; "
+               "--rep-tree shared finds them there: use --rep-tree separate";
+    return NULL;
 }
 
 const char *config_method_name(config_method m)

@@ -26,7 +26,9 @@ typedef struct {
     uint32_t eye_depth;       /* maximum specular bounces of an eye path */
     int reps_shared;          /* precomputed: 1 = find representatives in the photon tree by flag,
                                  0 = in their own kd-tree (faster, see README) */
-    int allow_nonfinite;      /* 1: a non-finite pixel is reported but does not fail the run */
+    int allow_nonfinite;      /* 1: a pixel out of the float range is reported but does not fail the run */
+    int bias_correction;      /* 1: the unbiased estimate (README): photons strictly inside r; for the
+                                 precomputed method, from the photons that are not representatives */
 } config_render;
 
 #define CONFIG_DEFAULT_PHOTONS 100000u
@@ -48,6 +50,7 @@ typedef struct {
 
 /* Limits that the command line enforces (user errors beyond them exit 2). */
 #define CONFIG_MAX_PHOTONS 2000000000ull
+#define CONFIG_MIN_NN 2u
 #define CONFIG_MAX_NN 100000u
 #define CONFIG_MAX_SIDE 16384u
 #define CONFIG_MAX_PIXELS (64ull * 1024 * 1024)
@@ -60,6 +63,9 @@ typedef struct {
 
 /* The defaults above as a struct; never fails. */
 config_render config_defaults(void);
+/* NULL when the settings of c go together, else why they do not (a user
+ * error: degenerate estimates are refused rather than computed). */
+const char *config_check(const config_render *c);
 /* "conventional"/"precomputed", "photons"/"shadow-rays". */
 const char *config_method_name(config_method m);
 const char *config_direct_name(config_direct d);

@@ -3,6 +3,7 @@
 #include "estimate.h"
 
 #include <assert.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -42,10 +43,10 @@ void est_scratch_delete(est_scratch *s, unsigned threads)
     free(s);
 }
 
-est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius)
+est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius, int corrected)
 {
     double r = max_radius / m->scale;
-    est_gather g = {nn, r * r};
+    est_gather g = {nn, r * r, corrected, m->count > 0 ? (double)m->stored / (double)m->count : 1.0};
     return g;
 }
 
@@ -60,10 +61,13 @@ static vec3 irradiance_at(const photons_map *m, const float q[3], vec3 n, const 
     *found = k;
     if (k == 0)
         return vec_make(0, 0, 0);
+    /* the paper counts all k; the corrected estimate only those strictly
+     * inside the radius r that the n-th photon (or the cap) defines */
+    float inside = g->corrected ? (k < g->nn ? (float)g->max_r2 : r2f) : INFINITY;
     double sum[3] = {0, 0, 0};
     for (uint32_t j = 0; j < k; j++) {
         const photons_record *p = &m->ph[s->idx[j]];
-        if (p->dir[0] * n.x + p->dir[1] * n.y + p->dir[2] * n.z < 0.0) {
+        if (p->dir[0] * n.x + p->dir[1] * n.y + p->dir[2] * n.z < 0.0 && s->d2[j] < inside) {
             sum[0] += p->power[0];
             sum[1] += p->power[1];
             sum[2] += p->power[2];
@@ -73,7 +77,7 @@ static vec3 irradiance_at(const photons_map *m, const float q[3], vec3 n, const 
     double floor2 = g->max_r2 * (EST_MIN_RADIUS_FRAC * EST_MIN_RADIUS_FRAC);
     if (r2 < floor2)
         r2 = floor2;
-    double inv = 1.0 / (VEC_PI * r2);
+    double inv = g->boost / (VEC_PI * r2);
     return vec_make(sum[0] * inv, sum[1] * inv, sum[2] * inv);
 }
 

@@ -24,15 +24,22 @@
 
 #define EST_MIN_RADIUS_FRAC 1e-3
 
-/* A gather: how many photons, and the squared radius cap in the map's
- * frame (est_gather_make converts from scene units). */
+/* A gather: how many photons, the squared radius cap in the map's frame
+ * (est_gather_make converts from scene units), and which estimate: the
+ * paper's (all n photons over pi r^2, r the n-th one's distance) or the
+ * corrected one (only the photons strictly inside r, which is unbiased for a
+ * uniform density: the paper's follows n/(n-1)), times `boost` = photons
+ * stored / photons in the tree, which restores the density when the map
+ * leaves the representatives out. */
 typedef struct {
     uint32_t nn;
     double max_r2;
+    int corrected;
+    double boost;
 } est_gather;
 
 /* The gather of nn photons within max_radius scene units on map m. */
-est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius);
+est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius, int corrected);
 
 typedef struct {
     float irradiance[3]; /* relative to photons_map.unit / scale^2 */

@@ -25,6 +25,17 @@ void image_free(image *im)
     im->width = im->height = 0;
 }
 
+void image_mean(const image *im, double mean[3])
+{
+    double sum[3] = {0, 0, 0};
+    size_t n = (size_t)im->width * im->height;
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++)
+            sum[c] += im->rgb[3 * i + (size_t)c];
+    for (int c = 0; c < 3; c++)
+        mean[c] = n ? sum[c] / (double)n : 0.0;
+}
+
 uint64_t image_count_nonfinite(const image *im)
 {
     uint64_t bad = 0;

@@ -19,6 +19,8 @@ int image_init(image *im, uint32_t width, uint32_t height);
 void image_free(image *im);
 /* Pixels with a non-finite channel. */
 uint64_t image_count_nonfinite(const image *im);
+/* The mean of each channel over all pixels (accumulated in double). */
+void image_mean(const image *im, double mean[3]);
 
 /* Writes a linear float RGB OpenEXR (ZIP compressed) to `path` by way of a
  * temporary file. Returns 0, or -1 with "path: reason" in err. */

@@ -50,8 +50,13 @@ static const cli_option render_options[] = {
     {"--photons", CLI_U64, "N", RC(photons), 0, CONFIG_MAX_PHOTONS, 0, 0, NULL, 0,
      "photons emitted from the light, P_e; 0: no photon map (a black image, or direct light only "
      "with --direct shadow-rays)", NULL},
-    {"--nn", CLI_U32, "N", RC(nn), 1, CONFIG_MAX_NN, 0, 0, NULL, 0,
-     "nearest photons per estimate / per precompute, n", NULL},
+    {"--nn", CLI_U32, "N", RC(nn), CONFIG_MIN_NN, CONFIG_MAX_NN, 0, 0, NULL, 0,
+     "nearest photons per estimate / per precompute, n (n = 1 has no finite mean; the precomputed method "
+     "needs n >= 3 without --bias-correction)", NULL},
+    {"--bias-correction", CLI_FLAG, NULL, RC(bias_correction), 0, 0, 0, 0, NULL, 1,
+     "the unbiased estimate instead of the paper's: count only the photons strictly inside r (the paper's "
+     "follows n/(n-1)); precomputed: estimate at representatives from the other, non-representative photons",
+     NULL},
     {"--width", CLI_U32, "W", RC(width), 1, CONFIG_MAX_SIDE, 0, 0, NULL, 0, "image width in pixels", NULL},
     {"--height", CLI_U32, "H", RC(height), 1, CONFIG_MAX_SIDE, 0, 0, NULL, 0, "image height in pixels", NULL},
     {"--subpixels", CLI_U32, "S", RC(subpixels), 1, CONFIG_MAX_SUBPIXELS, 0, 0, NULL, 0,
@@ -219,6 +224,9 @@ static int cmd_render(int argc, char **argv)
     if (rc != CLI_PARSED)
         return rc;
     const config_render *cfg = &a.cfg;
+    const char *why = config_check(cfg);
+    if (why)
+        return cli_error(&render_command, "%s", why);
     if ((uint64_t)cfg->width * cfg->height > CONFIG_MAX_PIXELS)
         return cli_error(&render_command, "an image of %ux%u pixels is too large (at most %llu pixels)", cfg->width,
                          cfg->height, (unsigned long long)CONFIG_MAX_PIXELS);

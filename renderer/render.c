@@ -218,7 +218,10 @@ static int step_trace(render_state *rs)
 static int step_build(render_state *rs)
 {
     int64_t t0 = stats_now_ns();
-    if (photons_build_map(&rs->list, 0, &rs->map))
+    /* the corrected precomputed estimate gathers at representatives from the
+     * other photons only: the map leaves the representatives out */
+    int leave_out = rs->cfg->bias_correction && rs->cfg->method == CONFIG_METHOD_PRECOMPUTED;
+    if (photons_build_map(&rs->list, leave_out, &rs->map))
         return -1;
     rs->st->build = seconds_since(t0);
     rs->st->bytes_photon_map = photons_map_bytes(&rs->map);
@@ -263,7 +266,7 @@ static int check_precision(const render_state *rs, char *err, size_t errlen)
 static int step_precompute(render_state *rs)
 {
     const config_render *cfg = rs->cfg;
-    est_gather g = est_gather_make(&rs->map, cfg->nn, rs->max_radius);
+    est_gather g = est_gather_make(&rs->map, cfg->nn, rs->max_radius, cfg->bias_correction);
     progress prog;
     progress_begin(&prog, "precompute", rs->map.reps, rs->show_progress);
     int64_t t0 = stats_now_ns();
@@ -287,7 +290,7 @@ static int step_eye(render_state *rs, image *out)
     c.cfg = cfg;
     c.map = &rs->map;
     c.reps = &rs->reps;
-    c.gather = est_gather_make(&rs->map, cfg->nn, rs->max_radius);
+    c.gather = est_gather_make(&rs->map, cfg->nn, rs->max_radius, cfg->bias_correction);
     c.camera = render_camera_make(rs->sc, (double)cfg->height / (double)cfg->width);
     c.light_intensity = vec_scale(rs->sc->light.power, 1.0 / (4.0 * VEC_PI));
     c.img = out;
@@ -311,6 +314,7 @@ static int step_eye(render_state *rs, image *out)
             rs->st->underflow_pixels += c.counts[t].underflow;
         }
         rs->st->nonfinite_pixels = image_count_nonfinite(out);
+        image_mean(out, rs->st->mean_radiance);
     }
     est_scratch_delete(c.scratch, rs->threads);
     free(c.counts);

@@ -47,6 +47,7 @@ int stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, 
     json_string(f, scene_path);
     fprintf(f, ",\n  \"method\": \"%s\",\n", config_method_name(cfg->method));
     fprintf(f, "  \"direct\": \"%s\",\n", config_direct_name(cfg->direct));
+    fprintf(f, "  \"estimate\": \"%s\",\n", cfg->bias_correction ? "corrected" : "paper");
     fprintf(f, "  \"photons_emitted\": %llu,\n", (unsigned long long)st->photons_emitted);
     fprintf(f, "  \"photons_stored\": %llu,\n", (unsigned long long)st->photons_stored);
     fprintf(f, "  \"photon_paths_truncated\": %llu,\n", (unsigned long long)st->photon_paths_truncated);
@@ -68,6 +69,8 @@ int stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, 
     fprintf(f, "  \"empty_estimates\": %llu,\n", (unsigned long long)st->empty_estimates);
     fprintf(f, "  \"bytes_photon_map\": %llu,\n", (unsigned long long)st->bytes_photon_map);
     fprintf(f, "  \"bytes_representatives\": %llu,\n", (unsigned long long)st->bytes_representatives);
+    fprintf(f, "  \"mean_radiance\": [%.9g, %.9g, %.9g],\n", st->mean_radiance[0], st->mean_radiance[1],
+            st->mean_radiance[2]);
     fprintf(f, "  \"underflow_pixels\": %llu,\n", (unsigned long long)st->underflow_pixels);
     fprintf(f, "  \"nonfinite_pixels\": %llu\n}\n", (unsigned long long)st->nonfinite_pixels);
     return ferror(f) ? -1 : 0;

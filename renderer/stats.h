@@ -18,6 +18,7 @@ typedef struct {
     uint64_t samples;             /* eye rays from the camera */
     uint64_t eye_depth_limit_hits;/* specular chains cut at the depth limit */
     uint64_t empty_estimates;     /* diffuse hits with no photon / no agreeing representative in range */
+    double mean_radiance[3];      /* over all pixels, per channel (linear, as in the image) */
     uint64_t nonfinite_pixels;
     uint64_t underflow_pixels;    /* a non-zero radiance below the smallest normal float (stored as 0 or subnormal) */
     double max_radius;            /* search radius cap used, scene units */

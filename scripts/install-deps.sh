@@ -13,6 +13,9 @@ PACKAGES=(
   libclang-rt-14-dev                # sanitizer and libFuzzer runtimes for clang
   time                              # /usr/bin/time: CPU seconds of every table cell
   valgrind linux-perf python3       # make bench: instruction counts, profile, JSON
+  python3-numpy python3-scipy       # statistics of the experiments (CIs, bootstrap, fits)
+  python3-pandas python3-matplotlib # tables and figures
+  python3-openimageio               # EXR pixels in the analysis (OpenImageIO's Python binding)
 )
 
 missing=()

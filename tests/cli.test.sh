@@ -62,7 +62,7 @@ check "photonmap --help: both subcommands, exit 0" bash -c "$PM --help | grep -q
 check "export-pov: malformed option, same message style as render, exit 2" \
   expect_exit 2 "^photonmap: --width: expected an integer in \[1, 16384\], got 'wide'" $PM export-pov scenes/cornell.scene --width wide
 check "unknown command: exit 2" expect_exit 2 "unknown command 'draw'" $PM draw
-check "--nn 0: exit 2" expect_exit 2 "--nn: expected an integer in \[1," $PM render scenes/cornell.scene --nn 0
+check "--nn 0: exit 2" expect_exit 2 "--nn: expected an integer in \[2," $PM render scenes/cornell.scene --nn 0
 check "--photons -5: exit 2" expect_exit 2 "--photons: expected an integer" $PM render scenes/cornell.scene --photons -5
 check "--width 1e9: exit 2" expect_exit 2 "--width: expected an integer" $PM render scenes/cornell.scene --width 1e9
 check "--width 99999: exit 2" expect_exit 2 "--width: expected an integer in \[1, 16384\]" $PM render scenes/cornell.scene --width 99999

@@ -120,7 +120,7 @@ check "cli: --photons '5 '" bad_opt "--photons: expected an integer" --photons "
 check "cli: --photons 2000000001" bad_opt "--photons: expected an integer in \[0, 2000000000\]" --photons 2000000001
 check "cli: --photons 2^64 overflows" bad_opt "--photons: expected an integer" --photons 18446744073709551616
 check "cli: --photons 2e9: refused up front, map too large" bad_opt "--photons 2000000000 would store about .* at most 2\^32-1" --photons 2000000000
-check "cli: --nn 100001" bad_opt "--nn: expected an integer in \[1, 100000\]" --nn 100001
+check "cli: --nn 100001" bad_opt "--nn: expected an integer in \[2, 100000\]" --nn 100001
 check "cli: --height 0" bad_opt "--height: expected an integer in \[1, 16384\]" --height 0
 check "cli: 16384x16384 too large" bad_opt "16384x16384 pixels is too large \(at most 67108864 pixels\)" --width 16384 --height 16384
 check "cli: --subpixels 17" bad_opt "--subpixels: expected an integer in \[1, 16\]" --subpixels 17

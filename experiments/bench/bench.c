@@ -251,7 +251,7 @@ int main(int argc, char **argv)
             pos[3 * (size_t)i + 2] = map.tree.z[i];
         }
         double max_r = render_max_radius(sc, &cfg, &map);
-        est_gather gather = est_gather_make(&map, cfg.nn, max_r);
+        est_gather gather = est_gather_make(&map, cfg.nn, max_r, 0);
         float max_d2 = (float)gather.max_r2;
         qset mq[2];
         for (int o = 0; o < 2; o++) {

@@ -52,7 +52,7 @@ void test_precomputed_equals_conventional_on_uniform_plane(void)
     CHECK(photons_build_map(&l, 0, &m) == 0);
     est_reps reps;
     const uint32_t nn = 100;
-    est_gather g = est_gather_make(&m, nn, 0.2);
+    est_gather g = est_gather_make(&m, nn, 0.2, 0);
     CHECK(est_precompute(&m, &g, EST_REPS_SEPARATE, 2, NULL, &reps) == 0);
     CHECK(reps.count == 200000);
     est_scratch *s = est_scratch_new(1, nn);
@@ -154,7 +154,7 @@ void test_precomputed_normal_test_at_corner(void)
     photons_map m;
     CHECK(photons_build_map(&l, 0, &m) == 0);
     est_reps reps;
-    est_gather g = est_gather_make(&m, 50, 0.3);
+    est_gather g = est_gather_make(&m, 50, 0.3, 0);
     CHECK(est_precompute(&m, &g, EST_REPS_SEPARATE, 1, NULL, &reps) == 0);
     /* floor E ~ 40000*1e-5/4 = 0.1; wall E ~ 4000*1e-2/4 = 10 */
     rng_stream q = rng_make(9, 0);

@@ -112,7 +112,7 @@ static void make_map(photons_map *m, const float (*pos)[3], uint32_t count, vec3
 /* est_irradiance with a gather of nn photons within max_r scene units. */
 static vec3 irr(const photons_map *m, vec3 x, vec3 n, uint32_t nn, double max_r, est_scratch *s, uint32_t *found)
 {
-    est_gather g = est_gather_make(m, nn, max_r);
+    est_gather g = est_gather_make(m, nn, max_r, 0);
     return est_irradiance(m, x, n, &g, s, found);
 }
 
@@ -218,7 +218,7 @@ void test_stability_no_agreeing_representative(void)
     make_map(&m, (const float(*)[3])pos, 16, down, up_n, 1.0f, PHOTONS_FLAG_REP);
     for (int layout = 0; layout < 2; layout++) {
         est_reps r;
-        est_gather g = est_gather_make(&m, 4, 0.1);
+        est_gather g = est_gather_make(&m, 4, 0.1, 0);
         CHECK(est_precompute(&m, &g, layout ? EST_REPS_SHARED : EST_REPS_SEPARATE, 2, NULL, &r) == 0);
         CHECK(r.count == 16);
         int found = -1;
