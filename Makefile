@@ -31,7 +31,7 @@ TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 IMGMETRICS := $(BUILD)/imgmetrics
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
-.PHONY: all deps test help clean reproduce-table figures resolution estimator-bias bench reference reference-small fuzz
+.PHONY: all deps test help clean reproduce-table figures resolution estimator-bias stability bench reference reference-small fuzz
 all: $(BUILD)/photonmap $(IMGMETRICS) ## build build/photonmap and build/imgmetrics
 deps: $(DEPS_STAMP) ## install the missing Debian packages (scripts/install-deps.sh, once)
 test: all unit-tests $(BUILD)/san/photonmap ## every test; ends with "N passed, N failed" (README)
@@ -40,6 +40,7 @@ reproduce-table: ## the paper's Table 1 beside ours -> results/table1.{md,csv} (
 figures: ## Figure 3, error maps, trade-off and time plots -> results/figures/ (after reproduce-table)
 resolution: ## cheapest settings per output size -> results/resolution.md
 estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias.md
+stability: ## every extreme with its expected value and verdict -> results/stability-extremes.md
 bench: ## kNN, lookup and eye-pass benchmarks -> results/bench.md
 reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one
@@ -48,6 +49,11 @@ help: ## this list
 	@awk -F':.*## ' '/^[a-z][a-z-]*:.*## / { printf "  make %-17s %s\n", $$1, $$2 }' $(firstword $(MAKEFILE_LIST))
 clean: ## remove the build (not results/ or reference/)
 	rm -rf $(BUILD)/obj $(BUILD)/san $(BUILD)/photonmap $(BUILD)/imgmetrics $(BUILD)/unit-tests $(BUILD)/unit-tests-san
+
+stability: $(BUILD)/photonmap
+	@mkdir -p $(RESULTS)
+	$(PYTHON) scripts/stability.py --pm $(BUILD)/photonmap > $(RESULTS)/stability-extremes.md.tmp
+	mv $(RESULTS)/stability-extremes.md.tmp $(RESULTS)/stability-extremes.md
 
 # ---- the build ----
 $(DEPS_STAMP): scripts/install-deps.sh

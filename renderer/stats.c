@@ -1,6 +1,7 @@
 /* stats: clock and JSON writer. */
 #include "stats.h"
 
+#include <math.h>
 #include <string.h>
 #include <time.h>
 
@@ -40,6 +41,16 @@ static void json_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
+/* Writes x as a JSON number, or null when it is not finite (JSON has no
+ * Inf or NaN). */
+static void json_number(FILE *f, double x)
+{
+    if (isfinite(x))
+        fprintf(f, "%.9g", x);
+    else
+        fputs("null", f);
+}
+
 int stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, unsigned threads,
                      const stats_run *st)
 {
@@ -69,8 +80,11 @@ int stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, 
     fprintf(f, "  \"empty_estimates\": %llu,\n", (unsigned long long)st->empty_estimates);
     fprintf(f, "  \"bytes_photon_map\": %llu,\n", (unsigned long long)st->bytes_photon_map);
     fprintf(f, "  \"bytes_representatives\": %llu,\n", (unsigned long long)st->bytes_representatives);
-    fprintf(f, "  \"mean_radiance\": [%.9g, %.9g, %.9g],\n", st->mean_radiance[0], st->mean_radiance[1],
-            st->mean_radiance[2]);
+    fprintf(f, "  \"mean_radiance\": [");
+    for (int c = 0; c < 3; c++) {
+        json_number(f, st->mean_radiance[c]);
+        fputs(c < 2 ? ", " : "],\n", f);
+    }
     fprintf(f, "  \"underflow_pixels\": %llu,\n", (unsigned long long)st->underflow_pixels);
     fprintf(f, "  \"nonfinite_pixels\": %llu\n}\n", (unsigned long long)st->nonfinite_pixels);
     return ferror(f) ? -1 : 0;
