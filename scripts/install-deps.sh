@@ -13,6 +13,10 @@ PACKAGES=(
   libclang-rt-14-dev                # sanitizer and libFuzzer runtimes for clang
   time                              # /usr/bin/time: CPU seconds of every table cell
   valgrind linux-perf python3       # make bench: instruction counts, profile, JSON
+  python3-numpy python3-scipy       # experiments/analysis: medians, CIs, bootstrap, interpolation
+  python3-pandas                    # experiments/analysis: runs.csv and tables, columns by name
+  python3-openimageio               # experiments/analysis: reads the renders' EXRs
+  python3-matplotlib                # plots (figures to be redone on the analysis layer)
 )
 
 missing=()
