@@ -107,6 +107,18 @@ def pareto_front(times, errors):
     return front
 
 
+def front_segment(front_errors, target):
+    """(i, j): the indices of the two front cells whose errors bracket
+    TARGET (i == j when a cell's error equals it), or None when TARGET lies
+    outside the front's errors (FRONT_ERRORS fall, as pareto_front orders
+    them)."""
+    e = np.asarray(front_errors, dtype=np.float64)
+    if e.size == 0 or not (target > 0) or target > e[0] or target < e[-1]:
+        return None
+    j = int(np.flatnonzero(e <= target)[0])
+    return (j, j) if e[j] == target else (j - 1, j)
+
+
 def time_at_error(front_times, front_errors, target):
     """The time a front needs to reach error TARGET, interpolated linearly in
     (log time, log error) between the two front cells around it.
@@ -117,16 +129,14 @@ def time_at_error(front_times, front_errors, target):
     fastest cell is more accurate: the time is only bounded above)."""
     t = np.asarray(front_times, dtype=np.float64)
     e = np.asarray(front_errors, dtype=np.float64)
-    if t.size == 0 or not (target > 0) or target > e[0] or target < e[-1]:
+    seg = front_segment(e, target)
+    if seg is None:
         return math.nan
-    if t.size == 1 or target == e[0]:
-        return float(t[0])
-    # e falls: first segment whose lower end is at or below the target
-    i = int(np.flatnonzero(e <= target)[0])
-    if e[i] == target:
+    i, j = seg
+    if i == j:
         return float(t[i])
-    lt0, lt1 = math.log(t[i - 1]), math.log(t[i])
-    le0, le1 = math.log(e[i - 1]), math.log(e[i])
+    lt0, lt1 = math.log(t[i]), math.log(t[j])
+    le0, le1 = math.log(e[i]), math.log(e[j])
     return math.exp(lt0 + (math.log(target) - le0) * (lt1 - lt0) / (le1 - le0))
 
 
