@@ -153,6 +153,19 @@ check "reproduce-runs: a corrected render runs with --bias-correction, done or n
   bash -c "grep -q -- '--bias-correction' $ROOT/conventional-corrected-p2000-n10/seed1.run.json &&
            grep -qE '\"exit\": (0|2),' $ROOT/conventional-corrected-p2000-n10/seed1.run.json"
 
+make -s reproduce-table "${ARGS[@]}" TAG=v PM_ARGS="--rep-every 2" METHODS=precomputed CONV_RUNROOT="$ROOT" \
+  PHOTONS=4000 NNS=10 SEEDS=2 > "$TMP/variant.log" 2>&1
+check "reproduce-table: a variant (TAG, PM_ARGS) in its own directory, compared with CONV_RUNROOT's conventional renders" pycheck '
+r = pd.read_csv(f"{R}/runs-v.csv")
+assert sorted(set(r["role"])) == ["comparison", "grid"] and (r.loc[r["role"] == "grid", "tag"] == "v").all(), r
+assert (r.loc[r["role"] == "comparison", "method"] == "conventional").all() and (r["status"] == "ok").all()
+assert (r.loc[r["role"] == "grid", "rep_every"] == 2).all() and (r.loc[r["role"] == "grid", "relmse_conv"] > 0).all()
+assert all(os.path.isdir(p) for p in r.loc[r["role"] == "grid", "run"].map(os.path.dirname)), r["run"]
+assert all("/cornell-32x24-s2-t1-v/" in p for p in r.loc[r["role"] == "grid", "run"])
+t = pd.read_csv(f"{R}/table1-v.csv")
+assert len(t) == 1 and t["conv_cpu_median_s"].iloc[0] >= 0 and t["ratio_percent"].iloc[0] > 0, t
+assert os.path.isfile(f"{R}/equal-error-v.md") and os.path.isfile(f"{R}/table1-v.md")
+'
 make -s resolution "${ARGS[@]}" PM="$PM" SEEDS=2 RES_SIZES="16x12 32x24" RES_REF_PHOTONS=5000 RES_REF_NN=20 \
   RES_TARGETS="1 0.000001" > "$TMP/res.log" 2>&1
 check "resolution: table with one row per target and a column per size" \

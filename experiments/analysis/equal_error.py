@@ -33,9 +33,13 @@ TIME_LABEL = {"cpu_s": "CPU seconds of the process (user + system, /usr/bin/time
 
 def cell_samples(runs, estimate, method, time_col):
     """{(photons, nn): (times, errors)} per-seed arrays of the ok renders of
-    one method and estimate that have an error against the reference."""
-    sel = runs[(runs["role"] == "grid") & (runs["status"] == "ok") & (runs["estimate"] == estimate)
-               & (runs["method"] == method)]
+    one method and estimate that have an error against the reference (for
+    the conventional method of a variant without its own, the renders it is
+    compared with)."""
+    mine = runs[(runs["estimate"] == estimate) & (runs["method"] == method)]
+    # a variant's conventional renders are the ones it is compared with
+    role = "grid" if (mine["role"] == "grid").any() or method != "conventional" else "comparison"
+    sel = mine[(mine["role"] == role) & (mine["status"] == "ok")]
     sel = sel[np.isfinite(sel["relmse_ref"].astype(float)) & np.isfinite(sel[time_col].astype(float))]
     out = {}
     for (p, n), g in sel.groupby(["photons", "nn"], sort=True):

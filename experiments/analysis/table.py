@@ -72,10 +72,11 @@ def summarize(runs, cells, paper, rng, replicates):
     for photons, nn, method in keys:
         row = {"photons": photons, "nn": nn, "method": method, "width": first["width"], "height": first["height"],
                "subpixels": first["subpixels"], "tag": first["tag"] if isinstance(first["tag"], str) else ""}
-        row["paper_s"] = row["paper_ratio_percent"] = math.nan
+        row["paper_s"] = row["paper_ratio_percent"] = row["paper_conv_s"] = math.nan
         pap = paper[(paper["emitted_kphotons"] * 1000 == photons) & (paper["nn"] == nn)]
         if len(pap):
             p = pap.iloc[0]
+            row["paper_conv_s"] = p["conventional_s"]
             row["paper_s"] = p["conventional_s"] if method == "conventional" else p["proposed_s"]
             row["paper_ratio_percent"] = 100.0 if method == "conventional" else p["ratio_percent"]
         for est in estimates:
@@ -108,6 +109,14 @@ def summarize(runs, cells, paper, rng, replicates):
                 row[f"{col}_mean{sfx}"], row[f"{col}_ci95{sfx}"] = stats.t_interval(v)
             cell = cells[(cells["photons"] == photons) & (cells["nn"] == nn) & (cells["method"] == method)
                          & (cells["estimate"] == est)]
+            # the conventional cell this row is compared with (itself for a
+            # conventional row of the grid; CONV_RUNROOT's for a variant)
+            for col, name in (("total_s", "total"), ("cpu_s", "cpu")):
+                med, lo, hi = stats.median_range(ok_values(conv, col))
+                row[f"conv_{name}_median_s{sfx}"], row[f"conv_{name}_min_s{sfx}"], row[f"conv_{name}_max_s{sfx}"] = \
+                    med, lo, hi
+            v = ok_values(conv, "relmse_ref")
+            row[f"conv_relmse_ref_mean{sfx}"], row[f"conv_relmse_ref_ci95{sfx}"] = stats.t_interval(v[np.isfinite(v)])
             row[f"bias_ref{sfx}"] = cell["bias_ref"].iloc[0] if len(cell) else math.nan
             row[f"variance_ref{sfx}"] = cell["variance_ref"].iloc[0] if len(cell) else math.nan
         row["relmse_ref_floor"] = cells["relmse_ref_floor"].iloc[0] if len(cells) else math.nan
@@ -136,14 +145,10 @@ def rank_sentences(table, estimates):
     """Markdown lines that rank numbers only where the 95% intervals are
     disjoint, and name the cells where they overlap."""
     lines = []
-    by_cell = {}
-    for _, r in table.iterrows():
-        by_cell.setdefault((r["photons"], r["nn"]), {})[r["method"]] = r
-    pairs = [(c, m) for c, m in by_cell.items() if "conventional" in m and "precomputed" in m]
-    if "paper" in estimates and pairs:
+    prec = [r for _, r in table.iterrows() if r["method"] != "conventional"]
+    if "paper" in estimates and prec:
         below, above, other = [], [], []
-        for c, m in pairs:
-            p = m["precomputed"]
+        for p in prec:
             lo, hi = p.get("cpu_ratio_ci95_lo", math.nan), p.get("cpu_ratio_ci95_hi", math.nan)
             if isnum(hi) and hi < 100:
                 below.append(cell_label(p))
@@ -151,7 +156,7 @@ def rank_sentences(table, estimates):
                 above.append(cell_label(p))
             else:
                 other.append(cell_label(p))
-        parts = [f"lies below 100% (precomputed faster) in {len(below)} of {len(pairs)} cells"]
+        parts = [f"lies below 100% (precomputed faster) in {len(below)} of {len(prec)} cells"]
         if above:
             parts.append(f"above 100% (precomputed slower) in {cell_list(above)}")
         if other:
@@ -161,9 +166,9 @@ def rank_sentences(table, estimates):
     for est in estimates:
         sfx = suffix(est)
         higher, lower, overlap, na = [], [], [], []
-        for c, m in pairs:
-            a, b = interval(m["precomputed"], "relmse_ref", sfx), interval(m["conventional"], "relmse_ref", sfx)
-            label = cell_label(m["precomputed"])
+        for p in prec:
+            a, b = interval(p, "relmse_ref", sfx), interval(p, "conv_relmse_ref", sfx)
+            label = cell_label(p)
             if math.isnan(a[0]) or math.isnan(b[0]):
                 na.append(label)
             elif stats.intervals_overlap(a, b):
@@ -173,14 +178,15 @@ def rank_sentences(table, estimates):
             else:
                 lower.append(label)
         if higher or lower or overlap:
-            s = f"- **Error against the reference, {est} estimate** (relMSE, 95% t-intervals over seeds): precomputed "
+            s = (f"- **Error against the reference, {est} estimate** (relMSE, 95% t-intervals over seeds), "
+                 "precomputed vs conventional: ")
             parts = []
             if higher:
-                parts.append(f"higher than conventional in {cell_list(higher)}")
+                parts.append(f"precomputed higher in {cell_list(higher)}")
             if lower:
-                parts.append(f"lower than conventional in {cell_list(lower)}")
+                parts.append(f"precomputed lower in {cell_list(lower)}")
             if overlap:
-                parts.append(f"the intervals overlap (no ranking) in {cell_list(overlap)}")
+                parts.append(f"intervals overlap (no ranking) in {cell_list(overlap)}")
             lines.append(s + "; ".join(parts) + "." + (f" No interval in {cell_list(na)}." if na else ""))
     if "paper" in estimates and len(estimates) > 1:
         for est in [e for e in estimates if e != "paper"]:
@@ -200,12 +206,13 @@ def rank_sentences(table, estimates):
                 if better or worse or overlap:
                     parts = []
                     if better:
-                        parts.append(f"lower relMSE than the paper's in {cell_list(better)}")
+                        parts.append(f"{est} lower in {cell_list(better)}")
                     if worse:
-                        parts.append(f"higher relMSE than the paper's in {cell_list(worse)}")
+                        parts.append(f"{est} higher in {cell_list(worse)}")
                     if overlap:
-                        parts.append(f"the intervals overlap (no ranking) in {cell_list(overlap)}")
-                    lines.append(f"- **{est} vs paper estimate, {method}**: " + "; ".join(parts) + ".")
+                        parts.append(f"intervals overlap (no ranking) in {cell_list(overlap)}")
+                    lines.append(f"- **{est} vs paper estimate, {method}** (relMSE against the reference, 95% "
+                                 "t-intervals): " + "; ".join(parts) + ".")
     floor = table["relmse_ref_floor"].iloc[0] if len(table) else math.nan
     if isnum(floor):
         for est in estimates:
@@ -288,9 +295,13 @@ def markdown(table, runs, estimates, args):
                 ""]
         rows = []
         for (p, n), m in pairs.items():
-            c, q = m.get("conventional", {}), m.get("precomputed", {})
+            # the precomputed row carries the conventional cell it is compared with
+            q = m.get("precomputed", {})
+            c = m.get("conventional", {}) if not len(q) else \
+                {k[len("conv_"):]: v for k, v in q.items() if k.startswith("conv_")}
             g = (lambda d, k: d.get(k, math.nan) if len(d) else math.nan)
-            rows.append([p, n, fmt(g(c, "paper_s")), fmt(g(q, "paper_s")), fmt(g(q, "paper_ratio_percent")),
+            any_row = q if len(q) else c
+            rows.append([p, n, fmt(g(any_row, "paper_conv_s")), fmt(g(q, "paper_s")), fmt(g(q, "paper_ratio_percent")),
                          fmt_range(g(c, "total_median_s"), g(c, "total_min_s"), g(c, "total_max_s")),
                          fmt_range(g(q, "total_median_s"), g(q, "total_min_s"), g(q, "total_max_s")),
                          fmt_ci(g(q, "ratio_percent"), g(q, "ratio_ci95_lo"), g(q, "ratio_ci95_hi"), 1),
