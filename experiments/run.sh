@@ -53,7 +53,7 @@ cmd=("$PM" render "$SCENE" --method "$method" --photons "$photons" --nn "$nn" --
 load=$(cut -d' ' -f1 /proc/loadavg)
 rc=0
 /usr/bin/time -f "%U %S" -o "$base.tmp.time" "${cmd[@]}" 2> "$base.tmp.err" || rc=$?
-msg=$(tr -d '\000-\010\013-\037' < "$base.tmp.err" | tr '\n' ' ' | sed 's/ *$//')
+msg=$(tr '\t\n' '  ' < "$base.tmp.err" | tr -d '\000-\010\013-\037' | sed 's/ *$//')
 
 # JSON string of $1 (backslash, quote; control characters were removed above)
 json_str() { local s=${1//\\/\\\\}; s=${s//\"/\\\"}; printf '"%s"' "$s"; }

@@ -166,6 +166,35 @@ t = pd.read_csv(f"{R}/table1-v.csv")
 assert len(t) == 1 and t["conv_cpu_median_s"].iloc[0] >= 0 and t["ratio_percent"].iloc[0] > 0, t
 assert os.path.isfile(f"{R}/equal-error-v.md") and os.path.isfile(f"{R}/table1-v.md")
 '
+# both estimates: a renderer that takes --bias-correction by dropping it (so
+# the corrected images equal the paper's) and refuses it with n = 20
+cat > "$TMP/pm2" <<EOF
+#!/usr/bin/env bash
+args=() corr=0
+for a in "\$@"; do if [ "\$a" = --bias-correction ]; then corr=1; else args+=("\$a"); fi; done
+if [ \$corr -eq 1 ]; then case " \$* " in *" --nn 20 "*) echo "photonmap: test: no --bias-correction with n=20" >&2; exit 2 ;; esac; fi
+exec "$REAL_PM" "\${args[@]}"
+EOF
+chmod +x "$TMP/pm2"
+make -s reproduce-table "${ARGS[@]}" PM="$TMP/pm2" RESULTS="$TMP/r2" "ESTIMATES=paper corrected" PHOTONS=2000 SEEDS=2 \
+  > "$TMP/est.log" 2>&1
+check "reproduce-table: both estimates, the corrected columns with the suffix _corrected" pycheck '
+R = R.replace("/results", "/r2")
+t = pd.read_csv(f"{R}/table1.csv")
+need = [c + "_corrected" for c in ("relmse_ref_mean", "relmse_ref_ci95", "bias_ref", "variance_ref", "relmse_conv_mean",
+                                   "relmse_conv_ci95", "total_median_s")]
+assert not [c for c in need if c not in t.columns], t.columns
+a, b = t[t.nn == 10], t[t.nn == 20]
+assert len(a) == 2 and np.allclose(a.relmse_ref_mean_corrected, a.relmse_ref_mean, rtol=1e-9), t
+assert np.allclose(a.bias_ref_corrected, a.bias_ref, rtol=1e-9) and b.relmse_ref_mean_corrected.isna().all()
+assert (b.seeds_refused_corrected == 2).all() and (b.seeds == 2).all()
+r = pd.read_csv(f"{R}/runs.csv")
+assert len(r) == 16 and (r.status == "refused").sum() == 4
+md = open(f"{R}/table1.md").read()
+assert "## Error against the reference: corrected estimate" in md and "no --bias-correction with n=20" in md
+assert "corrected vs paper estimate, conventional" in md and "## corrected estimate" in open(f"{R}/equal-error.md").read()
+'
+
 make -s resolution "${ARGS[@]}" PM="$PM" SEEDS=2 RES_SIZES="16x12 32x24" RES_REF_PHOTONS=5000 RES_REF_NN=20 \
   RES_TARGETS="1 0.000001" > "$TMP/res.log" 2>&1
 check "resolution: table with one row per target and a column per size" \
