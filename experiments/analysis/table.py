@@ -257,8 +257,8 @@ def markdown(table, runs, estimates, args):
         "",
         f"- Machine: {report.machine()}, threads per render: {threads}. Load average when this table was written: "
         f"{report.loadavg_now()}; 1-minute load average at the start of the renders: median {fmt(load_med)}, "
-        f"range {fmt(load_lo)}-{fmt(load_hi)} (above 1 with one thread per render, other work shared the cores: "
-        "wall times suffer more than CPU times).",
+        f"range {fmt(load_lo)}-{fmt(load_hi)} (with {os.cpu_count()} cores, a load above {os.cpu_count()} means "
+        "work waited for a core: wall times then suffer more than CPU times).",
         f"- Commit: {report.commit()} when the table was written; renderer: {report.renderer_note(args.pm)}.",
         f"- Settings: {first['width']}x{first['height']}, {first['subpixels']}x{first['subpixels']} subpixel samples, "
         f"scene `{first['scene']}`" + (f", extra options `{args.pm_args}`" if args.pm_args.strip() else "")
