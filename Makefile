@@ -31,12 +31,14 @@ TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 IMGMETRICS := $(BUILD)/imgmetrics
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
-.PHONY: all deps test help clean reproduce-table figures resolution estimator-bias stability bench reference reference-small fuzz
+.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures resolution estimator-bias stability bench reference reference-small fuzz
 all: $(BUILD)/photonmap $(IMGMETRICS) ## build build/photonmap and build/imgmetrics
 deps: $(DEPS_STAMP) ## install the missing Debian packages (scripts/install-deps.sh, once)
 test: all unit-tests $(BUILD)/san/photonmap ## every test; ends with "N passed, N failed" (README)
 	bash tests/run.sh
-reproduce-table: ## the paper's Table 1 beside ours -> results/table1.{md,csv} (experiments/table.mk)
+reproduce-table: ## Table 1 over SEEDS seeds, both estimates -> results/{runs,cells,table1,equal-error}.* (experiments/table.mk)
+reproduce-runs: ## only the renders of reproduce-table, one make target each (make -j; resumes)
+list-runs: ## print the target of every render of reproduce-table, one per line (for a job array)
 figures: ## Figure 3, error maps, trade-off and time plots -> results/figures/ (after reproduce-table)
 resolution: ## cheapest settings per output size -> results/resolution.md
 estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias.md

@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # figures.sh: the driver behind `make figures` (experiments/figures.mk).
 # Composites with oiiotool, plots with gnuplot (pngcairo); no image code here.
-# Reference image: the POV-Ray render of FIG_SIZE in reference/
-# (experiments/findref.sh), else our high-photon render from `make resolution`.
+# Images: the paper estimate's renders of seed FIG_SEED under RUNROOT; the
+# table's columns are read by name. Reference image: the POV-Ray render of
+# FIG_SIZE in reference/ (experiments/findref.sh), else our high-photon
+# render from `make resolution` (REFHIGH).
 set -euo pipefail
-: "${RESULTS:?}" "${CELLROOT:?}" "${FIG_SIZE:?}" "${TABLE_CSV:?}"
+: "${RESULTS:?}" "${RUNROOT:?}" "${FIG_SIZE:?}" "${TABLE_CSV:?}" "${FIG_SEED:?}"
+PYTHON=${PYTHON:-/usr/bin/python3}
 OUT=$RESULTS/figures
 FONT=${FONT:-/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf}
 TILE=${TILE:-288x216}
@@ -17,7 +20,7 @@ mkdir -p "$OUT"
 ref=$(bash experiments/findref.sh "$FIG_SIZE")
 if [ -n "$ref" ]; then reflabel="POV-Ray reference"
 else
-  ref=$RESULTS/cells/$FIG_SIZE-refhigh-p${RES_REF_PHOTONS:-2000000}-n${RES_REF_NN:-200}/image.exr
+  ref=${REFHIGH:-}
   reflabel="ours, P_e=$(( ${RES_REF_PHOTONS:-2000000} / 1000 ))k n=${RES_REF_NN:-200}"
   [ -s "$ref" ] || { ref=""; reflabel=""; echo "figures: no reference image of $FIG_SIZE: reference column left out" >&2; }
 fi
@@ -29,7 +32,23 @@ errtile() { # EXR REF LABEL OUT.png: false-colour |EXR - REF| (luminance)
   oiiotool "$1" "$2" --absdiff --chsum:weight=0.2126,0.7152,0.0722 --mulc "$ERR_SCALE" --clamp:min=0:max=1 \
     --colormap inferno --resize "$TILE" "$(txt)" "$3" -d uint8 -o "$4"
 }
-cell() { echo "$CELLROOT/$1-p$2-n$3/image.exr"; }
+cell() { echo "$RUNROOT/$1-paper-p$2-n$3/seed$FIG_SEED.exr"; }
+# A table CSV's columns by name, one line per row, "n/a" for empty values:
+# photons nn method cpu_median_s total_median_s relmse_ref_mean paper_s
+tablecols() {
+  "$PYTHON" - "$1" <<'PY'
+import csv, sys
+need = ["photons", "nn", "method", "cpu_median_s", "total_median_s", "relmse_ref_mean", "paper_s"]
+with open(sys.argv[1], newline="", encoding="utf-8") as f:
+    rows = csv.DictReader(f)
+    missing = [c for c in need if c not in (rows.fieldnames or [])]
+    if missing:
+        sys.exit(f"figures: {sys.argv[1]}: no column(s) {', '.join(missing)}")
+    for r in rows:
+        print(" ".join(r[c] if r[c] else "n/a" for c in need))
+PY
+}
+tablecols "$TABLE_CSV" > "$tmp/table.txt"
 
 # ---- Figure 3 (+ reference column) and the error maps against the reference
 fig3=() errs=()
@@ -93,19 +112,20 @@ echo "wrote $OUT/crops.png (P_e=50k n=10: the $i 128x128 regions where the metho
 # ---- Plots (gnuplot, pngcairo)
 # Time axis: the median CPU time of the process when every cell has one
 # (robust on a shared machine), else the median wall-clock total.
-if awk -F, 'NR > 1 && ($25 == "" || $25 == "n/a") { f = 1 } END { exit f }' "$TABLE_CSV"; then
-  tlabel="median CPU time, s (1 thread)"; tcol=25
-else tlabel="median wall-clock total, s (1 thread)"; tcol=13; fi
-# Error source for the trade-off: relMSE vs the reference in the table; if
-# that column is n/a, the 1024x768 grid of `make resolution` (vs our own
+if awk '$4 == "n/a" { f = 1 } END { exit f }' "$tmp/table.txt"; then
+  tlabel="median CPU time, s (1 thread)"; tcol=4
+else tlabel="median wall-clock total, s (1 thread)"; tcol=5; fi
+# Error source for the trade-off: mean relMSE vs the reference in the table;
+# if that column is n/a, the FIG_SIZE grid of `make resolution` (vs our own
 # high-photon render).
-errcsv=$TABLE_CSV errlabel="relMSE vs POV-Ray reference"
-if ! awk -F, 'NR > 1 && $21 != "n/a" { f = 1 } END { exit !f }' "$errcsv"; then
-  errcsv=$RESULTS/resolution/table-$FIG_SIZE.csv
-  errlabel="relMSE vs our P_e=$(( ${RES_REF_PHOTONS:-2000000} / 1000 ))k n=${RES_REF_NN:-200} render"
+errtxt=$tmp/table.txt errlabel="mean relMSE vs POV-Ray reference"
+if ! awk '$6 != "n/a" { f = 1 } END { exit !f }' "$errtxt"; then
+  errtxt=$tmp/res.txt
+  [ -s "$RESULTS/resolution/table-$FIG_SIZE.csv" ] && tablecols "$RESULTS/resolution/table-$FIG_SIZE.csv" > "$errtxt"
+  errlabel="mean relMSE vs our P_e=$(( ${RES_REF_PHOTONS:-2000000} / 1000 ))k n=${RES_REF_NN:-200} render"
 fi
-if [ -s "$errcsv" ] && awk -F, 'NR > 1 && $21 != "n/a" { f = 1 } END { exit !f }' "$errcsv"; then
-  awk -F, 'NR > 1 && $21 != "n/a" { print ($25 != "" && $25 != "n/a" ? $25 : $13), $21, $3, $1 / 1000 "k/" $2 }' "$errcsv" > "$tmp/pts.txt"
+if [ -s "$errtxt" ] && awk '$6 != "n/a" { f = 1 } END { exit !f }' "$errtxt"; then
+  awk -v c=$tcol '$6 != "n/a" && $c != "n/a" { print $c, $6, $3, $1 / 1000 "k/" $2 }' "$errtxt" > "$tmp/pts.txt"
   # Pareto front: no other cell is both faster and more accurate
   sort -g "$tmp/pts.txt" | awk 'NR == 1 || $2 < best { best = $2; print }' > "$tmp/front.txt"
   grep ' conventional ' "$tmp/pts.txt" > "$tmp/conv.txt" || true
@@ -128,7 +148,7 @@ else
 fi
 
 # time vs n and time vs P_e: ours (left) beside the paper (right)
-awk -F, -v c=$tcol 'NR > 1 { print $1, $2, $3, $c, $19 }' "$TABLE_CSV" > "$tmp/t.txt"
+awk -v c=$tcol '{ print $1, $2, $3, $c, $7 }' "$tmp/table.txt" > "$tmp/t.txt"
 gp_series() { # FILE-FILTER-COLUMN: plot clauses per P_e (or n) and method
   local x=$1 key=$2 vals=$3 ycol=$4 s="" c i=0
   for v in $vals; do

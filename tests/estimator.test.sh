@@ -4,7 +4,7 @@
 # the paper's conventional estimate follows n/(n-1), both --bias-correction
 # estimates are exact, the precomputed paper estimate is more biased than the
 # conventional one; each law with a negative control (experiments/
-# estimator_bias.py --check). Then the settings whose estimate has no finite
+# analysis/estimator_bias.py --check). Then the settings whose estimate has no finite
 # mean are refused with exit 2.
 set -u
 cd "$(dirname "$0")/.."
@@ -15,8 +15,8 @@ NNS="3 5 10"
 SEEDS=8
 make -s -j2 estimator-bias-runs RESULTS="$R" BIAS_NNS="$NNS" BIAS_SEEDS=$SEEDS BIAS_PHOTONS=40000 BIAS_SIZE=48x36 \
   > "$TMP/runs.log" 2>&1 || { echo "renders failed:"; tail -n 20 "$TMP/runs.log"; }
-${PYTHON:-/usr/bin/python3} experiments/estimator_bias.py --dir "$R/cells/estimator-bias" --nns "$NNS" --seeds $SEEDS \
-  --check > "$TMP/check.log" 2>&1
+${PYTHON:-/usr/bin/python3} experiments/analysis/estimator_bias.py --dir "$R/runs/estimator-bias" --nns "$NNS" \
+  --seeds $SEEDS --photons 40000 --check > "$TMP/check.log" 2>&1
 while read -r verdict rest; do
   case $verdict in
     ok) check "$rest" true ;;

@@ -1,11 +1,33 @@
 #!/usr/bin/env bash
-# Experiment drivers (issue 5) end to end on a tiny grid: build/imgmetrics,
-# `make reproduce-table` (cells, resume, CSV/Markdown), `make resolution`.
+# experiments.test.sh: the experiment layer end to end on a tiny grid
+# (32x24, 2,000-4,000 photons, 3 seeds): build/imgmetrics; `make
+# reproduce-table` (one make target per render, progress lines, refused
+# renders as "not applicable", resume, added seeds, runs.csv / table1.csv
+# columns by name, table1.md, equal-error.md); `make resolution`. A wrapper
+# around the renderer plays a renderer that refuses one combination (exit 2)
+# or fails (exit 1), so those paths are tested whatever the renderer does.
 cd "$(dirname "$0")/.." || exit 1
 source tests/lib.sh
 IM=build/imgmetrics
+PY=${PYTHON:-/usr/bin/python3}
 R=$TMP/results
-ARGS=(SIZE=32x24 PHOTONS=2000 "NNS=10 20" REPEATS=1 RESULTS="$R")
+REAL_PM=$(realpath "$PM")
+ROOT=$R/runs/cornell-32x24-s2-t1
+
+# the renderer as the grid sees it: refuses precomputed with P_e = 2000 and
+# n = 20 (exit 2), fails (exit 1) with n = FAIL_NN, logs every command line
+cat > "$TMP/pm" <<EOF
+#!/usr/bin/env bash
+echo "\$*" >> "$TMP/pm.log"
+case " \$* " in *" --method precomputed --photons 2000 --nn 20 "*) echo "photonmap: test refusal: precomputed with n=20" >&2; exit 2 ;; esac
+case " \$* " in *" --nn \${FAIL_NN:-none} "*) echo "photonmap: test failure" >&2; exit 1 ;; esac
+exec "$REAL_PM" "\$@"
+EOF
+chmod +x "$TMP/pm"
+ARGS=(SIZE=32x24 "PHOTONS=2000 4000" "NNS=10 20" SEEDS=3 ESTIMATES=paper RESULTS="$R" PM="$TMP/pm"
+      REF="$TMP/ref.exr" REF_FAST="$TMP/fast.exr" BOOTSTRAP=200 "EE_TARGETS=0.1 0.05")
+# pycheck 'CODE': python with pandas as pd, numpy as np, R = the results dir
+pycheck() { R="$R" "$PY" -c "import os, math, numpy as np, pandas as pd; R = os.environ['R']; $1"; }
 
 # imgmetrics on two tiny renders
 $PM render scenes/cornell.scene --width 16 --height 12 --photons 2000 --nn 10 -o "$TMP/a.exr" --quiet
@@ -23,34 +45,159 @@ check "imgmetrics: size mismatch is an error" \
   expect_exit 2 "size mismatch" $IM "$TMP/a.exr" "$TMP/c.exr"
 check "imgmetrics: missing file is an error" expect_exit 2 "nonexistent" $IM "$TMP/a.exr" /nonexistent.exr
 
-make -s reproduce-table "${ARGS[@]}" > "$TMP/grid.log" 2>&1
-check "reproduce-table: exits 0 and shows progress per cell" \
-  bash -c "grep -q 'cell 1/4 conventional P_e=2000 n=10' $TMP/grid.log && grep -q 'cell 4/4 precomputed P_e=2000 n=20' $TMP/grid.log"
-check "reproduce-table: CSV has a header and 4 rows" \
-  bash -c "[ \$(wc -l < $R/table1.csv) -eq 5 ] && head -n 1 $R/table1.csv | grep -q '^photons,nn,method,.*total_s,.*relmse_conv,psnr_conv,cpu_s,cpu_min_s,cpu_ratio_percent$'"
-check "reproduce-table: rows are the grid, times positive, ratio and errors filled" \
-  awk -F, 'NR > 1 { n++; key = key $1 "/" $2 "/" $3 " ";
-                    if (!($13 > 0) || $16 <= 0 || $4 != 32 || $5 != 24 || $8 != 1) bad = 1
-                    if ($3 == "precomputed" && (!($17 > 0) || !($18 > 0) || !($23 > 0) || !($24 > 0))) bad = 1
-                    if ($3 == "conventional" && ($18 != "100.0" || $23 != 0)) bad = 1
-                    if (NF != 27 || !($25 >= 0) || !($26 >= 0)) bad = 1 }
-           END { exit !(n == 4 && !bad && key == "2000/10/conventional 2000/10/precomputed 2000/20/conventional 2000/20/precomputed ") }' "$R/table1.csv"
-check "reproduce-table: Markdown has the three tables and the machine" \
-  bash -c "grep -q '^| 2000 | 20 | n/a | n/a | n/a | [0-9.e-]* | [0-9.e-]* | [0-9.]* | [0-9.e-]* | [0-9.e-]* | [0-9.na/]* |$' $R/table1.md &&
-           grep -q '^| 2000 | 10 | precomputed | [0-9.]* |' $R/table1.md && grep -q 'Machine: .*threads used per render: 1' $R/table1.md &&
-           grep -q 'Commit: ' $R/table1.md && grep -q 'n/a: no reference EXR of 32x24' $R/table1.md"
-cells=$(ls -d "$R"/cells/32x24-s2-t1/*/ | wc -l)
-check "reproduce-table: one directory per cell" test "$cells" -eq 4
-make -s reproduce-table "${ARGS[@]}" > "$TMP/grid2.log" 2>&1
-check "reproduce-table: a second run reuses every cell" bash -c "! grep -q '^cell ' $TMP/grid2.log && grep -q 'wrote' $TMP/grid2.log"
-make -s reproduce-table "${ARGS[@]}" REF="$TMP/ref-missing.exr" > "$TMP/grid3.log" 2>&1
-check "reproduce-table: a missing reference named by REF is an error" grep -q "reference .* not found" "$TMP/grid3.log"
-rm "$R/cells/32x24-s2-t1/precomputed-p2000-n20/summary-r1.tsv"
-make -s reproduce-table "${ARGS[@]}" REF="$R/cells/32x24-s2-t1/conventional-p2000-n20/image.exr" > "$TMP/grid4.log" 2>&1
-check "reproduce-table: resumes only the missing cell, errors vs REF filled" \
-  bash -c "[ \$(grep -c '^cell .* done' $TMP/grid4.log) -eq 1 ] && grep -q '^2000,20,conventional,.*,0,inf,0,inf,[0-9.]*,[0-9.]*,[0-9.na/]*$' $R/table1.csv"
+# a reference and a "fast reference" of the tiny size: two high-photon renders
+$PM render scenes/cornell.scene --width 32 --height 24 --photons 40000 --nn 100 -o "$TMP/ref.exr" --quiet
+$PM render scenes/cornell.scene --width 32 --height 24 --photons 40000 --nn 100 --seed 2 -o "$TMP/fast.exr" --quiet
 
-make -s resolution "${ARGS[@]}" RES_SIZES="16x12 32x24" RES_REF_PHOTONS=5000 RES_REF_NN=20 RES_TARGETS="1 0.000001" > "$TMP/res.log" 2>&1
+make -s reproduce-table "${ARGS[@]}" > "$TMP/grid.log" 2>&1
+check "reproduce-table: exits 0, one progress line per render" \
+  bash -c "grep -q '^run 1/24 conventional paper P_e=2000 n=10 seed 1: total [0-9.]* s, cpu [0-9.]* s$' $TMP/grid.log &&
+           grep -q '^run 20/24 precomputed paper P_e=2000 n=20 seed 3: not applicable' $TMP/grid.log &&
+           grep -q '^run 24/24 precomputed paper P_e=4000 n=20 seed 3: total' $TMP/grid.log &&
+           [ \$(grep -c '^run ' $TMP/grid.log) -eq 24 ] && grep -q 'wrote .*equal-error.md' $TMP/grid.log"
+check "reproduce-table: one directory per cell, one record per render, no temporary file" \
+  bash -c "[ \$(ls -d $ROOT/*/ | wc -l) -eq 8 ] && [ \$(ls $ROOT/*/seed*.run.json | wc -l) -eq 24 ] &&
+           [ \$(ls $ROOT/*/seed*.exr | wc -l) -eq 21 ] && ! ls $ROOT/*/*.tmp.* 2>/dev/null | grep -q ."
+check "reproduce-table: each render has its own seed, corrected renders add --bias-correction only" \
+  bash -c "grep -q -- '--nn 10 --seed 3 ' $TMP/pm.log && ! grep -q -- '--bias-correction' $TMP/pm.log"
+check "runs.csv: one row per render, the columns by name, refused renders not applicable" pycheck '
+r = pd.read_csv(f"{R}/runs.csv")
+need = ["scene", "size", "subpixels", "threads", "tag", "method", "estimate", "photons", "nn", "seed", "rep_every",
+        "trace_s", "build_s", "precompute_s", "render_s", "total_s", "cpu_s", "photons_stored", "representatives",
+        "empty_estimates", "relmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "exit", "status"]
+assert not [c for c in need if c not in r.columns], [c for c in need if c not in r.columns]
+assert len(r) == 24 and set(r["seed"]) == {1, 2, 3} and set(r["photons"]) == {2000, 4000}, r
+ref = (r["method"] == "precomputed") & (r["nn"] == 20) & (r["photons"] == 2000)
+assert (r.loc[ref, "status"] == "refused").all() and (r.loc[ref, "exit"] == 2).all()
+assert r.loc[ref, "message"].str.contains("test refusal").all() and r.loc[ref, "relmse_ref"].isna().all()
+ok = r[~ref]
+assert (ok["status"] == "ok").all() and (ok["total_s"] > 0).all() and (ok["cpu_s"] >= 0).all()
+assert (ok["relmse_ref"] > 0).all() and (ok["psnr_ref"] > 0).all() and (ok["threads"] == 1).all()
+conv = ok["method"] == "conventional"
+assert (ok.loc[conv, "relmse_conv"] == 0).all() and (ok.loc[~conv, "relmse_conv"] > 0).all()
+assert (ok.loc[~conv, "representatives"] > 0).all() and (ok["photons_stored"] > 0).all()
+'
+check "runs.csv: relmse_ref of a render equals build/imgmetrics on its EXR" \
+  bash -c "want=\$($IM $ROOT/precomputed-paper-p4000-n10/seed2.exr $TMP/ref.exr --csv | cut -d, -f1);
+           got=\$(R=$R $PY -c 'import os, pandas as pd; r = pd.read_csv(os.environ[\"R\"] + \"/runs.csv\");
+print(r[(r.method == \"precomputed\") & (r.photons == 4000) & (r.nn == 10) & (r.seed == 2)].relmse_ref.iloc[0])');
+           awk -v a=\"\$want\" -v b=\"\$got\" 'BEGIN { d = a - b; exit !(d < 1e-6 && d > -1e-6 && a > 0) }'"
+check "table1.csv: a row per (P_e, n, method), error columns by name, bias + variance = mean" pycheck '
+t = pd.read_csv(f"{R}/table1.csv")
+need = ["photons", "nn", "method", "paper_s", "paper_ratio_percent", "total_median_s", "total_min_s", "total_max_s",
+        "cpu_median_s", "trace_median_s", "build_median_s", "precompute_median_s", "render_median_s",
+        "ratio_percent", "ratio_ci95_lo", "ratio_ci95_hi", "cpu_ratio_percent", "relmse_ref_mean", "relmse_ref_ci95",
+        "bias_ref", "variance_ref", "relmse_conv_mean", "relmse_conv_ci95", "relmse_ref_floor", "seeds"]
+assert not [c for c in need if c not in t.columns], [c for c in need if c not in t.columns]
+assert len(t) == 8
+ok = t[t["seeds"] == 3]
+assert len(ok) == 7 and (t.loc[t["seeds"] == 0, "method"] == "precomputed").all()
+assert t.loc[t["seeds"] == 0, "relmse_ref_mean"].isna().all()
+assert np.allclose(ok["bias_ref"] + ok["variance_ref"], ok["relmse_ref_mean"], rtol=1e-5, atol=0)
+assert (ok["relmse_ref_ci95"] > 0).all() and (ok["variance_ref"] > 0).all()
+assert (ok["total_min_s"] <= ok["total_median_s"]).all() and (ok["total_median_s"] <= ok["total_max_s"]).all()
+c = ok[ok["method"] == "conventional"]
+assert (c["ratio_percent"] == 100).all() and (ok.loc[ok["method"] == "precomputed", "ratio_percent"] > 0).all()
+p = ok[ok["method"] == "precomputed"]
+assert (p["ratio_ci95_lo"] <= p["ratio_percent"]).all() and (p["ratio_percent"] <= p["ratio_ci95_hi"]).all()
+assert (p["relmse_conv_mean"] > 0).all() and t["paper_s"].isna().all()
+'
+check "table1.csv: the reference floor is the fast reference's relMSE" \
+  bash -c "want=\$($IM $TMP/fast.exr $TMP/ref.exr --csv | cut -d, -f1);
+           got=\$(R=$R $PY -c 'import os, pandas as pd; print(pd.read_csv(os.environ[\"R\"] + \"/table1.csv\").relmse_ref_floor.iloc[0])');
+           awk -v a=\"\$want\" -v b=\"\$got\" 'BEGIN { d = a - b; exit !(d < 1e-6 && d > -1e-6 && a > 0) }'"
+check "table1.md: provenance, the tables, the refusal, no nan" \
+  bash -c "grep -q 'Machine: .*threads per render: 1' $R/table1.md && grep -q 'Commit: ' $R/table1.md &&
+           grep -q 'load average at the start of the renders' $R/table1.md && grep -q 'Seeds: 1 2 3' $R/table1.md &&
+           grep -q '^| 4000 | 10 | n/a | n/a | n/a | [0-9.]* ([0-9.]*-[0-9.]*) | [0-9.]* (' $R/table1.md &&
+           grep -q '^| 2000 | 10 | precomputed | 3 | [0-9.e-]* ± [0-9.e-]* | [0-9.e-]*\\( ≤floor\\)\\? | [0-9.e-]* | [0-9.e-]* ± ' $R/table1.md &&
+           grep -q '^| 2000 | 20 | precomputed | 0 | not applicable' $R/table1.md &&
+           grep -q 'test refusal: precomputed with n=20' $R/table1.md && grep -q '^## What the intervals allow us to say' $R/table1.md &&
+           grep -q 'Reference floor: relMSE of' $R/table1.md && ! grep -qi 'nan' $R/table1.md"
+check "equal-error: Markdown with fronts and targets, CSV by name" pycheck '
+e = pd.read_csv(f"{R}/equal-error.csv")
+need = ["estimate", "relmse_target", "conventional_s", "precomputed_s", "speedup", "speedup_ci95_lo", "speedup_ci95_hi"]
+assert not [c for c in need if c not in e.columns], e.columns
+assert len(e) == 2 and (e["estimate"] == "paper").all() and list(e["relmse_target"]) == [0.1, 0.05], e
+md = open(f"{R}/equal-error.md").read()
+assert "# Speed-up at equal error" in md and "## paper estimate" in md and "| relMSE target |" in md, md
+assert "| 0.1 |" in md and "| 0.05 |" in md and "EE_TARGETS=0.1 0.05" in md, md
+assert "nan" not in md.lower()
+'
+
+# resume: nothing to render again; one missing render is the only one re-rendered
+make -s reproduce-table "${ARGS[@]}" > "$TMP/grid2.log" 2>&1
+check "reproduce-table: a second run renders nothing and rewrites the tables" \
+  bash -c "! grep -q '^run ' $TMP/grid2.log && grep -q 'wrote .*table1.md' $TMP/grid2.log"
+rm "$ROOT/conventional-paper-p2000-n20/seed2.run.json"
+make -s reproduce-table "${ARGS[@]}" > "$TMP/grid3.log" 2>&1
+check "reproduce-table: resumes only the missing render" \
+  bash -c "[ \$(grep -c '^run ' $TMP/grid3.log) -eq 1 ] && grep -q '^run 11/24 conventional paper P_e=2000 n=20 seed 2: total' $TMP/grid3.log"
+make -s reproduce-table "${ARGS[@]}" SEEDS=4 > "$TMP/grid4.log" 2>&1
+check "reproduce-table: SEEDS=4 adds the fourth seed's renders only" \
+  bash -c "[ \$(grep -c '^run .* seed 4: ' $TMP/grid4.log) -eq 8 ] && [ \$(grep -c '^run ' $TMP/grid4.log) -eq 8 ] &&
+           grep -q 'Seeds: 1 2 3 4' $R/table1.md"
+make -s reproduce-table "${ARGS[@]}" SEEDS=5 FAIL_NN=10 > "$TMP/grid5.log" 2>&1; rc=$?
+check "reproduce-table: a failing render (exit 1) stops make and records nothing" \
+  bash -c "[ $rc -ne 0 ] && grep -q 'failed (exit 1)' $TMP/grid5.log && ! ls $ROOT/conventional-paper-p2000-n10/seed5.* 2>/dev/null | grep -q ."
+make -s list-runs "${ARGS[@]}" > "$TMP/list.txt" 2>&1
+check "reproduce-table: list-runs names every render's target" \
+  bash -c "[ \$(wc -l < $TMP/list.txt) -eq 24 ] &&
+           head -n 1 $TMP/list.txt | grep -q 'runs/cornell-32x24-s2-t1/conventional-paper-p2000-n10/seed1.run.json$'"
+check "reproduce-table: REPEATS is refused with the new name" \
+  expect_exit 2 "REPEATS was replaced by SEEDS" make -s reproduce-table "${ARGS[@]}" REPEATS=2
+check "reproduce-table: a missing reference named by REF is an error" \
+  bash -c "! make -s reproduce-table ${ARGS[*]} REF=$TMP/missing.exr > $TMP/grid6.log 2>&1 && grep -q 'reference .*missing.exr not found' $TMP/grid6.log"
+make -s reproduce-runs "${ARGS[@]}" PM="$PM" ESTIMATES=corrected PHOTONS=2000 NNS=10 SEEDS=1 > "$TMP/corr.log" 2>&1
+check "reproduce-runs: a corrected render runs with --bias-correction, done or not applicable" \
+  bash -c "grep -q -- '--bias-correction' $ROOT/conventional-corrected-p2000-n10/seed1.run.json &&
+           grep -qE '\"exit\": (0|2),' $ROOT/conventional-corrected-p2000-n10/seed1.run.json"
+
+make -s reproduce-table "${ARGS[@]}" TAG=v PM_ARGS="--rep-every 2" METHODS=precomputed CONV_RUNROOT="$ROOT" \
+  PHOTONS=4000 NNS=10 SEEDS=2 > "$TMP/variant.log" 2>&1
+check "reproduce-table: a variant (TAG, PM_ARGS) in its own directory, compared with CONV_RUNROOT's conventional renders" pycheck '
+r = pd.read_csv(f"{R}/runs-v.csv")
+assert sorted(set(r["role"])) == ["comparison", "grid"] and (r.loc[r["role"] == "grid", "tag"] == "v").all(), r
+assert (r.loc[r["role"] == "comparison", "method"] == "conventional").all() and (r["status"] == "ok").all()
+assert (r.loc[r["role"] == "grid", "rep_every"] == 2).all() and (r.loc[r["role"] == "grid", "relmse_conv"] > 0).all()
+assert all(os.path.isdir(p) for p in r.loc[r["role"] == "grid", "run"].map(os.path.dirname)), r["run"]
+assert all("/cornell-32x24-s2-t1-v/" in p for p in r.loc[r["role"] == "grid", "run"])
+t = pd.read_csv(f"{R}/table1-v.csv")
+assert len(t) == 1 and t["conv_cpu_median_s"].iloc[0] >= 0 and t["ratio_percent"].iloc[0] > 0, t
+assert os.path.isfile(f"{R}/equal-error-v.md") and os.path.isfile(f"{R}/table1-v.md")
+'
+# both estimates: a renderer that takes --bias-correction by dropping it (so
+# the corrected images equal the paper's) and refuses it with n = 20
+cat > "$TMP/pm2" <<EOF
+#!/usr/bin/env bash
+args=() corr=0
+for a in "\$@"; do if [ "\$a" = --bias-correction ]; then corr=1; else args+=("\$a"); fi; done
+if [ \$corr -eq 1 ]; then case " \$* " in *" --nn 20 "*) echo "photonmap: test: no --bias-correction with n=20" >&2; exit 2 ;; esac; fi
+exec "$REAL_PM" "\${args[@]}"
+EOF
+chmod +x "$TMP/pm2"
+make -s reproduce-table "${ARGS[@]}" PM="$TMP/pm2" RESULTS="$TMP/r2" "ESTIMATES=paper corrected" PHOTONS=2000 SEEDS=2 \
+  > "$TMP/est.log" 2>&1
+check "reproduce-table: both estimates, the corrected columns with the suffix _corrected" pycheck '
+R = R.replace("/results", "/r2")
+t = pd.read_csv(f"{R}/table1.csv")
+need = [c + "_corrected" for c in ("relmse_ref_mean", "relmse_ref_ci95", "bias_ref", "variance_ref", "relmse_conv_mean",
+                                   "relmse_conv_ci95", "total_median_s")]
+assert not [c for c in need if c not in t.columns], t.columns
+a, b = t[t.nn == 10], t[t.nn == 20]
+assert len(a) == 2 and np.allclose(a.relmse_ref_mean_corrected, a.relmse_ref_mean, rtol=1e-9), t
+assert np.allclose(a.bias_ref_corrected, a.bias_ref, rtol=1e-9) and b.relmse_ref_mean_corrected.isna().all()
+assert (b.seeds_refused_corrected == 2).all() and (b.seeds == 2).all()
+r = pd.read_csv(f"{R}/runs.csv")
+assert len(r) == 16 and (r.status == "refused").sum() == 4
+md = open(f"{R}/table1.md").read()
+assert "## Error against the reference: corrected estimate" in md and "no --bias-correction with n=20" in md
+assert "corrected vs paper estimate, conventional" in md and "## corrected estimate" in open(f"{R}/equal-error.md").read()
+'
+
+make -s resolution "${ARGS[@]}" PM="$PM" SEEDS=2 RES_SIZES="16x12 32x24" RES_REF_PHOTONS=5000 RES_REF_NN=20 \
+  RES_TARGETS="1 0.000001" > "$TMP/res.log" 2>&1
 check "resolution: table with one row per target and a column per size" \
-  bash -c "grep -q '^| 1 | [a-z]*\., P_e=2k, n=[0-9]*: .* | [a-z]*\., P_e=2k' $R/resolution.md && grep -q '^| 0.000001 | none in grid | none in grid |$' $R/resolution.md"
+  bash -c "grep -q '^| 1 | [a-z]*\./paper, P_e=[24]k, n=[0-9]*: .* | [a-z]*\./paper, P_e=[24]k' $R/resolution.md &&
+           grep -q '^| 1.00e-06 | none in grid | none in grid |$' $R/resolution.md && [ -s $R/resolution/table-16x12.csv ]"
 finish

@@ -6,6 +6,9 @@
 # adds them up, prints the total last, and exits non-zero on any failure.
 set -u
 cd "$(dirname "$0")/.."
+# the test scripts run make themselves: not as part of the make that runs
+# this script (its jobserver and flags would leak into their output)
+unset MAKEFLAGS MFLAGS MAKELEVEL
 
 total_pass=0
 total_fail=0

@@ -1,0 +1,208 @@
+#!/usr/bin/python3
+"""collect.py: the renders of a grid -> runs.csv and cells.csv.
+
+Owns turning the files of experiments/run.sh (seed<k>.run.json,
+seed<k>.stats.json, seed<k>.exr under RUNROOT/<method>-<estimate>-p<P_e>-n<n>/)
+into numbers: every image-derived number of the analysis is computed here,
+once, with metrics.py.
+
+runs.csv, one row per render of the requested grid (a render that has not
+been made yet is a row with status "missing"): the settings, the status
+("ok", "refused": the renderer rejected the combination with exit 2, i.e.
+not applicable, or "missing"), the renderer's per-phase times, the CPU
+seconds of the process, photon counts, and the image's relMSE/RMSE/PSNR
+against the reference and its relMSE against the conventional image of the
+same seed and estimate (0 for the conventional image itself), and its role:
+"grid" (a render of the requested grid) or "comparison" (a conventional
+render from CONV_RUNROOT that the grid is compared with, listed when it is
+not the grid's own).
+
+cells.csv, one row per cell (all seeds of one method, estimate, P_e, n):
+how many seeds rendered, the mean relMSE against the reference and its split
+into bias and variance over seeds (metrics.bias_variance_from_gram), and the
+reference floor (the fast POV-Ray render against the reference).
+"""
+
+import argparse
+import json
+import math
+import os
+import sys
+
+import numpy as np
+import pandas as pd
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import metrics  # noqa: E402
+import report  # noqa: E402
+
+RUN_COLUMNS = [
+    "scene", "size", "width", "height", "subpixels", "threads", "tag", "method", "estimate",
+    "photons", "nn", "seed", "rep_every", "status", "exit", "message",
+    "trace_s", "build_s", "precompute_s", "render_s", "total_s", "cpu_s", "user_s", "sys_s",
+    "photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "loadavg_1min",
+    "relmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "role", "run",
+]
+CELL_COLUMNS = [
+    "scene", "size", "subpixels", "tag", "method", "estimate", "photons", "nn",
+    "seeds_ok", "seeds_refused", "seeds_missing",
+    "relmse_ref_mean", "bias_ref", "variance_ref", "relmse_ref_floor", "ref", "ref_fast",
+]
+
+
+def cell_name(method, estimate, photons, nn):
+    """The directory name of a cell under the run root."""
+    return f"{method}-{estimate}-p{photons}-n{nn}"
+
+
+def load_json(path):
+    """The JSON object in PATH; exits naming the file when it is not JSON."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            return json.load(f)
+    except (OSError, json.JSONDecodeError) as e:
+        report.die("collect.py", f"{path}: {e}")
+
+
+def read_run(root, method, estimate, photons, nn, seed):
+    """The numbers of one render from its files (no image metrics yet):
+    a dict with the runs.csv fields, status ok / refused / missing."""
+    base = os.path.join(root, cell_name(method, estimate, photons, nn), f"seed{seed}")
+    row = {"method": method, "estimate": estimate, "photons": photons, "nn": nn, "seed": seed,
+           "run": base, "status": "missing", "exit": math.nan, "message": ""}
+    if not os.path.isfile(base + ".run.json"):
+        return row
+    rec = load_json(base + ".run.json")
+    for key in ("exit", "loadavg_1min", "cpu_s", "user_s", "sys_s"):
+        if key not in rec:
+            report.die("collect.py", f"{base}.run.json: no '{key}'")
+        row[key] = math.nan if rec[key] is None else rec[key]
+    row["message"] = rec.get("message", "")
+    if rec["exit"] != 0:
+        row["status"] = "refused"
+        return row
+    st = load_json(base + ".stats.json")
+    try:
+        for phase in ("trace", "build", "precompute", "render", "total"):
+            row[f"{phase}_s"] = float(st["time_s"][phase])
+        for key in ("photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "rep_every", "threads"):
+            row[key] = st[key]
+        row["width"], row["height"] = st["width"], st["height"]
+    except KeyError as e:
+        report.die("collect.py", f"{base}.stats.json: no {e}")
+    if not os.path.isfile(base + ".exr"):
+        report.die("collect.py", f"{base}.exr: missing although {base}.run.json says the render succeeded")
+    row["status"] = "ok"
+    return row
+
+
+def image_of(row):
+    """The image of an ok run row."""
+    return metrics.read_exr(row["run"] + ".exr")
+
+
+def measure(row, x, ref, ref_path, conv_imgs):
+    """Add to ROW (an ok run whose image is X) its errors against the
+    reference REF (if any; read from REF_PATH) and against the conventional
+    image of the same seed in CONV_IMGS (seed -> image), if there is one."""
+    if ref is not None:
+        if x.shape != ref.shape:
+            raise ValueError(f"{row['run']}.exr is {x.shape[1]}x{x.shape[0]}, "
+                             f"the reference {ref_path} {ref.shape[1]}x{ref.shape[0]}")
+        row["relmse_ref"] = metrics.relmse(x, ref)
+        row["rmse_ref"] = metrics.rmse(x, ref)
+        row["psnr_ref"] = metrics.psnr(x, ref)
+    if row["seed"] in conv_imgs:
+        row["relmse_conv"] = metrics.relmse(x, conv_imgs[row["seed"]])
+
+
+def collect(args):
+    """Build the runs and cells tables for the grid in ARGS; returns
+    (runs DataFrame, cells DataFrame)."""
+    ref = metrics.read_exr(args.ref) if args.ref else None
+    floor = math.nan
+    if ref is not None and args.ref_fast:
+        floor = metrics.relmse(metrics.read_exr(args.ref_fast), ref)
+    seeds = [int(s) for s in args.seeds.split()]
+    common = {"scene": args.scene, "size": f"{args.width}x{args.height}", "width": args.width,
+              "height": args.height, "subpixels": args.subpixels, "tag": args.tag}
+    methods = args.methods.split()
+    # the conventional runs the others are compared with come from
+    # CONV_RUNROOT; when they are not this grid's own conventional runs they
+    # are listed too, with role "comparison"
+    separate = "conventional" not in methods or args.conv_runroot != args.runroot
+    runs, cells = [], []
+    for estimate in args.estimates.split():
+        for photons in [int(p) for p in args.photons.split()]:
+            for nn in [int(n) for n in args.nns.split()]:
+                conv_rows = {s: read_run(args.conv_runroot, "conventional", estimate, photons, nn, s) for s in seeds}
+                conv_imgs = {s: image_of(r) for s, r in conv_rows.items() if r["status"] == "ok"}
+                if separate:
+                    for s, r in conv_rows.items():
+                        if r["status"] == "ok":
+                            measure(r, conv_imgs[s], ref, args.ref, conv_imgs)
+                    runs.extend({**common, **r, "tag": "", "role": "comparison"} for r in conv_rows.values())
+                for method in methods:
+                    own_conv = method == "conventional" and not separate
+                    rows = [conv_rows[s] if own_conv else read_run(args.runroot, method, estimate, photons, nn, s)
+                            for s in seeds]
+                    imgs = [conv_imgs[r["seed"]] if own_conv else image_of(r) for r in rows if r["status"] == "ok"]
+                    for r, x in zip([r for r in rows if r["status"] == "ok"], imgs):
+                        measure(r, x, ref, args.ref, conv_imgs)
+                    bias = variance = mean = math.nan
+                    if ref is not None and imgs:
+                        g = metrics.weighted_gram(imgs, ref)
+                        mean = float(np.mean(np.diag(g)))
+                        bias, variance = metrics.bias_variance_from_gram(g)
+                    status = [r["status"] for r in rows]
+                    cells.append({**common, "method": method, "estimate": estimate, "photons": photons, "nn": nn,
+                                  "seeds_ok": status.count("ok"), "seeds_refused": status.count("refused"),
+                                  "seeds_missing": status.count("missing"), "relmse_ref_mean": mean,
+                                  "bias_ref": bias, "variance_ref": variance, "relmse_ref_floor": floor,
+                                  "ref": args.ref, "ref_fast": args.ref_fast})
+                    runs.extend({**common, **r, "role": "grid"} for r in rows)
+    runs = pd.DataFrame(runs).reindex(columns=RUN_COLUMNS)
+    cells = pd.DataFrame(cells).reindex(columns=CELL_COLUMNS)
+    return runs, cells
+
+
+def main():
+    """Command line: see the module docstring and experiments/table.mk."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runroot", required=True)
+    ap.add_argument("--conv-runroot", required=True)
+    ap.add_argument("--scene", required=True)
+    ap.add_argument("--width", type=int, required=True)
+    ap.add_argument("--height", type=int, required=True)
+    ap.add_argument("--subpixels", type=int, required=True)
+    ap.add_argument("--threads", default="", help="(unused: the threads column is the stats JSON's)")
+    ap.add_argument("--tag", default="")
+    ap.add_argument("--methods", required=True)
+    ap.add_argument("--estimates", required=True)
+    ap.add_argument("--photons", required=True)
+    ap.add_argument("--nns", required=True)
+    ap.add_argument("--seeds", required=True)
+    ap.add_argument("--ref", default="", help="reference EXR (empty: no error against a reference)")
+    ap.add_argument("--ref-fast", default="", help="fast POV-Ray EXR for the reference floor (optional)")
+    ap.add_argument("--runs-csv", required=True)
+    ap.add_argument("--cells-csv", required=True)
+    args = ap.parse_args()
+    for name, path in (("reference", args.ref), ("fast reference", args.ref_fast)):
+        if path and not os.path.isfile(path):
+            report.die("collect.py", f"{name} {path} not found")
+    try:
+        runs, cells = collect(args)
+    except ValueError as e:
+        report.die("collect.py", str(e))
+    if not (runs["status"] == "ok").any():
+        report.die("collect.py", f"no render of the grid under {args.runroot} succeeded "
+                   f"({(runs['status'] == 'refused').sum()} refused, {(runs['status'] == 'missing').sum()} missing)")
+    report.write_csv_atomic(runs, args.runs_csv, "%.8g")
+    report.write_csv_atomic(cells, args.cells_csv, "%.8g")
+    n = runs["status"].value_counts()
+    print(f"wrote {args.runs_csv} ({len(runs)} renders: {n.get('ok', 0)} ok, {n.get('refused', 0)} not applicable, "
+          f"{n.get('missing', 0)} missing) and {args.cells_csv} ({len(cells)} cells)")
+
+
+if __name__ == "__main__":
+    main()

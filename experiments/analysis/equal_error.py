@@ -1,0 +1,274 @@
+#!/usr/bin/python3
+"""equal_error.py: runs.csv -> the speed-up at equal error (STEM.md, STEM.csv).
+
+Owns the number users ask for: for a set of relMSE targets, the time each
+method needs to reach the target, read off its Pareto front of (time, error)
+cells by log-log interpolation (stats.time_at_error), and the speed-up
+conventional time / precomputed time at the same error, per estimate. A
+cell's time is the median over its seeds, its error the mean relMSE against
+the reference over its seeds. Uncertainty: a bootstrap over seeds (in every
+cell its seeds are drawn with replacement, each draw a whole render: its
+time and its error together; then cell medians and means, fronts and
+interpolation are recomputed); intervals are the 2.5% and 97.5% quantiles
+of the resamples where the value is defined.
+"""
+
+import argparse
+import math
+import os
+import sys
+
+import numpy as np
+import pandas as pd
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import report  # noqa: E402
+import stats  # noqa: E402
+from report import fmt, fmt_count, fmt_interval  # noqa: E402
+
+METHODS = ("conventional", "precomputed")
+TIME_LABEL = {"cpu_s": "CPU seconds of the process (user + system, /usr/bin/time)",
+              "total_s": "wall-clock seconds of the render (the stats JSON's time_s.total)"}
+
+
+def cell_samples(runs, estimate, method, time_col):
+    """{(photons, nn): (times, errors)} per-seed arrays of the ok renders of
+    one method and estimate that have an error against the reference (for
+    the conventional method of a variant without its own, the renders it is
+    compared with)."""
+    mine = runs[(runs["estimate"] == estimate) & (runs["method"] == method)]
+    # a variant's conventional renders are the ones it is compared with
+    role = "grid" if (mine["role"] == "grid").any() or method != "conventional" else "comparison"
+    sel = mine[(mine["role"] == role) & (mine["status"] == "ok")]
+    sel = sel[np.isfinite(sel["relmse_ref"].astype(float)) & np.isfinite(sel[time_col].astype(float))]
+    out = {}
+    for (p, n), g in sel.groupby(["photons", "nn"], sort=True):
+        out[(int(p), int(n))] = (g[time_col].to_numpy(np.float64), g["relmse_ref"].to_numpy(np.float64))
+    return out
+
+
+def cell_points(samples):
+    """(keys, times, errors, error half-widths): per cell the median time and
+    the mean error with its 95% t half-width."""
+    keys = list(samples)
+    t = np.array([np.median(samples[k][0]) for k in keys])
+    ei = [stats.t_interval(samples[k][1]) for k in keys]
+    return keys, t, np.array([m for m, _ in ei]), np.array([h for _, h in ei])
+
+
+def auto_targets(fronts, count=5):
+    """COUNT relMSE targets spaced evenly in log inside the error range that
+    every front in FRONTS (lists of errors) covers, rounded to two
+    significant digits; [] when the ranges do not overlap."""
+    if any(len(e) == 0 for e in fronts):
+        return []
+    lo = max(min(e) for e in fronts)
+    hi = min(max(e) for e in fronts)
+    if not lo < hi:
+        return []
+    raw = [lo * (hi / lo) ** ((i + 0.5) / count) for i in range(count)]
+    return sorted({float(f"{x:.2g}") for x in raw}, reverse=True)
+
+
+def bootstrap_times(samples, targets, rng, replicates):
+    """(replicates, len(targets)) array: the front time at each target for
+    each bootstrap resample of the cells' seeds (nan where undefined)."""
+    keys = list(samples)
+    t_b = np.empty((replicates, len(keys)))
+    e_b = np.empty((replicates, len(keys)))
+    for j, k in enumerate(keys):
+        t, e = samples[k]
+        idx = stats.resample_indices(rng, t.size, replicates)
+        t_b[:, j] = np.median(t[idx], axis=1)
+        e_b[:, j] = e[idx].mean(axis=1)
+    out = np.full((replicates, len(targets)), math.nan)
+    for b in range(replicates):
+        f = stats.pareto_front(t_b[b], e_b[b])
+        ft, fe = t_b[b, f], e_b[b, f]
+        for i, target in enumerate(targets):
+            out[b, i] = stats.time_at_error(ft, fe, target)
+    return out
+
+
+def analyse(runs, estimate, time_col, targets_arg, rng, replicates):
+    """Everything one estimate's section needs: a dict with the cells, the
+    fronts, the targets and, per target, times and speed-up with intervals."""
+    res = {"estimate": estimate, "cells": {}, "fronts": {}, "targets": [], "rows": [], "samples": {}}
+    samples = res["samples"]
+    for m in METHODS:
+        samples[m] = cell_samples(runs, estimate, m, time_col)
+        keys, t, e, h = cell_points(samples[m])
+        res["cells"][m] = (keys, t, e, h)
+        res["fronts"][m] = stats.pareto_front(t, e)
+    if any(len(samples[m]) == 0 for m in METHODS):
+        return res
+    if targets_arg.strip() in ("", "auto"):
+        targets = auto_targets([list(res["cells"][m][2][res["fronts"][m]]) for m in METHODS])
+    else:
+        targets = sorted({float(x) for x in targets_arg.split()}, reverse=True)
+    res["targets"] = targets
+    if not targets:
+        return res
+    point, between = {}, {}
+    for m in METHODS:
+        keys, t, e, _ = res["cells"][m]
+        f = res["fronts"][m]
+        point[m] = [stats.time_at_error(t[f], e[f], x) for x in targets]
+        segs = [stats.front_segment(e[f], x) for x in targets]
+        between[m] = ["" if sg is None else " .. ".join(dict.fromkeys(label(keys[f[k]]) for k in sg)) for sg in segs]
+    boot = {m: bootstrap_times(samples[m], targets, rng, replicates) for m in METHODS}
+    speed = boot["conventional"] / boot["precomputed"]
+    for i, x in enumerate(targets):
+        row = {"estimate": estimate, "relmse_target": x, "time": time_col}
+        for m in METHODS:
+            lo, hi, d = stats.percentile_interval(boot[m][:, i])
+            row[f"{m}_s"], row[f"{m}_ci95_lo"], row[f"{m}_ci95_hi"], row[f"{m}_defined"] = point[m][i], lo, hi, d
+            row[f"{m}_between"] = between[m][i]
+        lo, hi, d = stats.percentile_interval(speed[:, i])
+        row["speedup"] = point["conventional"][i] / point["precomputed"][i] if point["precomputed"][i] > 0 else math.nan
+        row["speedup_ci95_lo"], row["speedup_ci95_hi"], row["speedup_defined"] = lo, hi, d
+        res["rows"].append(row)
+    return res
+
+
+def label(key):
+    """'P_e=50k, n=10' for a cell key (photons, nn)."""
+    p, n = key
+    return f"P_e={p // 1000}k, n={n}" if p % 1000 == 0 else f"P_e={p}, n={n}"
+
+
+def section(res, time_col):
+    """Markdown lines of one estimate."""
+    est = res["estimate"]
+    out = ["", f"## {est} estimate", ""]
+    if any(len(res["cells"][m][0]) == 0 for m in METHODS):
+        missing = [m for m in METHODS if len(res["cells"][m][0]) == 0]
+        return out + [f"No {' or '.join(missing)} render of this estimate with an error against the reference: "
+                      "nothing to compare."]
+    out += ["Pareto fronts (cells no other cell of the same method beats in both time and error), fastest first; "
+            "time: median over seeds, relMSE: mean ± 95% t half-width over seeds:", ""]
+    rows = []
+    for m in METHODS:
+        keys, t, e, h = res["cells"][m]
+        for j in res["fronts"][m]:
+            rows.append([m, label(keys[j]), fmt(t[j]), report.fmt_pm(e[j], h[j])])
+    out += report.md_table(["method", "cell", "time s", "relMSE"], rows, ["l", "l", "r", "r"])
+    if not res["targets"]:
+        out += ["", "The two fronts reach no common relMSE: no error at which both can be timed."]
+        return out
+    out += ["", "At each relMSE target: the time each method needs (its front interpolated in log-log between the "
+            "two front cells named below it), and the speed-up = conventional time / precomputed time; [95% "
+            "bootstrap interval]; \"defined\": the share of bootstrap resamples in which both fronts reach the "
+            "target (the interval is taken over those). The interval covers the seeds' noise, not the error of "
+            "the straight line between two grid cells: where those cells lie far apart (n from 10 to 100, say), "
+            "the time in between is a model, and a finer grid there is the way to check it.", ""]
+    rows = []
+    for r in res["rows"]:
+        rows.append([fmt(r["relmse_target"]),
+                     f"{fmt(r['conventional_s'])} {fmt_interval(r['conventional_ci95_lo'], r['conventional_ci95_hi'])}"
+                     f"<br>{r['conventional_between'] or 'outside the front'}",
+                     f"{fmt(r['precomputed_s'])} {fmt_interval(r['precomputed_ci95_lo'], r['precomputed_ci95_hi'])}"
+                     f"<br>{r['precomputed_between'] or 'outside the front'}",
+                     f"**{fmt(r['speedup'])}** {fmt_interval(r['speedup_ci95_lo'], r['speedup_ci95_hi'])}",
+                     f"{100 * r['speedup_defined']:.0f}%"])
+    out += report.md_table(["relMSE target", "conventional s<br>(between cells)", "precomputed s<br>(between cells)",
+                            "speed-up", "defined"], rows)
+
+    # rank only where the interval is trustworthy: defined in >= 95% of the
+    # resamples (else it is conditional on the resamples that reach the target)
+    solid = [r for r in res["rows"] if r["speedup_defined"] >= 0.95]
+    faster = [r for r in solid if report.isnum(r["speedup_ci95_lo"]) and r["speedup_ci95_lo"] > 1]
+    slower = [r for r in solid if report.isnum(r["speedup_ci95_hi"]) and r["speedup_ci95_hi"] < 1]
+    unranked = [r for r in solid if r not in faster and r not in slower]
+    thin = [r for r in res["rows"] if r not in solid]
+    out.append("")
+    if faster:
+        out.append(f"- The precomputed method needs less time at relMSE {', '.join(fmt(r['relmse_target']) for r in faster)} "
+                   "(the speed-up's interval lies above 1).")
+    if slower:
+        out.append(f"- The conventional method needs less time at relMSE {', '.join(fmt(r['relmse_target']) for r in slower)} "
+                   "(the interval lies below 1).")
+    if unranked:
+        out.append(f"- No ranking at relMSE {', '.join(fmt(r['relmse_target']) for r in unranked)}: the interval "
+                   "contains 1.")
+    if thin:
+        out.append(f"- No ranking at relMSE {', '.join(fmt(r['relmse_target']) for r in thin)} either: fewer than 95% "
+                   "of the resamples reach the target on both fronts, so the interval describes only those that do "
+                   "(the cells around the target swap places on the fronts from resample to resample).")
+    seeds = min(min((len(v[0]) for v in res["samples"][m].values()), default=0) for m in METHODS)
+    if seeds < 5:
+        out.append(f"- Caution: with {seeds} seed(s) in a cell its bootstrap has only {math.comb(2 * seeds - 1, seeds)} "
+                   "distinct resamples, so these intervals run narrow; rerun with more seeds (`SEEDS`, default 5) "
+                   "before quoting them.")
+    return out
+
+
+def main():
+    """Command line: see the module docstring and experiments/table.mk."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs-csv", required=True)
+    ap.add_argument("--out", required=True, help="output stem: STEM.md and STEM.csv")
+    ap.add_argument("--targets", default="auto", help="relMSE targets, or auto")
+    ap.add_argument("--time", default="cpu_s", choices=sorted(TIME_LABEL))
+    ap.add_argument("--bootstrap", type=int, default=2000)
+    ap.add_argument("--bootstrap-seed", type=int, default=1)
+    ap.add_argument("--pm", default="build/photonmap")
+    args = ap.parse_args()
+    try:
+        runs = pd.read_csv(args.runs_csv)
+    except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError) as e:
+        report.die("equal_error.py", f"{args.runs_csv}: {e}")
+    need = ["role", "status", "estimate", "method", "photons", "nn", "seed", "relmse_ref", args.time,
+            "size", "subpixels", "threads", "loadavg_1min"]
+    missing = [c for c in need if c not in runs.columns]
+    if missing:
+        report.die("equal_error.py", f"{args.runs_csv}: no column(s) {', '.join(missing)}")
+    try:
+        targets = [float(x) for x in args.targets.split()] if args.targets.strip() not in ("", "auto") else []
+    except ValueError:
+        report.die("equal_error.py", f"--targets '{args.targets}': not numbers or 'auto'")
+    if any(not x > 0 for x in targets):
+        report.die("equal_error.py", f"--targets '{args.targets}': relMSE targets must be positive")
+    rng = np.random.default_rng(args.bootstrap_seed)
+    grid = runs[runs["role"] == "grid"]
+    estimates = list(dict.fromkeys(grid["estimate"]))
+    results = [analyse(runs, e, args.time, args.targets, rng, args.bootstrap) for e in estimates]
+
+    ok = grid[grid["status"] == "ok"]
+    seeds = ok.groupby(["method", "estimate", "photons", "nn"])["seed"].nunique()
+    load = stats.median_range(grid["loadavg_1min"].to_numpy(np.float64))
+    has_ref = np.isfinite(ok["relmse_ref"].astype(float)).any()
+    out = ["# Speed-up at equal error", "",
+           f"Generated by `make reproduce-table` on {report.today()} from "
+           f"[`{os.path.basename(args.runs_csv)}`]({os.path.relpath(args.runs_csv, os.path.dirname(args.out) or '.')}) "
+           f"({grid['size'].iloc[0]}, {grid['subpixels'].iloc[0]}x{grid['subpixels'].iloc[0]} subpixels, "
+           f"seeds per cell: {fmt_count(seeds.median(), seeds.min(), seeds.max()) if len(seeds) else 'none'}); "
+           f"data: [`{os.path.basename(args.out)}.csv`]({os.path.basename(args.out)}.csv). Machine: {report.machine()}; "
+           f"1-minute load average at the start of the renders: median {fmt(load[0])}, range "
+           f"{fmt(load[1])}-{fmt(load[2])}; commit {report.commit()}; renderer: {report.renderer_note(args.pm)}.", "",
+           "The question: to reach a given error, how much faster is the precomputed method? Error: relMSE against "
+           "the reference (see the table's Markdown for which), mean over seeds per cell. Time: "
+           f"{TIME_LABEL[args.time]}, median over seeds per cell. For each method the cells (P_e, n) form a Pareto "
+           "front; between two neighbouring front cells log(time) is interpolated linearly in log(relMSE). A target "
+           "below a front's smallest error is not reached in the grid, one above its largest would need a cell "
+           "cheaper than the grid's cheapest: both are left undefined rather than extrapolated. Intervals: "
+           f"{args.bootstrap} bootstrap resamples over seeds (random seed {args.bootstrap_seed}); in each, every "
+           "cell's seeds are drawn with replacement (a render's time and error together) and medians, means, "
+           "fronts and interpolation are recomputed. Targets: "
+           + ("five relMSE values spaced evenly in log inside the range both fronts reach (`EE_TARGETS=auto`)."
+              if args.targets.strip() in ("", "auto") else f"`EE_TARGETS={args.targets}`.")]
+    if not has_ref:
+        out += ["", "No render has an error against a reference (no reference of this size): nothing to compare."]
+    for res in results:
+        out += section(res, args.time)
+    rows = [r for res in results for r in res["rows"]]
+    columns = ["estimate", "relmse_target", "time"] + [f"{m}_{k}" for m in METHODS for k in
+                                                       ("s", "ci95_lo", "ci95_hi", "defined", "between")] + \
+              ["speedup", "speedup_ci95_lo", "speedup_ci95_hi", "speedup_defined"]
+    report.write_csv_atomic(pd.DataFrame(rows, columns=columns), args.out + ".csv", "%.6g")
+    report.write_atomic(args.out + ".md", "\n".join(out) + "\n")
+    print(f"wrote {args.out}.md and {args.out}.csv ({len(rows)} targets)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,120 @@
+"""Image error metrics: the one implementation the analysis layer uses.
+
+Owns reading a linear RGB EXR into a float64 array, the per-image metrics
+(relMSE, RMSE, PSNR) and the split of a cell's error over seeds into a bias
+and a variance term in the relMSE weighting. Every number about images in
+runs.csv, cells.csv and the tables comes from here. (build/imgmetrics, the C
+tool of the shell tests, computes the same relMSE, RMSE and PSNR;
+tests/analysis_test.py checks that the two agree on a real pair.)
+
+Conventions, x = test, r = reference, over every pixel and RGB channel:
+  relMSE = mean((x - r)^2 / (r^2 + 0.01))
+  RMSE   = sqrt(mean((x - r)^2))
+  PSNR   = 10 log10(peak^2 / MSE) dB, peak 1 (linear radiance, 1.0 = white)
+"""
+
+import math
+
+import numpy as np
+
+# the relMSE weight's offset: keeps dark pixels from dominating
+REL_EPS = 0.01
+
+
+def read_exr(path):
+    """Return the RGB channels of the EXR at PATH as a float64 array (H, W, 3).
+
+    Raises ValueError naming the file when it cannot be read or has fewer
+    than three channels."""
+    import OpenImageIO as oiio  # imported here: the statistics need no OIIO
+
+    buf = oiio.ImageBuf(str(path))
+    if buf.has_error:
+        raise ValueError(f"{path}: cannot read: {buf.geterror()}")
+    spec = buf.spec()
+    if spec.nchannels < 3:
+        raise ValueError(f"{path}: {spec.nchannels} channel(s), need RGB")
+    pixels = buf.get_pixels(oiio.FLOAT)
+    if pixels is None or buf.has_error:
+        raise ValueError(f"{path}: cannot read pixels: {buf.geterror()}")
+    return np.asarray(pixels, dtype=np.float64).reshape(spec.height, spec.width, spec.nchannels)[:, :, :3]
+
+
+def _check_same_shape(x, r):
+    """Raise ValueError unless the two images have the same shape."""
+    if x.shape != r.shape:
+        raise ValueError(f"image size mismatch: {x.shape} vs {r.shape}")
+
+
+def rel_weight(r):
+    """The per-value weight 1 / (r^2 + 0.01) of relMSE for reference R."""
+    return 1.0 / (np.square(r) + REL_EPS)
+
+
+def relmse(x, r):
+    """relMSE of image X against reference R: mean((x-r)^2 / (r^2+0.01))."""
+    _check_same_shape(x, r)
+    return float(np.mean(np.square(x - r) * rel_weight(r)))
+
+
+def mse(x, r):
+    """Mean squared error of X against R over pixels and channels."""
+    _check_same_shape(x, r)
+    return float(np.mean(np.square(x - r)))
+
+
+def rmse(x, r):
+    """Root mean squared error of X against R."""
+    return math.sqrt(mse(x, r))
+
+
+def psnr(x, r, peak=1.0):
+    """PSNR in dB of X against R with the given peak; inf when X equals R."""
+    m = mse(x, r)
+    return math.inf if m == 0 else 10.0 * math.log10(peak * peak / m)
+
+
+def weighted_gram(images, r):
+    """The S x S matrix G[s, t] = mean((x_s - r)(x_t - r) / (r^2 + 0.01)).
+
+    IMAGES is a sequence of S images of one cell (one per seed), R the
+    reference. G holds everything the relMSE-weighted statistics of the cell
+    need: G[s, s] is seed s's relMSE, and bias_variance() and its bootstrap
+    are functions of G alone, so the images are read once."""
+    if len(images) == 0:
+        raise ValueError("weighted_gram: no image")
+    for x in images:
+        _check_same_shape(x, r)
+    sw = np.sqrt(rel_weight(r)).ravel()
+    d = np.stack([(x.ravel() - r.ravel()) * sw for x in images])
+    return d @ d.T / d.shape[1]
+
+
+def bias_variance_from_gram(g, counts=None):
+    """Split the mean relMSE of a cell into (bias, variance) terms from G.
+
+    With S seeds, xbar the per-value mean over seeds and s^2 the per-value
+    sample variance over seeds (ddof = 1), w = 1 / (r^2 + 0.01):
+      variance = mean(w s^2)
+      bias     = mean(w ((xbar - r)^2 - s^2 / S))
+    Both are unbiased for the expected terms, and bias + variance equals the
+    mean over seeds of relMSE exactly (so bias can come out slightly
+    negative when the true bias is small). COUNTS, if given, weights seed s
+    by counts[s] (a bootstrap resample: how often each seed was drawn).
+    Returns (nan, nan) with fewer than two draws."""
+    g = np.asarray(g, dtype=np.float64)
+    c = np.ones(g.shape[0]) if counts is None else np.asarray(counts, dtype=np.float64)
+    n = c.sum()
+    if n < 2:
+        return math.nan, math.nan
+    mean_sq = float(c @ g @ c) / (n * n)          # mean(w (xbar - r)^2)
+    second = float(c @ np.diag(g)) / n            # mean(w mean_s (x_s - r)^2)
+    variance = (second - mean_sq) * n / (n - 1)   # mean(w s^2), ddof = 1
+    bias = mean_sq - variance / n
+    return bias, variance
+
+
+def bias_variance(images, r):
+    """(bias, variance) of a cell's seed IMAGES against reference R: the
+    terms of bias_variance_from_gram, from the images."""
+    return bias_variance_from_gram(weighted_gram(images, r))

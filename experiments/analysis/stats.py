@@ -1,0 +1,148 @@
+"""Statistics over seeds: the one implementation the analysis layer uses.
+
+Owns the summaries of per-seed values (t-interval of a mean, median with
+min-max), bootstrap resampling over seeds (percentile intervals, the ratio of
+two medians), the Pareto front of (time, error) cells and the log-log
+interpolation of the time a front needs to reach an error. Nothing here
+reads files; random numbers come from a numpy Generator the caller passes.
+"""
+
+import math
+
+import numpy as np
+from scipy import stats as sps
+
+LEVEL = 0.95
+
+
+def t_interval(values, level=LEVEL):
+    """(mean, half-width) of the Student-t interval of the mean of VALUES.
+
+    Half-width = t_{(1+level)/2, n-1} * sd / sqrt(n), sd with ddof = 1;
+    NaN values are dropped; the half-width is nan with fewer than two values
+    (and the mean too with none)."""
+    v = np.asarray(values, dtype=np.float64)
+    v = v[~np.isnan(v)]
+    if v.size == 0:
+        return math.nan, math.nan
+    mean = float(v.mean())
+    if v.size < 2:
+        return mean, math.nan
+    half = float(sps.t.ppf(0.5 + level / 2, v.size - 1) * v.std(ddof=1) / math.sqrt(v.size))
+    return mean, half
+
+
+def median_range(values):
+    """(median, min, max) of VALUES without NaN; all nan when none is left."""
+    v = np.asarray(values, dtype=np.float64)
+    v = v[~np.isnan(v)]
+    if v.size == 0:
+        return math.nan, math.nan, math.nan
+    return float(np.median(v)), float(v.min()), float(v.max())
+
+
+def intervals_overlap(a, b):
+    """True when the closed intervals A = (lo, hi) and B = (lo, hi) overlap,
+    or when either is unknown (a nan end): only disjoint intervals rank."""
+    if any(math.isnan(x) for x in (*a, *b)):
+        return True
+    return a[0] <= b[1] and b[0] <= a[1]
+
+
+def resample_indices(rng, n, replicates):
+    """A (replicates, n) array of indices drawn with replacement from 0..n-1:
+    one bootstrap resample of n seeds per row."""
+    return rng.integers(0, n, size=(replicates, n))
+
+
+def percentile_interval(samples, level=LEVEL):
+    """(lo, hi, defined) of a bootstrap distribution: the percentile interval
+    over the finite SAMPLES and the fraction of samples that were finite."""
+    s = np.asarray(samples, dtype=np.float64)
+    ok = s[np.isfinite(s)]
+    defined = ok.size / s.size if s.size else 0.0
+    if ok.size == 0:
+        return math.nan, math.nan, defined
+    lo, hi = np.quantile(ok, [0.5 - level / 2, 0.5 + level / 2])
+    return float(lo), float(hi), defined
+
+
+def median_ratio(a, b, rng, replicates, level=LEVEL):
+    """(ratio, lo, hi) of median(A) / median(B) with a bootstrap percentile
+    interval: the seeds of A and of B are resampled independently. nan when
+    either side has no value or median(B) is not positive; the interval is nan when either has only one."""
+    a = np.asarray(a, dtype=np.float64)
+    b = np.asarray(b, dtype=np.float64)
+    a = a[~np.isnan(a)]
+    b = b[~np.isnan(b)]
+    if a.size == 0 or b.size == 0:
+        return math.nan, math.nan, math.nan
+    if not np.median(b) > 0:
+        return math.nan, math.nan, math.nan
+    ratio = float(np.median(a) / np.median(b))
+    if a.size < 2 or b.size < 2:
+        return ratio, math.nan, math.nan
+    ma = np.median(a[resample_indices(rng, a.size, replicates)], axis=1)
+    mb = np.median(b[resample_indices(rng, b.size, replicates)], axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = np.where(mb > 0, ma / np.where(mb > 0, mb, 1.0), math.nan)
+    lo, hi, _ = percentile_interval(r, level)
+    return ratio, lo, hi
+
+
+def pareto_front(times, errors):
+    """Indices of the cells on the Pareto front, fastest first: a cell is on
+    it when every faster cell has a larger error (ties in time: the smaller
+    error). Along the front time rises and error falls strictly. Cells with
+    a non-finite or non-positive time or error are left out."""
+    t = np.asarray(times, dtype=np.float64)
+    e = np.asarray(errors, dtype=np.float64)
+    ok = np.flatnonzero(np.isfinite(t) & np.isfinite(e) & (t > 0) & (e > 0))
+    order = ok[np.lexsort((e[ok], t[ok]))]
+    front, best = [], math.inf
+    for i in order:
+        if e[i] < best:
+            front.append(int(i))
+            best = e[i]
+    return front
+
+
+def front_segment(front_errors, target):
+    """(i, j): the indices of the two front cells whose errors bracket
+    TARGET (i == j when a cell's error equals it), or None when TARGET lies
+    outside the front's errors (FRONT_ERRORS fall, as pareto_front orders
+    them)."""
+    e = np.asarray(front_errors, dtype=np.float64)
+    if e.size == 0 or not (target > 0) or target > e[0] or target < e[-1]:
+        return None
+    j = int(np.flatnonzero(e <= target)[0])
+    return (j, j) if e[j] == target else (j - 1, j)
+
+
+def time_at_error(front_times, front_errors, target):
+    """The time a front needs to reach error TARGET, interpolated linearly in
+    (log time, log error) between the two front cells around it.
+
+    FRONT_TIMES rise and FRONT_ERRORS fall (as pareto_front orders them).
+    Returns nan when TARGET lies outside the front's errors: below its
+    smallest error (not reached in the grid) or above its largest (even the
+    fastest cell is more accurate: the time is only bounded above)."""
+    t = np.asarray(front_times, dtype=np.float64)
+    e = np.asarray(front_errors, dtype=np.float64)
+    seg = front_segment(e, target)
+    if seg is None:
+        return math.nan
+    i, j = seg
+    if i == j:
+        return float(t[i])
+    lt0, lt1 = math.log(t[i]), math.log(t[j])
+    le0, le1 = math.log(e[i]), math.log(e[j])
+    return math.exp(lt0 + (math.log(target) - le0) * (lt1 - lt0) / (le1 - le0))
+
+
+def front_time_at_error(times, errors, target):
+    """time_at_error along the Pareto front of the cells (TIMES, ERRORS)."""
+    f = pareto_front(times, errors)
+    t = np.asarray(times, dtype=np.float64)[f]
+    e = np.asarray(errors, dtype=np.float64)[f]
+    return time_at_error(t, e, target)

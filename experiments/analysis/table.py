@@ -1,0 +1,431 @@
+#!/usr/bin/python3
+"""table.py: runs.csv + cells.csv -> Table 1 as CSV and Markdown.
+
+Owns the per-(P_e, n, method) summary over seeds and how it is shown: the
+paper's time and ratio (experiments/paper-table1.csv) beside ours (median
+over seeds with min-max; the precomputed/conventional ratio of medians with
+a bootstrap interval), per-phase medians, and per estimate the error
+against the reference (mean over seeds with a 95% t-interval, bias and
+variance over seeds from cells.csv), the error against the conventional
+image of the same seed, and the reference floor. Columns of the estimate
+"paper" have no suffix, those of another estimate E the suffix _E
+(relmse_ref_mean_corrected, ...). The Markdown ranks two numbers only when
+their 95% intervals are disjoint.
+"""
+
+import argparse
+import math
+import os
+import sys
+
+import numpy as np
+import pandas as pd
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import report  # noqa: E402
+import stats  # noqa: E402
+from report import fmt, fmt_ci, fmt_pm, fmt_range, isnum  # noqa: E402
+
+PHASES = ("trace", "build", "precompute", "render")
+
+
+def suffix(estimate):
+    """Column suffix of an estimate: '' for the paper's, '_E' otherwise."""
+    return "" if estimate == "paper" else f"_{estimate}"
+
+
+def read_inputs(runs_csv, cells_csv, paper_csv):
+    """The three tables, with the columns this script needs checked by name."""
+    frames = []
+    for path, need in ((runs_csv, ["method", "estimate", "photons", "nn", "seed", "status", "role", "total_s",
+                                   "cpu_s", "relmse_ref", "relmse_conv", "message"]),
+                       (cells_csv, ["method", "estimate", "photons", "nn", "bias_ref", "variance_ref",
+                                    "relmse_ref_floor", "ref", "ref_fast"]),
+                       (paper_csv, ["emitted_kphotons", "nn", "conventional_s", "proposed_s", "ratio_percent"])):
+        try:
+            f = pd.read_csv(path, comment="#", keep_default_na=True)
+        except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError) as e:
+            report.die("table.py", f"{path}: {e}")
+        missing = [c for c in need if c not in f.columns]
+        if missing:
+            report.die("table.py", f"{path}: no column(s) {', '.join(missing)}")
+        frames.append(f)
+    runs, cells, paper = frames
+    runs["message"] = runs["message"].fillna("")
+    return runs, cells, paper
+
+
+def ok_values(frame, column):
+    """The COLUMN values of the ok runs in FRAME, as a float array."""
+    return frame.loc[frame["status"] == "ok", column].to_numpy(dtype=np.float64)
+
+
+def summarize(runs, cells, paper, rng, replicates):
+    """One dict per (photons, nn, method) of the grid: the table1.csv row."""
+    grid = runs[runs["role"] == "grid"]
+    conv_all = runs[runs["role"] == "comparison"] if (runs["role"] == "comparison").any() \
+        else grid[grid["method"] == "conventional"]
+    estimates = list(dict.fromkeys(grid["estimate"]))
+    keys = list(dict.fromkeys(zip(grid["photons"], grid["nn"], grid["method"])))
+    first = grid.iloc[0]
+    rows = []
+    for photons, nn, method in keys:
+        row = {"photons": photons, "nn": nn, "method": method, "width": first["width"], "height": first["height"],
+               "subpixels": first["subpixels"], "tag": first["tag"] if isinstance(first["tag"], str) else ""}
+        row["paper_s"] = row["paper_ratio_percent"] = row["paper_conv_s"] = math.nan
+        pap = paper[(paper["emitted_kphotons"] * 1000 == photons) & (paper["nn"] == nn)]
+        if len(pap):
+            p = pap.iloc[0]
+            row["paper_conv_s"] = p["conventional_s"]
+            row["paper_s"] = p["conventional_s"] if method == "conventional" else p["proposed_s"]
+            row["paper_ratio_percent"] = 100.0 if method == "conventional" else p["ratio_percent"]
+        for est in estimates:
+            sfx = suffix(est)
+            sel = grid[(grid["photons"] == photons) & (grid["nn"] == nn) & (grid["method"] == method)
+                       & (grid["estimate"] == est)]
+            conv = conv_all[(conv_all["photons"] == photons) & (conv_all["nn"] == nn) & (conv_all["estimate"] == est)]
+            counts = sel["status"].value_counts()
+            row[f"seeds{sfx}"] = int(counts.get("ok", 0))
+            row[f"seeds_refused{sfx}"] = int(counts.get("refused", 0))
+            row[f"seeds_missing{sfx}"] = int(counts.get("missing", 0))
+            refused = sel.loc[sel["status"] == "refused", "message"]
+            row[f"refusal{sfx}"] = refused.iloc[0] if len(refused) else ""
+            if "threads" in sel and (sel["status"] == "ok").any():
+                row["threads"] = int(sel.loc[sel["status"] == "ok", "threads"].iloc[0])
+            for col, name in (("total_s", "total"), ("cpu_s", "cpu")):
+                med, lo, hi = stats.median_range(ok_values(sel, col))
+                row[f"{name}_median_s{sfx}"], row[f"{name}_min_s{sfx}"], row[f"{name}_max_s{sfx}"] = med, lo, hi
+            for ph in PHASES:
+                row[f"{ph}_median_s{sfx}"] = stats.median_range(ok_values(sel, f"{ph}_s"))[0]
+            for col, name in (("total_s", "ratio"), ("cpu_s", "cpu_ratio")):
+                r, lo, hi = stats.median_ratio(ok_values(sel, col), ok_values(conv, col), rng, replicates)
+                row[f"{name}_percent{sfx}"] = 100 * r
+                row[f"{name}_ci95_lo{sfx}"], row[f"{name}_ci95_hi{sfx}"] = 100 * lo, 100 * hi
+            for col in ("photons_stored", "representatives", "empty_estimates"):
+                row[f"{col}{sfx}"] = stats.median_range(ok_values(sel, col))[0]
+            for col in ("relmse_ref", "psnr_ref", "relmse_conv"):
+                v = ok_values(sel, col)
+                v = v[np.isfinite(v)]
+                row[f"{col}_mean{sfx}"], row[f"{col}_ci95{sfx}"] = stats.t_interval(v)
+            cell = cells[(cells["photons"] == photons) & (cells["nn"] == nn) & (cells["method"] == method)
+                         & (cells["estimate"] == est)]
+            # the conventional cell this row is compared with (itself for a
+            # conventional row of the grid; CONV_RUNROOT's for a variant)
+            for col, name in (("total_s", "total"), ("cpu_s", "cpu")):
+                med, lo, hi = stats.median_range(ok_values(conv, col))
+                row[f"conv_{name}_median_s{sfx}"], row[f"conv_{name}_min_s{sfx}"], row[f"conv_{name}_max_s{sfx}"] = \
+                    med, lo, hi
+            v = ok_values(conv, "relmse_ref")
+            row[f"conv_relmse_ref_mean{sfx}"], row[f"conv_relmse_ref_ci95{sfx}"] = stats.t_interval(v[np.isfinite(v)])
+            row[f"bias_ref{sfx}"] = cell["bias_ref"].iloc[0] if len(cell) else math.nan
+            row[f"variance_ref{sfx}"] = cell["variance_ref"].iloc[0] if len(cell) else math.nan
+        row["relmse_ref_floor"] = cells["relmse_ref_floor"].iloc[0] if len(cells) else math.nan
+        rows.append(row)
+    return pd.DataFrame(rows), estimates
+
+
+def interval(row, col, sfx=""):
+    """The 95% t-interval (lo, hi) of column COL's mean in ROW."""
+    m, h = row.get(f"{col}_mean{sfx}", math.nan), row.get(f"{col}_ci95{sfx}", math.nan)
+    return (m - h, m + h) if isnum(m) and isnum(h) else (math.nan, math.nan)
+
+
+def cell_label(row):
+    """'(50k, 10)' for a table row: (P_e, n)."""
+    p = row["photons"]
+    return f"({p // 1000}k, {row['nn']})" if p % 1000 == 0 else f"({p}, {row['nn']})"
+
+
+def cell_list(labels):
+    """'cells (P_e, n) = (50k, 10), (100k, 20)' for a list of cell labels."""
+    return "cell (P_e, n) = " + labels[0] if len(labels) == 1 else "cells (P_e, n) = " + ", ".join(labels)
+
+
+def rank_sentences(table, estimates):
+    """Markdown lines that rank numbers only where the 95% intervals are
+    disjoint, and name the cells where they overlap."""
+    lines = []
+    prec = [r for _, r in table.iterrows() if r["method"] != "conventional"]
+    if "paper" in estimates and prec:
+        below, above, other = [], [], []
+        for p in prec:
+            lo, hi = p.get("cpu_ratio_ci95_lo", math.nan), p.get("cpu_ratio_ci95_hi", math.nan)
+            if isnum(hi) and hi < 100:
+                below.append(cell_label(p))
+            elif isnum(lo) and lo > 100:
+                above.append(cell_label(p))
+            else:
+                other.append(cell_label(p))
+        parts = [f"lies below 100% (precomputed faster) in {len(below)} of {len(prec)} cells"]
+        if above:
+            parts.append(f"above 100% (precomputed slower) in {cell_list(above)}")
+        if other:
+            parts.append(f"contains 100% or is unknown (no ranking) in {cell_list(other)}")
+        lines.append("- **Time** (paper estimate, CPU seconds): the precomputed/conventional ratio's 95% interval "
+                     + "; ".join(parts) + ".")
+    for est in estimates:
+        sfx = suffix(est)
+        higher, lower, overlap, na = [], [], [], []
+        for p in prec:
+            a, b = interval(p, "relmse_ref", sfx), interval(p, "conv_relmse_ref", sfx)
+            label = cell_label(p)
+            if math.isnan(a[0]) or math.isnan(b[0]):
+                na.append(label)
+            elif stats.intervals_overlap(a, b):
+                overlap.append(label)
+            elif a[0] > b[1]:
+                higher.append(label)
+            else:
+                lower.append(label)
+        if higher or lower or overlap:
+            s = (f"- **Error against the reference, {est} estimate** (relMSE, 95% t-intervals over seeds), "
+                 "precomputed vs conventional: ")
+            parts = []
+            if higher:
+                parts.append(f"precomputed higher in {cell_list(higher)}")
+            if lower:
+                parts.append(f"precomputed lower in {cell_list(lower)}")
+            if overlap:
+                parts.append(f"intervals overlap (no ranking) in {cell_list(overlap)}")
+            lines.append(s + "; ".join(parts) + "." + (f" No interval in {cell_list(na)}." if na else ""))
+    if "paper" in estimates and len(estimates) > 1:
+        for est in [e for e in estimates if e != "paper"]:
+            sfx = suffix(est)
+            for method in ("conventional", "precomputed"):
+                better, worse, overlap = [], [], []
+                for _, r in table[table["method"] == method].iterrows():
+                    a, b = interval(r, "relmse_ref", sfx), interval(r, "relmse_ref")
+                    if math.isnan(a[0]) or math.isnan(b[0]):
+                        continue
+                    if stats.intervals_overlap(a, b):
+                        overlap.append(cell_label(r))
+                    elif a[1] < b[0]:
+                        better.append(cell_label(r))
+                    else:
+                        worse.append(cell_label(r))
+                if better or worse or overlap:
+                    parts = []
+                    if better:
+                        parts.append(f"{est} lower in {cell_list(better)}")
+                    if worse:
+                        parts.append(f"{est} higher in {cell_list(worse)}")
+                    if overlap:
+                        parts.append(f"intervals overlap (no ranking) in {cell_list(overlap)}")
+                    lines.append(f"- **{est} vs paper estimate, {method}** (relMSE against the reference, 95% "
+                                 "t-intervals): " + "; ".join(parts) + ".")
+    floor = table["relmse_ref_floor"].iloc[0] if len(table) else math.nan
+    if isnum(floor):
+        for est in estimates:
+            sfx = suffix(est)
+            if not table[f"bias_ref{sfx}"].notna().any():
+                continue
+            low = [f"{cell_label(r)} {r['method']}" for _, r in table.iterrows()
+                   if isnum(r.get(f"bias_ref{sfx}")) and r[f"bias_ref{sfx}"] <= floor]
+            if low:
+                lines.append(f"- **Reference-limited** ({est} estimate): the bias term is at or below the reference "
+                             f"floor ({fmt(floor)}) in (P_e, n) = {', '.join(low)}: there the reference, not the method, limits "
+                             f"what the bias column can show.")
+            else:
+                lines.append(f"- **Reference floor** ({est} estimate): every bias term is above the floor "
+                             f"({fmt(floor)}).")
+    return lines
+
+
+def markdown(table, runs, estimates, args):
+    """The Markdown text of the table."""
+    grid = runs[runs["role"] == "grid"]
+    n_ok, n_ref = int((grid["status"] == "ok").sum()), int((grid["status"] == "refused").sum())
+    n_miss = int((grid["status"] == "missing").sum())
+    first = grid.iloc[0]
+    seeds = " ".join(str(s) for s in sorted(set(grid["seed"])))
+    stem = os.path.basename(args.out)
+    cells_ref, cells_fast = args.ref, args.ref_fast
+    floor = table["relmse_ref_floor"].iloc[0]
+    load = grid.loc[grid["status"] != "missing", "loadavg_1min"].to_numpy(dtype=np.float64)
+    load_med, load_lo, load_hi = stats.median_range(load)
+    threads = table["threads"].dropna().iloc[0] if "threads" in table and table["threads"].notna().any() else "n/a"
+    out = [
+        "# Table 1, reproduced, over seeds",
+        "",
+        f"Generated by `make reproduce-table` on {report.today()} from `{args.runroot}`: {len(grid)} renders "
+        f"({n_ok} ok, {n_ref} not applicable, {n_miss} missing). Data: [`{stem}.csv`]({stem}.csv) (this table), "
+        f"[`{os.path.basename(args.runs_csv)}`]({os.path.relpath(args.runs_csv, os.path.dirname(args.out) or '.')}) "
+        f"(one row per render), [`{os.path.basename(args.cells_csv)}`]"
+        f"({os.path.relpath(args.cells_csv, os.path.dirname(args.out) or '.')}) (one row per cell and estimate). "
+        f"The speed-up at equal error: [`{os.path.basename(args.equal_error)}`]"
+        f"({os.path.relpath(args.equal_error, os.path.dirname(args.out) or '.')}).",
+        "",
+        f"- Machine: {report.machine()}, threads per render: {threads}. Load average when this table was written: "
+        f"{report.loadavg_now()}; 1-minute load average at the start of the renders: median {fmt(load_med)}, "
+        f"range {fmt(load_lo)}-{fmt(load_hi)} (with {os.cpu_count()} cores, a load above {os.cpu_count()} means "
+        "work waited for a core: wall times then suffer more than CPU times).",
+        f"- Commit: {report.commit()} when the table was written; renderer: {report.renderer_note(args.pm)}.",
+        f"- Settings: {first['width']}x{first['height']}, {first['subpixels']}x{first['subpixels']} subpixel samples, "
+        f"scene `{first['scene']}`" + (f", extra options `{args.pm_args}`" if args.pm_args.strip() else "")
+        + f", renderer defaults otherwise (`build/photonmap render --help`). Seeds: {seeds} (`--seed`: the photon "
+        "paths; the eye pass is deterministic). Every cell was rendered once per seed; the same renders give the "
+        f"times and the errors. Estimates: {', '.join(estimates)} (paper: the paper's estimator, the renderer's "
+        "default; corrected: `--bias-correction`).",
+        f"- Reference for the error columns: `{cells_ref}` (reference/README.md says how it was rendered)."
+        if cells_ref else
+        "- Reference: none of this size in `reference/` (REF unset): the columns against the reference are n/a.",
+    ]
+    if cells_ref:
+        out.append(f"- Reference floor: relMSE of `{cells_fast}` (POV-Ray's fast preset, the same pixels) against "
+                   f"the reference = {fmt(floor)}. Two POV-Ray settings disagree by this much; a bias term at or "
+                   "below it cannot be told apart from the reference's own error." if cells_fast and isnum(floor)
+                   else "- Reference floor: n/a (no fast POV-Ray render of this size beside the reference).")
+    out += ["- Paper: Intel Core2 Duo 2.93 GHz, g++ 4.6.3, 1024x768 with 2x2 samples; its times are total "
+            "rendering times of one run.", ""]
+
+    pairs = {}
+    for _, r in table.iterrows():
+        pairs.setdefault((r["photons"], r["nn"]), {})[r["method"]] = r
+    if "paper" in estimates:
+        out += ["## Times: the paper beside ours (paper estimate)", "",
+                "Ours: median over seeds (min-max). ratio = precomputed (the paper's \"proposed\") / conventional, "
+                "ratio of the medians, in percent, with its 95% bootstrap interval (seeds resampled within each "
+                f"cell, {args.bootstrap} resamples). s: the renderer's wall clock (`time_s.total`); CPU s: "
+                "user+system CPU seconds of the process (`/usr/bin/time`, includes start-up and writing the EXR), "
+                "less disturbed by other work on a shared machine."
+                + ("" if (first["width"], first["height"], first["subpixels"]) == (1024, 768, 2) else
+                   f" The paper's times are for 1024x768 with 2x2 samples, ours for {first['width']}x{first['height']} "
+                   f"with {first['subpixels']}x{first['subpixels']}: compare the ratios, not the seconds (the eye "
+                   "pass, which the precomputed method speeds up, shrinks with the image, the photon phases do not)."),
+                ""]
+        rows = []
+        for (p, n), m in pairs.items():
+            # the precomputed row carries the conventional cell it is compared with
+            q = m.get("precomputed", {})
+            c = m.get("conventional", {}) if not len(q) else \
+                {k[len("conv_"):]: v for k, v in q.items() if k.startswith("conv_")}
+            g = (lambda d, k: d.get(k, math.nan) if len(d) else math.nan)
+            any_row = q if len(q) else c
+            rows.append([p, n, fmt(g(any_row, "paper_conv_s")), fmt(g(q, "paper_s")), fmt(g(q, "paper_ratio_percent")),
+                         fmt_range(g(c, "total_median_s"), g(c, "total_min_s"), g(c, "total_max_s")),
+                         fmt_range(g(q, "total_median_s"), g(q, "total_min_s"), g(q, "total_max_s")),
+                         fmt_ci(g(q, "ratio_percent"), g(q, "ratio_ci95_lo"), g(q, "ratio_ci95_hi"), 1),
+                         fmt_range(g(c, "cpu_median_s"), g(c, "cpu_min_s"), g(c, "cpu_max_s")),
+                         fmt_range(g(q, "cpu_median_s"), g(q, "cpu_min_s"), g(q, "cpu_max_s")),
+                         fmt_ci(g(q, "cpu_ratio_percent"), g(q, "cpu_ratio_ci95_lo"), g(q, "cpu_ratio_ci95_hi"), 1)])
+        out += report.md_table(["P_e", "n", "paper conv. s", "paper prop. s", "paper ratio %", "our conv. s",
+                                "our prec. s", "our ratio % [95% CI]", "our conv. CPU s", "our prec. CPU s",
+                                "our CPU ratio % [95% CI]"], rows, ["r"] * 11)
+        out += ["", "## Our phases (paper estimate, median seconds over seeds)", "",
+                "Each phase's own median (so the phases need not add up to the median total). Empty estimates: "
+                "eye samples where no photon or representative applied (black), median over seeds.", ""]
+        rows = [[r["photons"], r["nn"], r["method"]] + [report.fmt_fixed(r.get(f"{ph}_median_s"), 3) for ph in PHASES]
+                + [fmt_range(r.get("total_median_s"), r.get("total_min_s"), r.get("total_max_s"), 3),
+                   fmt_range(r.get("cpu_median_s"), r.get("cpu_min_s"), r.get("cpu_max_s"), 2),
+                   report.fmt_fixed(r.get("photons_stored"), 0), report.fmt_fixed(r.get("representatives"), 0),
+                   report.fmt_fixed(r.get("empty_estimates"), 0)]
+                for _, r in table.iterrows()]
+        out += report.md_table(["P_e", "n", "method", "trace", "build", "precompute", "render", "total (min-max)",
+                                "CPU (min-max)", "stored photons", "representatives", "empty estimates"], rows,
+                               ["r", "r", "l"] + ["r"] * 9)
+    for est in estimates:
+        sfx = suffix(est)
+        sel = table[table[f"seeds{sfx}"] > 0]
+        out += ["", f"## Error against the reference: {est} estimate", ""]
+        if sel.empty:
+            msgs = sorted(set(m for m in table[f"refusal{sfx}"] if m))
+            out.append("No render of this estimate applied" + (f" (the renderer: `{'`; `'.join(msgs)}`)." if msgs else "."))
+            continue
+        out += [f"Per cell over its seeds: relMSE against the reference, mean ± 95% t half-width; its split into "
+                f"bias and variance (they add up to the mean); the relMSE of the image against the conventional "
+                f"image of the same seed and estimate, mean ± 95% t half-width. "
+                + (f"Reference floor: {fmt(floor)}; a bias at or below it is marked ≤floor." if isnum(floor) else ""),
+                ""]
+        rows = []
+        for _, r in table.iterrows():
+            if r[f"seeds{sfx}"] == 0:
+                why = "not applicable" if r[f"seeds_refused{sfx}"] else "not rendered yet"
+                rows.append([r["photons"], r["nn"], r["method"], 0, why, "", "", ""])
+                continue
+            b = r.get(f"bias_ref{sfx}")
+            mark = " ≤floor" if isnum(b) and isnum(floor) and b <= floor else ""
+            conv = "-" if r["method"] == "conventional" else fmt_pm(r.get(f"relmse_conv_mean{sfx}"),
+                                                                    r.get(f"relmse_conv_ci95{sfx}"))
+            rows.append([r["photons"], r["nn"], r["method"], r[f"seeds{sfx}"],
+                         fmt_pm(r.get(f"relmse_ref_mean{sfx}"), r.get(f"relmse_ref_ci95{sfx}")),
+                         fmt(b) + mark, fmt(r.get(f"variance_ref{sfx}")), conv])
+        out += report.md_table(["P_e", "n", "method", "seeds", "relMSE vs ref", "bias", "variance",
+                                "relMSE vs conv. (same seed)"], rows, ["r", "r", "l", "r", "r", "r", "r", "r"])
+
+    out += ["", "## What the intervals allow us to say", "",
+            "Generated from the intervals above; two numbers are ranked only when their 95% intervals are "
+            "disjoint (a conservative test: with few seeds, real differences can stay unranked).", ""]
+    out += rank_sentences(table, estimates)
+
+    refused = grid[grid["status"] == "refused"]
+    if len(refused):
+        out += ["", "## Not applicable", "",
+                "Renders the renderer refused (exit 2): the combination does not apply, so the cell has no value "
+                "for that estimate. Its message:", ""]
+        rows = []
+        for (method, est, msg), g in refused.groupby(["method", "estimate", "message"], sort=False):
+            cells_txt = ", ".join(dict.fromkeys(f"({p}, {n})" for p, n in zip(g["photons"], g["nn"])))
+            rows.append([method, est, cells_txt, f"`{msg}`" if msg else "(no message)"])
+        out += report.md_table(["method", "estimate", "cells (P_e, n)", "renderer's message"], rows, ["l"] * 4)
+        if refused["message"].str.contains("unknown option").any():
+            out += ["", "**An \"unknown option\" above is not a refusal of the combination**: the renderer that ran "
+                    "(`" + args.pm + "`) predates that option, so those renders say nothing about the estimate. "
+                    "Re-run with a renderer that has it."]
+    if n_miss:
+        out += ["", f"{n_miss} render(s) missing: run `make reproduce-table` again (with the same variables) to "
+                "finish them."]
+
+    out += ["", "## How each column was computed", "",
+            "- Per render (`runs.csv`): times from the renderer's `--stats` JSON (`time_s`, monotonic wall clock "
+            "per phase); `cpu_s` = user + system seconds of the process from `/usr/bin/time -f \"%U %S\"`; "
+            "`relmse_ref` = mean over pixels and RGB channels of (x-r)^2/(r^2+0.01), x our image, r the "
+            "reference; `rmse_ref`, `psnr_ref` = 10 log10(1/MSE) dB (peak 1, linear radiance); `relmse_conv`: "
+            "relMSE with the conventional image of the same seed and estimate in the place of r. One "
+            "implementation: `experiments/analysis/metrics.py`.",
+            "- `*_median_s`, `*_min_s`, `*_max_s`: median, minimum, maximum over the seeds that rendered.",
+            "- `ratio_percent`, `cpu_ratio_percent`: 100 x median(precomputed) / median(conventional), same "
+            "P_e, n and estimate; `*_ci95_lo`, `*_ci95_hi`: 2.5% and 97.5% quantiles of that ratio over "
+            f"{args.bootstrap} bootstrap resamples (the seeds of each of the two cells drawn with replacement, "
+            f"independently; random seed {args.bootstrap_seed}).",
+            "- `relmse_ref_mean`, `relmse_ref_ci95`: mean over seeds and the half-width of its 95% Student-t "
+            "interval (t_{0.975, S-1} sd / sqrt(S), S seeds); the same for `psnr_ref` and `relmse_conv`.",
+            "- `bias_ref`, `variance_ref` (from `cells.csv`): with xbar the per-pixel mean image over the S seeds, "
+            "s^2 the per-pixel sample variance over seeds (ddof 1) and w = 1/(r^2+0.01): variance_ref = "
+            "mean(w s^2), bias_ref = mean(w ((xbar-r)^2 - s^2/S)). Both are unbiased; bias_ref + variance_ref = "
+            "relmse_ref_mean exactly, and bias_ref can be slightly negative when the bias is small. No "
+            "interval is given for them: the t-interval of relmse_ref_mean carries the seed uncertainty.",
+            "- Columns ending in `_corrected` (or another estimate's name): the same for that estimate.",
+            "- `relmse_ref_floor`: relMSE of the fast POV-Ray render against the reference, the same pixels and "
+            "samples (reference/README.md says how each was rendered).",
+            "- `paper_s`, `paper_ratio_percent`: the paper's Table 1 (`experiments/paper-table1.csv`)."]
+    return "\n".join(out) + "\n"
+
+
+def main():
+    """Command line: see the module docstring and experiments/table.mk."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs-csv", required=True)
+    ap.add_argument("--cells-csv", required=True)
+    ap.add_argument("--paper", required=True)
+    ap.add_argument("--out", required=True, help="output stem: STEM.csv and STEM.md")
+    ap.add_argument("--equal-error", required=True, help="the equal-error Markdown (linked)")
+    ap.add_argument("--pm", default="build/photonmap")
+    ap.add_argument("--pm-args", default="")
+    ap.add_argument("--runroot", required=True)
+    ap.add_argument("--bootstrap", type=int, default=2000)
+    ap.add_argument("--bootstrap-seed", type=int, default=1)
+    args = ap.parse_args()
+    runs, cells, paper = read_inputs(args.runs_csv, args.cells_csv, args.paper)
+    if (runs["role"] == "grid").sum() == 0:
+        report.die("table.py", f"{args.runs_csv}: no render of the grid")
+    args.ref = cells["ref"].dropna().iloc[0] if cells["ref"].notna().any() else ""
+    args.ref_fast = cells["ref_fast"].dropna().iloc[0] if cells["ref_fast"].notna().any() else ""
+    rng = np.random.default_rng(args.bootstrap_seed)
+    table, estimates = summarize(runs, cells, paper, rng, args.bootstrap)
+    report.write_csv_atomic(table, args.out + ".csv", "%.6g")
+    report.write_atomic(args.out + ".md", markdown(table, runs, estimates, args))
+    print(f"wrote {args.out}.csv and {args.out}.md ({len(table)} rows)")
+
+
+if __name__ == "__main__":
+    main()

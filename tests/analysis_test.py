@@ -1,0 +1,305 @@
+#!/usr/bin/python3
+"""Unit tests of the experiment analysis layer (experiments/analysis/).
+
+Run by tests/analysis.test.sh (part of `make test`). Prints one "ok" or
+"FAIL" line per check and "N passed, N failed" last; exits 1 on a failure.
+Every check compares against a value computed another way (a closed form, a
+simulation with a known answer, the C tool build/imgmetrics), so each can
+fail. Random numbers come from fixed seeds: the outcome is deterministic.
+"""
+
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import traceback
+
+import numpy as np
+import pandas as pd
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "experiments", "analysis"))
+import equal_error  # noqa: E402
+import metrics  # noqa: E402
+import stats  # noqa: E402
+
+
+def run_checks(checks):
+    """Run every (name, function) in CHECKS; a check passes when its
+    function returns without an exception. Returns (passed, failed)."""
+    passed = failed = 0
+    for name, fn in checks:
+        try:
+            fn()
+            passed += 1
+            print(f"ok   {name}")
+        except Exception:  # noqa: BLE001 - every failure is reported the same way
+            failed += 1
+            print(f"FAIL {name}")
+            for line in traceback.format_exc().splitlines()[-6:]:
+                print(f"     {line}")
+    return passed, failed
+
+
+def close(a, b, tol, what=""):
+    """Assert |a - b| <= tol."""
+    assert abs(a - b) <= tol, f"{what}: {a} vs {b} (tolerance {tol})"
+
+
+# ---- stats: intervals over seeds
+
+def t_interval_coverage():
+    """The 95% t-interval of 5 normal draws covers the true mean in about 95%
+    of 4000 trials (a z-interval would cover about 88%: this fails then)."""
+    rng = np.random.default_rng(7)
+    hits = 0
+    trials = 4000
+    for _ in range(trials):
+        m, h = stats.t_interval(rng.normal(3.0, 2.0, size=5))
+        hits += (m - h) <= 3.0 <= (m + h)
+    cover = hits / trials
+    assert 0.935 <= cover <= 0.965, f"coverage {cover}"
+
+
+def t_interval_edges():
+    """One value: no half-width; NaN values are dropped; the known value for
+    (1, 2, 3): mean 2, half-width t(0.975, 2) * 1 / sqrt(3) = 2.4841."""
+    m, h = stats.t_interval([4.0])
+    assert m == 4.0 and math.isnan(h)
+    m, h = stats.t_interval([1.0, float("nan"), 2.0, 3.0])
+    close(m, 2.0, 1e-12, "mean")
+    close(h, 4.302652729911275 / math.sqrt(3), 1e-9, "half-width")
+    assert all(math.isnan(x) for x in stats.t_interval([]))
+
+
+def median_range_known():
+    """Median with min and max, NaN ignored."""
+    assert stats.median_range([3.0, 1.0, float("nan"), 2.0, 10.0]) == (2.5, 1.0, 10.0)
+
+
+def percentile_interval_known():
+    """The 2.5% and 97.5% quantiles of 0..1000 are 25 and 975; the share of
+    finite samples is reported."""
+    lo, hi, d = stats.percentile_interval(np.append(np.arange(1001.0), [np.nan] * 1001))
+    close(lo, 25.0, 1e-9, "lo")
+    close(hi, 975.0, 1e-9, "hi")
+    close(d, 0.5, 1e-12, "defined")
+
+
+def median_ratio_known():
+    """median(a)/median(b) and an interval that contains it; constant
+    samples give a degenerate interval at the ratio."""
+    rng = np.random.default_rng(1)
+    r, lo, hi = stats.median_ratio([2.0, 2.0, 2.0], [4.0, 4.0, 4.0], rng, 500)
+    assert (r, lo, hi) == (0.5, 0.5, 0.5), (r, lo, hi)
+    r, lo, hi = stats.median_ratio([1.0, 2.0, 9.0], [1.0, 1.0, 1.0], rng, 500)
+    assert r == 2.0 and lo <= 2.0 <= hi and lo >= 1.0 and hi <= 9.0, (r, lo, hi)
+    assert math.isnan(stats.median_ratio([1.0], [0.0], rng, 10)[0])
+
+
+def intervals_overlap_known():
+    """Disjoint intervals do not overlap; touching and unknown ones do."""
+    assert not stats.intervals_overlap((1, 2), (3, 4))
+    assert stats.intervals_overlap((1, 3), (3, 4))
+    assert stats.intervals_overlap((1, float("nan")), (5, 6))
+
+
+# ---- stats: fronts and interpolation
+
+def pareto_front_known():
+    """Dominated cells and cells with a tied time but a larger error are not
+    on the front; the front is ordered by time."""
+    t = [1.0, 2.0, 2.0, 3.0, 4.0, 0.5]
+    e = [0.5, 0.6, 0.3, 0.4, 0.1, float("nan")]
+    assert stats.pareto_front(t, e) == [0, 2, 4], stats.pareto_front(t, e)
+
+
+def interpolation_power_law():
+    """Cells on a power law t = 3 e^-1.5 lie on a straight line in log-log,
+    so the interpolated time at any error between them is the law's."""
+    e = np.array([0.2, 0.1, 0.05, 0.01])
+    t = 3.0 * e ** -1.5
+    for target in (0.2, 0.15, 0.07, 0.05, 0.011, 0.01):
+        close(stats.time_at_error(t, e, target), 3.0 * target ** -1.5, 1e-9 * 3.0 * target ** -1.5, f"at {target}")
+    close(stats.front_time_at_error(list(t) + [1000.0], list(e) + [0.5], 0.07), 3.0 * 0.07 ** -1.5, 1e-6, "front")
+
+
+def interpolation_outside_is_undefined():
+    """A target below the front's smallest error or above its largest is
+    not extrapolated."""
+    e = np.array([0.2, 0.1])
+    t = np.array([1.0, 2.0])
+    assert math.isnan(stats.time_at_error(t, e, 0.05))
+    assert math.isnan(stats.time_at_error(t, e, 0.3))
+    assert math.isnan(stats.time_at_error([], [], 0.1))
+
+
+# ---- metrics
+
+def relmse_known():
+    """relMSE of identical images is 0 and PSNR inf; x = 2, r = 1 gives
+    relMSE 1/1.01, RMSE 1, PSNR 0 dB; a size mismatch is an error."""
+    r = np.full((4, 5, 3), 1.0)
+    assert metrics.relmse(r, r) == 0.0 and metrics.psnr(r, r) == math.inf and metrics.rmse(r, r) == 0.0
+    x = np.full((4, 5, 3), 2.0)
+    close(metrics.relmse(x, r), 1 / 1.01, 1e-15, "relmse")
+    close(metrics.rmse(x, r), 1.0, 1e-15, "rmse")
+    close(metrics.psnr(x, r), 0.0, 1e-12, "psnr")
+    try:
+        metrics.relmse(x, np.zeros((5, 4, 3)))
+    except ValueError:
+        return
+    raise AssertionError("size mismatch accepted")
+
+
+def synthetic_truth(rng, bias_scale, sigma_scale, shape=(12, 16, 3)):
+    """A reference r, a per-value bias b and noise sigma; returns (r, b,
+    sigma, true bias term, true variance term) in the relMSE weighting."""
+    r = rng.uniform(0.05, 1.0, size=shape)
+    b = bias_scale * rng.uniform(-1.0, 1.0, size=shape)
+    sigma = sigma_scale * rng.uniform(0.5, 1.5, size=shape)
+    w = metrics.rel_weight(r)
+    return r, b, sigma, float(np.mean(w * b * b)), float(np.mean(w * sigma * sigma))
+
+
+def synthetic_cell(rng, seeds, bias_scale, sigma_scale):
+    """SEEDS images x_s = r + b + sigma * N(0, 1) of one synthetic truth;
+    returns (images, r)."""
+    r, b, sigma, _, _ = synthetic_truth(rng, bias_scale, sigma_scale)
+    return [r + b + sigma * rng.standard_normal(r.shape) for _ in range(seeds)], r
+
+
+def bias_variance_recovers_truth():
+    """Over 400 synthetic cells of 4 seeds whose noise is far larger than
+    their bias (fresh noise, the same truth), the mean bias and variance
+    estimates match the true terms within 4 standard errors; the plain
+    squared error of the mean image (without the s^2/S correction) misses
+    the bias by far (this would fail with that estimator)."""
+    r, b, sigma, true_b, true_v = synthetic_truth(np.random.default_rng(11), 0.02, 0.1)
+    rng = np.random.default_rng(3)
+    est_b, est_v, naive = [], [], []
+    for _ in range(400):
+        imgs = [r + b + sigma * rng.standard_normal(r.shape) for _ in range(4)]
+        bias, variance = metrics.bias_variance(imgs, r)
+        est_b.append(bias)
+        est_v.append(variance)
+        naive.append(float(np.mean(metrics.rel_weight(r) * (np.mean(imgs, axis=0) - r) ** 2)))
+    se_b = np.std(est_b, ddof=1) / math.sqrt(len(est_b))
+    se_v = np.std(est_v, ddof=1) / math.sqrt(len(est_v))
+    close(np.mean(est_b), true_b, 4 * se_b, "bias")
+    close(np.mean(est_v), true_v, 4 * se_v, "variance")
+    assert abs(np.mean(naive) - true_b) > 20 * se_b, "the uncorrected estimator should be far off"
+
+
+def bias_variance_identity_and_definition():
+    """bias + variance equals the mean over seeds of relMSE, and both equal
+    the per-pixel definition written out here (mean image, ddof-1 variance)."""
+    imgs, r = synthetic_cell(np.random.default_rng(5), 5, 0.05, 0.05)
+    b, v = metrics.bias_variance(imgs, r)
+    close(b + v, np.mean([metrics.relmse(x, r) for x in imgs]), 1e-12, "identity")
+    w = 1.0 / (r * r + 0.01)
+    stack = np.stack(imgs)
+    s2 = stack.var(axis=0, ddof=1)
+    close(v, float(np.mean(w * s2)), 1e-12, "variance definition")
+    close(b, float(np.mean(w * ((stack.mean(axis=0) - r) ** 2 - s2 / 5))), 1e-12, "bias definition")
+    assert all(math.isnan(x) for x in metrics.bias_variance(imgs[:1], r))
+
+
+def bias_variance_counts_are_repeats():
+    """Weighting seeds by bootstrap counts equals repeating the images."""
+    imgs, r = synthetic_cell(np.random.default_rng(6), 3, 0.05, 0.05)
+    g = metrics.weighted_gram(imgs, r)
+    got = metrics.bias_variance_from_gram(g, [2, 0, 1])
+    want = metrics.bias_variance([imgs[0], imgs[0], imgs[2]], r)
+    close(got[0], want[0], 1e-12, "bias")
+    close(got[1], want[1], 1e-12, "variance")
+
+
+def relmse_matches_imgmetrics():
+    """On a real pair of renders, metrics.py's relMSE, RMSE and PSNR equal
+    build/imgmetrics' to 1e-6 (relative), and read_exr gives H x W x 3."""
+    pm = os.environ.get("PM", os.path.join(ROOT, "build", "photonmap"))
+    im = os.path.join(ROOT, "build", "imgmetrics")
+    scene = os.path.join(ROOT, "scenes", "cornell.scene")
+    with tempfile.TemporaryDirectory() as d:
+        a, b = os.path.join(d, "a.exr"), os.path.join(d, "b.exr")
+        for path, method in ((a, "conventional"), (b, "precomputed")):
+            subprocess.run([pm, "render", scene, "--width", "32", "--height", "24", "--photons", "3000", "--nn", "10",
+                            "--method", method, "-o", path, "--quiet"], check=True)
+        out = subprocess.run([im, b, a, "--csv"], check=True, capture_output=True, text=True).stdout.strip()
+        c_rel, c_rmse, c_psnr = (float(v) for v in out.split(",")[:3])
+        x, r = metrics.read_exr(b), metrics.read_exr(a)
+        assert x.shape == (24, 32, 3), x.shape
+        got = (metrics.relmse(x, r), metrics.rmse(x, r), metrics.psnr(x, r))
+        assert got[0] > 0, "the two renders should differ"
+        for g, c, name in zip(got, (c_rel, c_rmse, c_psnr), ("relmse", "rmse", "psnr")):
+            close(g, c, 1e-6 * max(1.0, abs(c)), name)
+
+
+def read_exr_missing_file():
+    """A missing file is a ValueError that names it."""
+    try:
+        metrics.read_exr("/nonexistent/x.exr")
+    except ValueError as e:
+        assert "/nonexistent/x.exr" in str(e), str(e)
+        return
+    raise AssertionError("no error")
+
+
+# ---- equal error
+
+def synthetic_runs(speedup, seeds=5, noise=0.02):
+    """runs.csv rows of a grid where both methods follow error = 1/n and the
+    precomputed method takes 1/SPEEDUP of the conventional time at every
+    cell, with a little multiplicative noise per seed."""
+    rng = np.random.default_rng(9)
+    rows = []
+    for method, scale in (("conventional", 1.0), ("precomputed", 1.0 / speedup)):
+        for n in (10, 20, 50, 100):
+            for s in range(1, seeds + 1):
+                rows.append({"role": "grid", "status": "ok", "estimate": "paper", "method": method,
+                             "photons": 1000, "nn": n, "seed": s,
+                             "cpu_s": scale * n * math.exp(noise * rng.standard_normal()),
+                             "relmse_ref": (1.0 / n) * math.exp(noise * rng.standard_normal())})
+    return pd.DataFrame(rows)
+
+
+def equal_error_recovers_speedup():
+    """With precomputed exactly 3x faster at every error, the speed-up at
+    each automatic target is 3 within 5%, its interval contains 3, and the
+    targets lie inside both fronts' error range."""
+    res = equal_error.analyse(synthetic_runs(3.0), "paper", "cpu_s", "auto", np.random.default_rng(2), 400)
+    assert len(res["rows"]) == 5, res["targets"]
+    for r in res["rows"]:
+        assert 0.01 < r["relmse_target"] < 0.1, r["relmse_target"]
+        close(r["speedup"], 3.0, 0.15, f"speed-up at {r['relmse_target']}")
+        assert r["speedup_ci95_lo"] <= 3.0 <= r["speedup_ci95_hi"], r
+
+
+def equal_error_no_common_range():
+    """Fronts that reach no common error give no target; explicit targets
+    outside a front give undefined times."""
+    runs = synthetic_runs(2.0)
+    runs.loc[runs["method"] == "precomputed", "relmse_ref"] *= 100
+    res = equal_error.analyse(runs, "paper", "cpu_s", "auto", np.random.default_rng(2), 50)
+    assert res["targets"] == [] and res["rows"] == []
+    res = equal_error.analyse(runs, "paper", "cpu_s", "0.05", np.random.default_rng(2), 50)
+    assert math.isnan(res["rows"][0]["precomputed_s"]) and math.isnan(res["rows"][0]["speedup"])
+
+
+def main():
+    """Run every check; exit 1 when one fails."""
+    checks = [(f.__name__.replace("_", " "), f) for f in (
+        t_interval_coverage, t_interval_edges, median_range_known, percentile_interval_known, median_ratio_known,
+        intervals_overlap_known, pareto_front_known, interpolation_power_law, interpolation_outside_is_undefined,
+        relmse_known, bias_variance_recovers_truth, bias_variance_identity_and_definition,
+        bias_variance_counts_are_repeats, relmse_matches_imgmetrics, read_exr_missing_file,
+        equal_error_recovers_speedup, equal_error_no_common_range)]
+    passed, failed = run_checks(checks)
+    print(f"{passed} passed, {failed} failed")
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
