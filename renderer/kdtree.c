@@ -35,6 +35,22 @@
 
 /* ---- build ---- */
 
+/* The height above the leaves at which the k-nearest traversal stops and
+ * scans contiguous ranges: 0 for a single leaf, else the largest h >= 1
+ * (below the root) whose half-subtrees, of 2^(h-1) leaves, hold at most
+ * KD_SCAN_POINTS points. Subtrees of one level differ in size by at most
+ * one point, so the largest of height g holds ceil(n / 2^(depth-g)).
+ * Scanning a few chunks costs less than descending to each leaf. */
+#define KD_SCAN_POINTS (4 * KD_CHUNK)
+
+static uint32_t scan_height(uint32_t n, uint32_t nleaves)
+{
+    uint32_t depth = (uint32_t)__builtin_ctz(nleaves), h = depth > 0;
+    while (h < depth && ((((uint64_t)n - 1) >> (depth - h)) + 1) <= KD_SCAN_POINTS)
+        h++;
+    return h;
+}
+
 /* The build partitions a working copy of the points with their input
  * indices (16 bytes each), so every pass reads memory in order. */
 typedef struct {
@@ -127,6 +143,7 @@ int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint3
         nleaves *= 2;
     t->n = n;
     t->nleaves = nleaves;
+    t->scan_h = scan_height(n, nleaves);
     kd_item *it = malloc(sizeof(kd_item) * (n ? n : 1));
     t->split = malloc(sizeof(float) * nleaves);
     t->axis = malloc(nleaves);
@@ -205,13 +222,14 @@ typedef struct {
 } kd_frame;
 
 /* Squared distance from q to the box of all points, and its per-axis parts. */
-static float root_offsets(const kd_tree *t, const float q[3], float off[3])
+static inline float root_offsets(const kd_tree *t, const float q[3], float off[3])
 {
     float rd = 0.0f;
     for (int a = 0; a < 3; a++) {
-        float o = q[a] < t->lo[a] ? q[a] - t->lo[a] : (q[a] > t->hi[a] ? q[a] - t->hi[a] : 0.0f);
-        off[a] = o;
-        rd += o * o;
+        float c = q[a] < t->lo[a] ? t->lo[a] : q[a];
+        c = c > t->hi[a] ? t->hi[a] : c;
+        off[a] = q[a] - c;
+        rd += off[a] * off[a];
     }
     return rd;
 }
@@ -474,24 +492,26 @@ static void select_k(uint64_t *a, uint64_t *b, uint64_t *c, uint32_t m, uint32_t
         if (!(rd <= bound))                                                                                    \
             return 0;                                                                                          \
         QTYPE qv;                                                                                              \
-        QINIT(qv, q);                                                                                          \
+        QINIT(qv, q, r2);                                                                                      \
         kd_frame stack[KD_STACK];                                                                              \
         int sp = 0;                                                                                            \
-        const uint32_t nl = t->nleaves, first_leaf = nl - 1, first_pair = nl / 2 - 1;                         \
+        const uint32_t nl = t->nleaves, h = t->scan_h, first_scan = (nl >> h) - 1, half = (1u << h) >> 1;      \
         const uint32_t *ls = t->leaf_start;                                                                    \
+        const float *x = t->x, *y = t->y, *z = t->z, *split = t->split;                                        \
+        const uint8_t *axis = t->axis;                                                                         \
         uint32_t node = 0;                                                                                     \
         for (;;) {                                                                                             \
             uint32_t beg = 0, end = t->n;                                                                      \
-            if (nl > 1) {                                                                                      \
+            if (h > 0) {                                                                                       \
                 int a;                                                                                         \
                 float diff, nrd;                                                                               \
                 uint32_t near;                                                                                 \
                 for (;;) {                                                                                     \
-                    a = t->axis[node];                                                                         \
-                    diff = q[a] - t->split[node];                                                              \
+                    a = axis[node];                                                                            \
+                    diff = q[a] - split[node];                                                                 \
                     near = 2 * node + 1 + (diff >= 0.0f);                                                      \
                     nrd = rd - off[a] * off[a] + diff * diff;                                                  \
-                    if (node >= first_pair)                                                                    \
+                    if (node >= first_scan)                                                                    \
                         break;                                                                                 \
                     if (nrd <= bound) {                                                                        \
                         assert(sp < KD_STACK);                                                                 \
@@ -505,23 +525,31 @@ static void select_k(uint64_t *a, uint64_t *b, uint64_t *c, uint32_t m, uint32_t
                     }                                                                                          \
                     node = near;                                                                               \
                 }                                                                                              \
-                uint32_t leaf = near - first_leaf;                                                             \
+                /* node is h levels above the leaves: scan both halves, or the near one */                    \
+                uint32_t first = ((node + 1) << h) - nl;                                                       \
                 if (nrd <= bound) {                                                                            \
-                    beg = ls[leaf & ~1u];                                                                      \
-                    end = ls[(leaf | 1u) + 1];                                                                 \
+                    beg = ls[first];                                                                           \
+                    end = ls[first + 2 * half];                                                                \
                 } else {                                                                                       \
-                    beg = ls[leaf];                                                                            \
-                    end = ls[leaf + 1];                                                                        \
+                    first += (near & 1u) ? 0 : half;                                                           \
+                    beg = ls[first];                                                                           \
+                    end = ls[first + half];                                                                    \
                 }                                                                                              \
             }                                                                                                  \
-            for (uint32_t c = beg; c < end; c += KD_CHUNK) {                                                   \
-                if (n > cap - KD_CHUNK) {                                                                      \
-                    select_keys(buf, n, k);                                                                    \
-                    n = k;                                                                                     \
-                    r2 = key_d2(buf[k - 1]);                                                                   \
-                    bound = prune_bound(r2);                                                                   \
+            if (n + (end - beg) + KD_CHUNK <= cap) { /* room for the whole range */                          \
+                for (uint32_t c = beg; c < end; c += KD_CHUNK)                                                 \
+                    n = CHUNK(x, y, z, c, end, &qv, buf, n);                                                   \
+            } else { /* chunk by chunk, keeping the k smallest when full */                                    \
+                for (uint32_t c = beg; c < end; c += KD_CHUNK) {                                               \
+                    if (n > cap - KD_CHUNK) {                                                                  \
+                        select_keys(buf, n, k);                                                                \
+                        n = k;                                                                                 \
+                        r2 = key_d2(buf[k - 1]);                                                               \
+                        bound = prune_bound(r2);                                                               \
+                        QINIT(qv, q, r2);                                                                      \
+                    }                                                                                          \
+                    n = CHUNK(x, y, z, c, end, &qv, buf, n);                                                   \
                 }                                                                                              \
-                n = CHUNK(t, c, end, &qv, r2, buf, n);                                                         \
             }                                                                                                  \
             if (!pop(stack, &sp, bound, &node, &rd, off))                                                      \
                 break;                                                                                         \
@@ -530,53 +558,56 @@ static void select_k(uint64_t *a, uint64_t *b, uint64_t *c, uint32_t m, uint32_t
         return n;                                                                                              \
     }
 
-/* Squared distances of the KD_CHUNK points from c as bit patterns in
- * bits[], and the mask of those <= r2. */
+/* The base leaf scan: squared distances of the KD_CHUNK points from c, and
+ * the keys of those within r2 appended to buf[n..] one by one (those from
+ * `end` on are not points of the range); returns the new count. */
 #if defined(__SSE2__)
 typedef struct {
-    __m128 x, y, z;
+    __m128 x, y, z, r2;
 } kd_qbase;
-#define KD_QBASE_INIT(v, q) ((v).x = _mm_set1_ps((q)[0]), (v).y = _mm_set1_ps((q)[1]), (v).z = _mm_set1_ps((q)[2]))
+#define KD_QBASE_INIT(v, q, r2)                                                                              \
+    ((v).x = _mm_set1_ps((q)[0]), (v).y = _mm_set1_ps((q)[1]), (v).z = _mm_set1_ps((q)[2]),                 \
+     (v).r2 = _mm_set1_ps(r2))
 
-static inline uint32_t chunk_mask(const kd_tree *t, uint32_t c, const kd_qbase *qv, float r2, uint32_t *bits)
+static inline uint32_t chunk_mask(const float *x, const float *y, const float *z, uint32_t c, const kd_qbase *qv,
+                                  uint32_t *bits)
 {
-    __m128 w = _mm_set1_ps(r2);
     uint32_t mask = 0;
     for (uint32_t j = 0; j < KD_CHUNK; j += 4) {
-        __m128 dx = _mm_sub_ps(_mm_loadu_ps(t->x + c + j), qv->x);
-        __m128 dy = _mm_sub_ps(_mm_loadu_ps(t->y + c + j), qv->y);
-        __m128 dz = _mm_sub_ps(_mm_loadu_ps(t->z + c + j), qv->z);
+        __m128 dx = _mm_sub_ps(_mm_loadu_ps(x + c + j), qv->x);
+        __m128 dy = _mm_sub_ps(_mm_loadu_ps(y + c + j), qv->y);
+        __m128 dz = _mm_sub_ps(_mm_loadu_ps(z + c + j), qv->z);
         __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
         _mm_storeu_si128((__m128i *)(void *)(bits + j), _mm_castps_si128(d));
-        mask |= (uint32_t)_mm_movemask_ps(_mm_cmple_ps(d, w)) << j;
+        mask |= (uint32_t)_mm_movemask_ps(_mm_cmple_ps(d, qv->r2)) << j;
     }
     return mask;
 }
 #else
 typedef struct {
-    float x, y, z;
+    float x, y, z, r2;
 } kd_qbase;
-#define KD_QBASE_INIT(v, q) ((v).x = (q)[0], (v).y = (q)[1], (v).z = (q)[2])
+#define KD_QBASE_INIT(v, q, rr) ((v).x = (q)[0], (v).y = (q)[1], (v).z = (q)[2], (v).r2 = (rr))
 
-static inline uint32_t chunk_mask(const kd_tree *t, uint32_t c, const kd_qbase *qv, float r2, uint32_t *bits)
+static inline uint32_t chunk_mask(const float *x, const float *y, const float *z, uint32_t c, const kd_qbase *qv,
+                                  uint32_t *bits)
 {
-    float dd[KD_CHUNK];
-    chunk_d2(t, c, qv->x, qv->y, qv->z, dd);
-    memcpy(bits, dd, sizeof dd);
     uint32_t mask = 0;
-    for (uint32_t j = 0; j < KD_CHUNK; j++)
-        mask |= (uint32_t)(dd[j] <= r2) << j;
+    for (uint32_t j = 0; j < KD_CHUNK; j++) {
+        float dx = x[c + j] - qv->x, dy = y[c + j] - qv->y, dz = z[c + j] - qv->z;
+        float d = dx * dx + dy * dy + dz * dz;
+        memcpy(&bits[j], &d, sizeof d);
+        mask |= (uint32_t)(d <= qv->r2) << j;
+    }
     return mask;
 }
 #endif
 
-/* The base leaf scan: appends the keys of the chunk's points within r2 to
- * buf[n..] one by one; returns the new count. */
-static inline uint32_t chunk_base(const kd_tree *t, uint32_t c, uint32_t end, const kd_qbase *qv, float r2,
-                                  uint64_t *buf, uint32_t n)
+static inline uint32_t chunk_base(const float *x, const float *y, const float *z, uint32_t c, uint32_t end,
+                                  const kd_qbase *qv, uint64_t *buf, uint32_t n)
 {
     uint32_t bits[KD_CHUNK];
-    uint32_t m = chunk_mask(t, c, qv, r2, bits);
+    uint32_t m = chunk_mask(x, y, z, c, qv, bits);
     if (end - c < KD_CHUNK)
         m &= (1u << (end - c)) - 1u;
     while (m) {
@@ -591,10 +622,11 @@ KD_GATHER_FN(gather_base, , kd_qbase, KD_QBASE_INIT, chunk_base)
 
 #if KD_HAVE_AVX2
 typedef struct {
-    __m256 x, y, z;
+    __m256 x, y, z, r2;
 } kd_qavx2;
-#define KD_QAVX2_INIT(v, q) \
-    ((v).x = _mm256_set1_ps((q)[0]), (v).y = _mm256_set1_ps((q)[1]), (v).z = _mm256_set1_ps((q)[2]))
+#define KD_QAVX2_INIT(v, q, r2)                                                                              \
+    ((v).x = _mm256_set1_ps((q)[0]), (v).y = _mm256_set1_ps((q)[1]), (v).z = _mm256_set1_ps((q)[2]),         \
+     (v).r2 = _mm256_set1_ps(r2))
 
 /* The AVX2 leaf scan appends the chunk's keys itself: the distances' bits
  * and indices are interleaved into two vectors of four 64-bit keys (lanes
@@ -608,15 +640,15 @@ static const uint32_t kd_pack4[16][8] = {
     {4, 5, 6, 7, 0, 1, 2, 3}, {0, 1, 4, 5, 6, 7, 2, 3}, {2, 3, 4, 5, 6, 7, 0, 1}, {0, 1, 2, 3, 4, 5, 6, 7},
 };
 
-__attribute__((target("avx2"))) static inline uint32_t chunk_avx2(const kd_tree *t, uint32_t c, uint32_t end,
-                                                                  const kd_qavx2 *qv, float r2, uint64_t *buf,
-                                                                  uint32_t n)
+__attribute__((target("avx2"))) static inline uint32_t chunk_avx2(const float *x, const float *y, const float *z,
+                                                                  uint32_t c, uint32_t end, const kd_qavx2 *qv,
+                                                                  uint64_t *buf, uint32_t n)
 {
-    __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(t->x + c), qv->x);
-    __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(t->y + c), qv->y);
-    __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(t->z + c), qv->z);
+    __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(x + c), qv->x);
+    __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(y + c), qv->y);
+    __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(z + c), qv->z);
     __m256 d = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)), _mm256_mul_ps(dz, dz));
-    uint32_t m = (uint32_t)_mm256_movemask_ps(_mm256_cmp_ps(d, _mm256_set1_ps(r2), _CMP_LE_OQ));
+    uint32_t m = (uint32_t)_mm256_movemask_ps(_mm256_cmp_ps(d, qv->r2, _CMP_LE_OQ));
     if (end - c < KD_CHUNK)
         m &= (1u << (end - c)) - 1u;
     if (!m)

@@ -30,6 +30,7 @@ typedef struct {
     uint32_t *leaf_start; /* nleaves+1 offsets into x, y, z */
     float *x, *y, *z;     /* points in leaf order (+ padding, see kdtree.c) */
     float lo[3], hi[3];   /* bounds of all points */
+    uint32_t scan_h;      /* k nearest scans whole subtrees this high (see kdtree.c) */
 } kd_tree;
 
 /* Builds a tree over n points (xyz triples in pts). If perm is not NULL it

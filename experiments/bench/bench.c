@@ -144,16 +144,25 @@ static qset shuffled(const qset *a, uint64_t seed)
     return q;
 }
 
+/* Our side: one kd_query state carried from query to query, as an eye-pass
+ * thread carries its own (each query starts from the radius the previous
+ * one needed; the results do not depend on it). */
 static uint64_t ours_knn_batch(const kd_tree *t, const float *q, uint32_t nq, uint32_t k, float max_d2,
                                uint32_t *idx, float *d2, double *r2sum)
 {
+    kd_query st;
+    if (kd_query_init(&st, k)) {
+        fprintf(stderr, "bench: out of memory\n");
+        exit(1);
+    }
     uint64_t total = 0;
     double s = 0.0;
     for (uint32_t i = 0; i < nq; i++) {
         float r2;
-        total += kd_knn(t, q + 3 * (size_t)i, k, max_d2, idx, d2, &r2);
+        total += kd_query_knn(t, &st, q + 3 * (size_t)i, k, max_d2, idx, d2, &r2);
         s += r2;
     }
+    kd_query_free(&st);
     *r2sum += s;
     return total;
 }
