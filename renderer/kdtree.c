@@ -81,13 +81,18 @@ static void select_kth(kd_builder *b, uint32_t lo, uint32_t hi, uint32_t k, int 
         /* three-way partition: < pivot | == pivot | > pivot */
         uint32_t lt = lo, i = lo, gt = hi;
         while (i < gt) {
-            float v = coord(b, i, axis);
+            float v = p[i].p[axis];
             if (v < pivot) {
-                kd_item tmp = p[lt]; p[lt] = p[i]; p[i] = tmp;
-                lt++; i++;
+                kd_item tmp = p[lt];
+                p[lt] = p[i];
+                p[i] = tmp;
+                lt++;
+                i++;
             } else if (v > pivot) {
                 gt--;
-                kd_item tmp = p[gt]; p[gt] = p[i]; p[i] = tmp;
+                kd_item tmp = p[gt];
+                p[gt] = p[i];
+                p[i] = tmp;
             } else {
                 i++;
             }
@@ -101,6 +106,35 @@ static void select_kth(kd_builder *b, uint32_t lo, uint32_t hi, uint32_t k, int 
     }
 }
 
+/* Bounds of it[lo..hi) (lo < hi). */
+static void bounds(const kd_item *it, uint32_t lo, uint32_t hi, float mn[3], float mx[3])
+{
+#if defined(__SSE2__)
+    __m128 vmn = _mm_loadu_ps(it[lo].p), vmx = vmn; /* lane 3 holds the id's bits: ignored */
+    for (uint32_t i = lo + 1; i < hi; i++) {
+        __m128 v = _mm_loadu_ps(it[i].p);
+        vmn = _mm_min_ps(v, vmn); /* v < mn ? v : mn */
+        vmx = _mm_max_ps(v, vmx); /* v > mx ? v : mx */
+    }
+    float a[4], c[4];
+    _mm_storeu_ps(a, vmn);
+    _mm_storeu_ps(c, vmx);
+    for (int k = 0; k < 3; k++) {
+        mn[k] = a[k];
+        mx[k] = c[k];
+    }
+#else
+    for (int a = 0; a < 3; a++)
+        mn[a] = mx[a] = it[lo].p[a];
+    for (uint32_t i = lo + 1; i < hi; i++)
+        for (int a = 0; a < 3; a++) {
+            float v = it[i].p[a];
+            mn[a] = v < mn[a] ? v : mn[a];
+            mx[a] = v > mx[a] ? v : mx[a];
+        }
+#endif
+}
+
 static void build_node(kd_builder *b, uint32_t node, uint32_t lo, uint32_t hi, uint32_t level_leaves)
 {
     kd_tree *t = b->t;
@@ -110,13 +144,8 @@ static void build_node(kd_builder *b, uint32_t node, uint32_t lo, uint32_t hi, u
         return;
     }
     float mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (uint32_t i = lo; i < hi; i++) {
-        for (int a = 0; a < 3; a++) {
-            float v = coord(b, i, a);
-            mn[a] = v < mn[a] ? v : mn[a];
-            mx[a] = v > mx[a] ? v : mx[a];
-        }
-    }
+    if (hi > lo)
+        bounds(b->it, lo, hi, mn, mx);
     int axis = 0;
     for (int a = 1; a < 3; a++)
         if (mx[a] - mn[a] > mx[axis] - mn[axis])

@@ -507,7 +507,7 @@ void test_kdtree_query_state(void)
     for (uint32_t k = 1; k <= 400; k = k * 3 + 1) {
         uint32_t got = kd_query_knn(&t, &s, q, k, 0.3f, idx, d2, &r2);
         bad += !check_answer(all, n, k, 0.3f, got, idx, d2, r2, "no buffer");
-        free(s.buf); /* it grows one; drop it again to stay on the fallback next time */
+        free(s.buf); /* drop it again: each k starts from an empty state */
         s.buf = NULL;
         s.cap = 0;
     }
