@@ -9,10 +9,13 @@
  *
  * k nearest gathers rather than ranks: a pass collects every point within a
  * radius into a buffer of (distance, index) keys and selects the k smallest
- * at the end (quickselect), so no heap is kept per point. The radius starts
+ * at the end (select_k), so no heap is kept per point. The radius starts
  * from the previous query's k-th distance (kd_query); when that proves too
  * small the pass is repeated wider, and when the buffer fills, its k
- * smallest are kept and the radius shrinks to their largest. */
+ * smallest are kept and the radius shrinks to their largest. For k <=
+ * KD_SMALL_K the pass keeps the k nearest sorted instead and shrinks the
+ * radius as soon as it holds k. The traversal stops KD_SCAN_POINTS-sized
+ * subtrees above the leaves and scans their points as one range. */
 #include "kdtree.h"
 
 #include <assert.h>
@@ -32,6 +35,7 @@
 #define KD_CHUNK 8u     /* leaf points per distance batch; padding of the coordinate arrays */
 #define KD_STACK 64     /* > tree depth (nleaves <= 2^32) */
 #define KD_LOCAL_K 128u /* kd_knn: k up to this gathers in a stack buffer; above, a heap in the output */
+#define KD_SMALL_K 2u   /* k up to this keeps the k nearest sorted as it goes, shrinking the radius */
 
 /* ---- build ---- */
 
@@ -510,7 +514,7 @@ static void select_k(uint64_t *a, uint64_t *b, uint64_t *c, uint32_t m, uint32_t
  * leaves under a node are scanned as one contiguous range when both are
  * within reach. The leaf scan (CHUNK) is the only part that differs
  * between instruction sets. */
-#define KD_GATHER_FN(NAME, ATTR, QTYPE, QINIT, CHUNK)                                                           \
+#define KD_GATHER_FN(NAME, ATTR, QTYPE, QINIT, CHUNK, SHRINK)                                                   \
     ATTR static uint32_t NAME(const kd_tree *t, const float q[3], uint32_t k, uint64_t *buf, uint32_t cap,         \
                               float *r2p)                                                                      \
     {                                                                                                          \
@@ -567,7 +571,7 @@ static void select_k(uint64_t *a, uint64_t *b, uint64_t *c, uint32_t m, uint32_t
             }                                                                                                  \
             if (n + (end - beg) + KD_CHUNK <= cap) { /* room for the whole range */                          \
                 for (uint32_t c = beg; c < end; c += KD_CHUNK)                                                 \
-                    n = CHUNK(x, y, z, c, end, &qv, buf, n);                                                   \
+                    n = CHUNK(x, y, z, c, end, &qv, buf, n, k);                                                \
             } else { /* chunk by chunk, keeping the k smallest when full */                                    \
                 for (uint32_t c = beg; c < end; c += KD_CHUNK) {                                               \
                     if (n > cap - KD_CHUNK) {                                                                  \
@@ -577,8 +581,12 @@ static void select_k(uint64_t *a, uint64_t *b, uint64_t *c, uint32_t m, uint32_t
                         bound = prune_bound(r2);                                                               \
                         QINIT(qv, q, r2);                                                                      \
                     }                                                                                          \
-                    n = CHUNK(x, y, z, c, end, &qv, buf, n);                                                   \
+                    n = CHUNK(x, y, z, c, end, &qv, buf, n, k);                                                \
                 }                                                                                              \
+            }                                                                                                  \
+            if (SHRINK) {                                                                                      \
+                r2 = qv.r2s;                                                                                   \
+                bound = prune_bound(r2);                                                                       \
             }                                                                                                  \
             if (!pop(stack, &sp, bound, &node, &rd, off))                                                      \
                 break;                                                                                         \
@@ -593,10 +601,12 @@ static void select_k(uint64_t *a, uint64_t *b, uint64_t *c, uint32_t m, uint32_t
 #if defined(__SSE2__)
 typedef struct {
     __m128 x, y, z, r2;
+    float r2s;
 } kd_qbase;
-#define KD_QBASE_INIT(v, q, r2)                                                                              \
+#define KD_QBASE_INIT(v, q, rr)                                                                              \
     ((v).x = _mm_set1_ps((q)[0]), (v).y = _mm_set1_ps((q)[1]), (v).z = _mm_set1_ps((q)[2]),                 \
-     (v).r2 = _mm_set1_ps(r2))
+     (v).r2 = _mm_set1_ps(rr), (v).r2s = (rr))
+#define KD_QBASE_SETR2(v, rr) ((v).r2s = (rr), (v).r2 = _mm_set1_ps((v).r2s))
 
 static inline uint32_t chunk_mask(const float *x, const float *y, const float *z, uint32_t c, const kd_qbase *qv,
                                   uint32_t *bits)
@@ -614,9 +624,10 @@ static inline uint32_t chunk_mask(const float *x, const float *y, const float *z
 }
 #else
 typedef struct {
-    float x, y, z, r2;
+    float x, y, z, r2, r2s;
 } kd_qbase;
-#define KD_QBASE_INIT(v, q, rr) ((v).x = (q)[0], (v).y = (q)[1], (v).z = (q)[2], (v).r2 = (rr))
+#define KD_QBASE_INIT(v, q, rr) ((v).x = (q)[0], (v).y = (q)[1], (v).z = (q)[2], (v).r2 = (rr), (v).r2s = (rr))
+#define KD_QBASE_SETR2(v, rr) ((v).r2s = (rr), (v).r2 = (v).r2s)
 
 static inline uint32_t chunk_mask(const float *x, const float *y, const float *z, uint32_t c, const kd_qbase *qv,
                                   uint32_t *bits)
@@ -633,8 +644,9 @@ static inline uint32_t chunk_mask(const float *x, const float *y, const float *z
 #endif
 
 static inline uint32_t chunk_base(const float *x, const float *y, const float *z, uint32_t c, uint32_t end,
-                                  const kd_qbase *qv, uint64_t *buf, uint32_t n)
+                                  kd_qbase *qv, uint64_t *buf, uint32_t n, uint32_t k)
 {
+    (void)k;
     uint32_t bits[KD_CHUNK];
     uint32_t m = chunk_mask(x, y, z, c, qv, bits);
     if (end - c < KD_CHUNK)
@@ -647,15 +659,53 @@ static inline uint32_t chunk_base(const float *x, const float *y, const float *z
     return n;
 }
 
-KD_GATHER_FN(gather_base, , kd_qbase, KD_QBASE_INIT, chunk_base)
+/* The small-k leaf scan: the keys within r2 go into the ascending
+ * buf[0..n) kept to at most k, and once k are held the radius drops to
+ * the k-th. */
+static inline uint32_t insert_sorted(uint64_t *buf, uint32_t n, uint32_t k, uint64_t key)
+{
+    if (n == k && key >= buf[k - 1])
+        return n;
+    uint32_t i = n < k ? n++ : k - 1;
+    while (i > 0 && buf[i - 1] > key) {
+        buf[i] = buf[i - 1];
+        i--;
+    }
+    buf[i] = key;
+    return n;
+}
+
+static inline uint32_t chunk_small_base(const float *x, const float *y, const float *z, uint32_t c, uint32_t end,
+                                        kd_qbase *qv, uint64_t *buf, uint32_t n, uint32_t k)
+{
+    uint32_t bits[KD_CHUNK];
+    uint32_t m = chunk_mask(x, y, z, c, qv, bits);
+    if (end - c < KD_CHUNK)
+        m &= (1u << (end - c)) - 1u;
+    if (!m)
+        return n;
+    while (m) {
+        uint32_t j = (uint32_t)__builtin_ctz(m);
+        m &= m - 1u;
+        n = insert_sorted(buf, n, k, (uint64_t)bits[j] << 32 | (c + j));
+    }
+    if (n == k)
+        KD_QBASE_SETR2(*qv, key_d2(buf[k - 1]));
+    return n;
+}
+
+KD_GATHER_FN(gather_base, , kd_qbase, KD_QBASE_INIT, chunk_base, 0)
+KD_GATHER_FN(gather_small_base, , kd_qbase, KD_QBASE_INIT, chunk_small_base, 1)
 
 #if KD_HAVE_AVX2
 typedef struct {
     __m256 x, y, z, r2;
+    float r2s;
 } kd_qavx2;
-#define KD_QAVX2_INIT(v, q, r2)                                                                              \
+#define KD_QAVX2_INIT(v, q, rr)                                                                              \
     ((v).x = _mm256_set1_ps((q)[0]), (v).y = _mm256_set1_ps((q)[1]), (v).z = _mm256_set1_ps((q)[2]),         \
-     (v).r2 = _mm256_set1_ps(r2))
+     (v).r2 = _mm256_set1_ps(rr), (v).r2s = (rr))
+#define KD_QAVX2_SETR2(v, rr) ((v).r2s = (rr), (v).r2 = _mm256_set1_ps((v).r2s))
 
 /* The AVX2 leaf scan appends the chunk's keys itself: the distances' bits
  * and indices are interleaved into two vectors of four 64-bit keys (lanes
@@ -670,9 +720,10 @@ static const uint32_t kd_pack4[16][8] = {
 };
 
 __attribute__((target("avx2"))) static inline uint32_t chunk_avx2(const float *x, const float *y, const float *z,
-                                                                  uint32_t c, uint32_t end, const kd_qavx2 *qv,
-                                                                  uint64_t *buf, uint32_t n)
+                                                                  uint32_t c, uint32_t end, kd_qavx2 *qv,
+                                                                  uint64_t *buf, uint32_t n, uint32_t k)
 {
+    (void)k;
     __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(x + c), qv->x);
     __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(y + c), qv->y);
     __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(z + c), qv->z);
@@ -694,7 +745,34 @@ __attribute__((target("avx2"))) static inline uint32_t chunk_avx2(const float *x
     return n + (uint32_t)__builtin_popcount(mhi);
 }
 
-KD_GATHER_FN(gather_avx2, __attribute__((target("avx2"))), kd_qavx2, KD_QAVX2_INIT, chunk_avx2)
+__attribute__((target("avx2"))) static inline uint32_t chunk_small_avx2(const float *x, const float *y,
+                                                                        const float *z, uint32_t c, uint32_t end,
+                                                                        kd_qavx2 *qv, uint64_t *buf, uint32_t n,
+                                                                        uint32_t k)
+{
+    __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(x + c), qv->x);
+    __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(y + c), qv->y);
+    __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(z + c), qv->z);
+    __m256 d = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)), _mm256_mul_ps(dz, dz));
+    uint32_t m = (uint32_t)_mm256_movemask_ps(_mm256_cmp_ps(d, qv->r2, _CMP_LE_OQ));
+    if (end - c < KD_CHUNK)
+        m &= (1u << (end - c)) - 1u;
+    if (!m)
+        return n;
+    uint32_t bits[KD_CHUNK];
+    _mm256_storeu_si256((__m256i *)(void *)bits, _mm256_castps_si256(d));
+    while (m) {
+        uint32_t j = (uint32_t)__builtin_ctz(m);
+        m &= m - 1u;
+        n = insert_sorted(buf, n, k, (uint64_t)bits[j] << 32 | (c + j));
+    }
+    if (n == k)
+        KD_QAVX2_SETR2(*qv, key_d2(buf[k - 1]));
+    return n;
+}
+
+KD_GATHER_FN(gather_avx2, __attribute__((target("avx2"))), kd_qavx2, KD_QAVX2_INIT, chunk_avx2, 0)
+KD_GATHER_FN(gather_small_avx2, __attribute__((target("avx2"))), kd_qavx2, KD_QAVX2_INIT, chunk_small_avx2, 1)
 
 /* split3 with AVX2: four keys per step, each part left-packed by kd_pack4. */
 __attribute__((target("avx2"))) static void split3_avx2(const uint64_t *src, uint32_t n, uint64_t p1, uint64_t p2,
@@ -899,14 +977,15 @@ static uint32_t knn_run(const kd_tree *t, kd_query *s, const float q[3], uint32_
 #endif
     uint64_t *buf = s->buf;
     uint32_t n;
+    int small = k <= KD_SMALL_K;
     for (int pass = 0;; pass++) {
         float used = r;
 #if KD_HAVE_AVX2
         if (s->simd == KD_SIMD_AVX2)
-            n = gather_avx2(t, q, k, buf, s->cap, &r);
+            n = small ? gather_small_avx2(t, q, k, buf, s->cap, &r) : gather_avx2(t, q, k, buf, s->cap, &r);
         else
 #endif
-            n = gather_base(t, q, k, buf, s->cap, &r);
+            n = small ? gather_small_base(t, q, k, buf, s->cap, &r) : gather_base(t, q, k, buf, s->cap, &r);
         s->passes++;
         if (n >= k || !(used < max_d2))
             break;
