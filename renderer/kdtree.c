@@ -36,6 +36,7 @@
 #define KD_STACK 64     /* > tree depth (nleaves <= 2^32) */
 #define KD_LOCAL_K 128u /* kd_knn: k up to this gathers in a stack buffer; above, a heap in the output */
 #define KD_SMALL_K 2u   /* k up to this keeps the k nearest sorted as it goes, shrinking the radius */
+#define KD_MAX_BUF_K (1u << 24) /* kd_query: larger k (16M) takes the heap in the output, no buffer */
 
 /* ---- build ---- */
 
@@ -510,10 +511,12 @@ static void select_k(uint64_t *a, uint64_t *b, uint64_t *c, uint32_t m, uint32_t
  * <= *r2 in the cells within it. When buf fills (cap entries, >= k +
  * 2 KD_CHUNK), the k smallest keys are kept and *r2 drops to the k-th
  * distance, so a pass costs about the same whatever radius it starts from.
- * Returns the count. Cells are descended nearer child first; the two
- * leaves under a node are scanned as one contiguous range when both are
- * within reach. The leaf scan (CHUNK) is the only part that differs
- * between instruction sets. */
+ * Returns the count. Cells are descended nearer child first down to
+ * t->scan_h levels above the leaves; there the node's points (or its near
+ * half's, when the far half is out of reach) are scanned as one contiguous
+ * range. CHUNK, the scan of KD_CHUNK points, is the only part that differs
+ * between instruction sets; with SHRINK it keeps buf sorted and at most k
+ * long, lowering the radius (QTYPE's r2s) as it goes. */
 #define KD_GATHER_FN(NAME, ATTR, QTYPE, QINIT, CHUNK, SHRINK)                                                   \
     ATTR static uint32_t NAME(const kd_tree *t, const float q[3], uint32_t k, uint64_t *buf, uint32_t cap,         \
                               float *r2p)                                                                      \
@@ -569,7 +572,7 @@ static void select_k(uint64_t *a, uint64_t *b, uint64_t *c, uint32_t m, uint32_t
                     end = ls[first + half];                                                                    \
                 }                                                                                              \
             }                                                                                                  \
-            if (n + (end - beg) + KD_CHUNK <= cap) { /* room for the whole range */                          \
+            if ((uint64_t)n + (end - beg) + KD_CHUNK <= cap) { /* room for the whole range */                \
                 for (uint32_t c = beg; c < end; c += KD_CHUNK)                                                 \
                     n = CHUNK(x, y, z, c, end, &qv, buf, n, k);                                                \
             } else { /* chunk by chunk, keeping the k smallest when full */                                    \
@@ -1009,8 +1012,7 @@ static uint32_t knn_run(const kd_tree *t, kd_query *s, const float q[3], uint32_
 static kd_simd best_simd(void)
 {
 #if KD_HAVE_AVX2
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx2"))
+    if (__builtin_cpu_supports("avx2")) /* libgcc initialises the CPU model before main */
         return KD_SIMD_AVX2;
 #endif
     return KD_SIMD_BASE;
@@ -1020,7 +1022,7 @@ int kd_query_init(kd_query *s, uint32_t k_max)
 {
     memset(s, 0, sizeof *s);
     s->simd = best_simd();
-    uint32_t cap = buf_entries(k_max ? k_max : 1);
+    uint32_t cap = buf_entries(k_max == 0 ? 1 : (k_max < KD_MAX_BUF_K ? k_max : KD_MAX_BUF_K));
     s->buf = malloc(sizeof(uint64_t) * buf_keys(cap));
     if (!s->buf)
         return -1;
@@ -1048,6 +1050,8 @@ uint32_t kd_query_knn(const kd_tree *t, kd_query *s, const float q[3], uint32_t 
     if (k == 0 || t->n == 0 || !(max_d2 >= 0.0f))
         return 0;
     k = k < t->n ? k : t->n;
+    if (k > KD_MAX_BUF_K)
+        return knn_heap(t, q, k, max_d2, idx, d2, r2);
     if (s->cap < buf_entries(k)) {
         uint64_t *b = realloc(s->buf, sizeof(uint64_t) * buf_keys(buf_entries(k)));
         if (!b)
