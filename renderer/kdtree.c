@@ -73,35 +73,103 @@ static float coord(const kd_builder *b, uint32_t i, int axis)
     return b->it[i].p[axis];
 }
 
+/* The k-th smallest (from 0) of the n floats v[] (reordered). */
+static float select_float(float *v, uint32_t n, uint32_t k)
+{
+    assert(k < n);
+    uint32_t lo = 0, hi = n;
+    while (hi - lo > 1) {
+        float pivot = v[lo + (hi - lo) / 2];
+        uint32_t lt = lo, i = lo, gt = hi;
+        while (i < gt) {
+            float x = v[i];
+            if (x < pivot) {
+                v[i++] = v[lt];
+                v[lt++] = x;
+            } else if (x > pivot) {
+                v[i] = v[--gt];
+                v[gt] = x;
+            } else {
+                i++;
+            }
+        }
+        if (k < lt)
+            hi = lt;
+        else if (k >= gt)
+            lo = gt;
+        else
+            return pivot;
+    }
+    return v[lo];
+}
+
+/* Three-way partition of it[lo..hi) by `axis`: below p1 | from p1 to p2 |
+ * above p2. Sets *lt and *gt to the bounds of the middle part. */
+static void partition3(kd_item *p, uint32_t lo, uint32_t hi, int axis, float p1, float p2, uint32_t *lt_out,
+                       uint32_t *gt_out)
+{
+    uint32_t lt = lo, i = lo, gt = hi;
+    while (i < gt) {
+        float v = p[i].p[axis];
+        if (v < p1) {
+            kd_item tmp = p[lt];
+            p[lt] = p[i];
+            p[i] = tmp;
+            lt++;
+            i++;
+        } else if (v > p2) {
+            gt--;
+            kd_item tmp = p[gt];
+            p[gt] = p[i];
+            p[i] = tmp;
+        } else {
+            i++;
+        }
+    }
+    *lt_out = lt;
+    *gt_out = gt;
+}
+
 /* Reorders it[lo..hi) so that the element at position k is the one a full
- * sort by `axis` would put there, with smaller-or-equal ones before it. */
+ * sort by `axis` would put there, with smaller-or-equal ones before it.
+ * Long ranges are first split around two values that a sample of them
+ * places just below and just above the k-th (Floyd & Rivest), so that the
+ * quickselect after works on a small middle part instead of half the
+ * range each pass. */
+#define KD_SAMPLE_MIN 4096u /* ranges at least this long are sampled */
+#define KD_SAMPLE_MAX 1023u
+
 static void select_kth(kd_builder *b, uint32_t lo, uint32_t hi, uint32_t k, int axis)
 {
     kd_item *p = b->it;
+    assert(lo <= k && k < hi);
+    if (hi - lo >= KD_SAMPLE_MIN) {
+        uint32_t len = hi - lo, ns = len / 64 < KD_SAMPLE_MAX ? len / 64 : KD_SAMPLE_MAX;
+        float sample[KD_SAMPLE_MAX];
+        for (uint32_t j = 0; j < ns; j++)
+            sample[j] = p[lo + (uint32_t)((uint64_t)len * (2 * j + 1) / (2 * ns))].p[axis];
+        /* the k-th's rank in the sample, give or take 3 standard deviations */
+        uint32_t at = (uint32_t)((uint64_t)(k - lo) * ns / len), d = (uint32_t)(1.5f * sqrtf((float)ns)) + 1;
+        float p1 = select_float(sample, ns, at > d ? at - d : 0);
+        float p2 = select_float(sample, ns, at + d < ns ? at + d : ns - 1);
+        uint32_t lt, gt;
+        partition3(p, lo, hi, axis, p1, p2, &lt, &gt);
+        if (k < lt)
+            hi = lt;
+        else if (k >= gt)
+            lo = gt;
+        else {
+            lo = lt;
+            hi = gt;
+        }
+    }
     while (hi - lo > 1) {
         /* median of three pivot */
         uint32_t mid = lo + (hi - lo) / 2;
         float a = coord(b, lo, axis), m = coord(b, mid, axis), c = coord(b, hi - 1, axis);
         float pivot = a < m ? (m < c ? m : (a < c ? c : a)) : (a < c ? a : (m < c ? c : m));
-        /* three-way partition: < pivot | == pivot | > pivot */
-        uint32_t lt = lo, i = lo, gt = hi;
-        while (i < gt) {
-            float v = p[i].p[axis];
-            if (v < pivot) {
-                kd_item tmp = p[lt];
-                p[lt] = p[i];
-                p[i] = tmp;
-                lt++;
-                i++;
-            } else if (v > pivot) {
-                gt--;
-                kd_item tmp = p[gt];
-                p[gt] = p[i];
-                p[i] = tmp;
-            } else {
-                i++;
-            }
-        }
+        uint32_t lt, gt;
+        partition3(p, lo, hi, axis, pivot, pivot, &lt, &gt);
         if (k < lt)
             hi = lt;
         else if (k >= gt)
