@@ -613,7 +613,12 @@ static void select_k(uint64_t *a, uint64_t *b, uint64_t *c, uint32_t m, uint32_t
                 for (;;) {                                                                                     \
                     a = axis[node];                                                                            \
                     diff = q[a] - split[node];                                                                 \
-                    near = 2 * node + 1 + (diff >= 0.0f);                                                      \
+                    /* a branch, not a flag: the CPU runs ahead on the predicted side, where a             \
+                     * computed child would wait for the loads and the compare at every level */         \
+                    if (__builtin_expect(diff >= 0.0f, 1))                                                     \
+                        near = 2 * node + 2;                                                                   \
+                    else                                                                                       \
+                        near = 2 * node + 1;                                                                   \
                     nrd = rd - off[a] * off[a] + diff * diff;                                                  \
                     if (node >= first_scan)                                                                    \
                         break;                                                                                 \
