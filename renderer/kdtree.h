@@ -53,7 +53,7 @@ typedef enum { KD_SIMD_BASE = 1, KD_SIMD_AVX2 = 2 } kd_simd;
  * shared between threads; any number may be used on one tree. */
 typedef struct {
     uint64_t *buf;     /* candidates: squared distance bits << 32 | index */
-    uint32_t cap;      /* entries buf holds */
+    uint32_t cap;      /* candidates one pass may hold (buf is three such regions, with slack) */
     uint32_t hint_k;   /* k of the last query; 0: no guess yet */
     float hint_r2;     /* its k-th squared distance (its cap if it found fewer) */
     kd_simd simd;      /* leaf scan in use */
