@@ -5,7 +5,14 @@
  *
  * Layout: a complete binary tree in implicit heap order (node i has children
  * 2i+1, 2i+2), pointer-free inner nodes (split value + axis), leaves of at
- * most `leaf_size` points stored contiguously as x[], y[], z[] arrays. */
+ * most `leaf_size` points stored contiguously as x[], y[], z[] arrays.
+ *
+ * k nearest: kd_query_knn with a per-thread kd_query is the fast entry point
+ * (it starts each search from the radius the previous query needed);
+ * kd_knn is the same search with no state. Both return the k points with
+ * the smallest (squared distance, leaf-order index) pairs, so ties at the
+ * k-th distance are broken by index and a result never depends on earlier
+ * queries, on the instruction set used, or on which entry point ran it. */
 #ifndef PM_KDTREE_H
 #define PM_KDTREE_H
 
@@ -23,6 +30,7 @@ typedef struct {
     uint32_t *leaf_start; /* nleaves+1 offsets into x, y, z */
     float *x, *y, *z;     /* points in leaf order (+ padding, see kdtree.c) */
     float lo[3], hi[3];   /* bounds of all points */
+    uint32_t scan_h;      /* k nearest scans whole subtrees this high (see kdtree.c) */
 } kd_tree;
 
 /* Builds a tree over n points (xyz triples in pts). If perm is not NULL it
@@ -35,10 +43,46 @@ void kd_free(kd_tree *t);
 /* Bytes of memory the tree holds. */
 size_t kd_bytes(const kd_tree *t);
 
+/* Instruction sets of the k-nearest leaf scans. KD_SIMD_BASE is SSE2 on
+ * x86-64 (portable C elsewhere); KD_SIMD_AVX2 needs the CPU to have it. */
+typedef enum { KD_SIMD_BASE = 1, KD_SIMD_AVX2 = 2 } kd_simd;
+
+/* One thread's k-nearest query state: the squared radius that held the
+ * last query's k nearest (a starting guess for the next search; it changes
+ * the cost of a query, never its result) and the candidate buffer. Not
+ * shared between threads; any number may be used on one tree. */
+typedef struct {
+    uint64_t *buf;     /* candidates: squared distance bits << 32 | index */
+    uint32_t cap;      /* candidates one pass may hold (buf is three such regions, with slack) */
+    uint32_t hint_k;   /* k of the last query; 0: no guess yet */
+    float hint_r2;     /* its k-th squared distance (its cap if it found fewer) */
+    kd_simd simd;      /* leaf scan in use */
+    uint64_t queries;  /* kd_query_knn calls that searched the tree */
+    uint64_t passes;   /* tree traversals they made (>= queries; more when a guess was too small) */
+} kd_query;
+
+/* Prepares s for queries of up to k_max neighbours (larger k grows the
+ * buffer on demand) with the best instruction set this CPU has. Returns 0,
+ * or -1 when memory runs out (s is then empty and safe to kd_query_free;
+ * kd_query_knn still works with it, more slowly). */
+int kd_query_init(kd_query *s, uint32_t k_max);
+/* Frees the buffer; the struct is left empty. */
+void kd_query_free(kd_query *s);
+/* Restricts s's leaf scans to `want` or the best set below it that the CPU
+ * has; returns the set now in use (the tests run every path with it). */
+kd_simd kd_query_simd(kd_query *s, kd_simd want);
+
 /* The k nearest points to q with squared distance <= max_d2 (INFINITY: no
- * cap). Writes up to k leaf-order indices and squared distances to idx/d2
+ * cap): writes up to k leaf-order indices and squared distances to idx/d2
  * (in no particular order) and returns how many it found; *r2 receives the
- * largest squared distance among them (0 if none). Exact. */
+ * largest squared distance among them (0 if none). Exact: the k smallest
+ * (squared distance, index) pairs within the cap. Uses and updates s's
+ * starting radius; the result is the same whatever s held. */
+uint32_t kd_query_knn(const kd_tree *t, kd_query *s, const float q[3], uint32_t k, float max_d2, uint32_t *idx,
+                      float *d2, float *r2);
+
+/* kd_query_knn without a state (the same result; no starting radius, so
+ * slower on coherent query sequences). Never fails. */
 uint32_t kd_knn(const kd_tree *t, const float q[3], uint32_t k, float max_d2, uint32_t *idx, float *d2,
                 float *r2);
 

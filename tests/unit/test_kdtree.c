@@ -191,3 +191,330 @@ void test_kdtree_nearest_if(void)
     free(perm);
     free(pts);
 }
+
+/* ---- kd_query_knn: every path against brute force ----
+ * The answer to a query is the k smallest (squared distance, leaf-order
+ * index) pairs within the cap, so it can be compared exactly, ties
+ * included, whatever path produced it. */
+
+typedef struct {
+    float d;
+    uint32_t i;
+} kd_pair;
+
+static int cmp_pair(const void *a, const void *b)
+{
+    const kd_pair *x = a, *y = b;
+    if (x->d != y->d)
+        return (x->d > y->d) - (x->d < y->d);
+    return (x->i > y->i) - (x->i < y->i);
+}
+
+/* Every point's (squared distance, leaf index) pair for q, sorted; computed
+ * from the input points through perm, as the tree's arithmetic does it. */
+static kd_pair *brute_sorted(const float *pts, const uint32_t *perm, uint32_t n, const float q[3])
+{
+    kd_pair *all = malloc(sizeof(kd_pair) * (n + 1));
+    for (uint32_t i = 0; i < n; i++) {
+        all[i].d = dist2(pts + 3 * (size_t)perm[i], q);
+        all[i].i = i;
+    }
+    qsort(all, n, sizeof(kd_pair), cmp_pair);
+    return all;
+}
+
+/* Checks one answer against the sorted brute-force pairs; returns 1 when it
+ * matches (the first few mismatches are reported). */
+static int check_answer(const kd_pair *all, uint32_t n, uint32_t k, float cap, uint32_t got, const uint32_t *idx,
+                        const float *d2, float r2, const char *what)
+{
+    uint32_t want = 0;
+    while (want < n && want < k && all[want].d <= cap)
+        want++;
+    int ok = got == want && r2 == (want ? all[want - 1].d : 0.0f);
+    if (ok && got) {
+        kd_pair *mine = malloc(sizeof(kd_pair) * got);
+        for (uint32_t j = 0; j < got; j++) {
+            mine[j].d = d2[j];
+            mine[j].i = idx[j];
+        }
+        qsort(mine, got, sizeof(kd_pair), cmp_pair);
+        for (uint32_t j = 0; j < got && ok; j++)
+            ok = mine[j].d == all[j].d && mine[j].i == all[j].i;
+        free(mine);
+    }
+    static int reported;
+    if (!ok && reported++ < 10)
+        fprintf(stderr, "  %s: n=%u k=%u cap=%g: got %u (r2 %g), want %u (r2 %g)\n", what, n, k, (double)cap, got,
+                (double)r2, want, want ? (double)all[want - 1].d : 0.0);
+    return ok;
+}
+
+/* Point sets: 0 uniform in a cube, 1 on five axis-aligned "walls" (the photon
+ * maps' case), 2 on 64 positions only (duplicates, equal distances), 3 a
+ * 24 x 24 integer grid in a plane (many exact ties). */
+static float *point_set(int kind, uint32_t n, uint64_t seed)
+{
+    float *p = malloc(sizeof(float) * 3 * (n + 1));
+    rng_stream s = rng_make(seed, (uint64_t)kind);
+    for (uint32_t i = 0; i < n; i++) {
+        float *o = p + 3 * (size_t)i;
+        double u = rng_next_double(&s), v = rng_next_double(&s), w = rng_next_double(&s);
+        switch (kind) {
+        case 0:
+            o[0] = (float)(2 * u - 1), o[1] = (float)(2 * v - 1), o[2] = (float)(2 * w - 1);
+            break;
+        case 1: {
+            int wall = (int)(rng_next_double(&s) * 5);
+            float a = (float)(2 * u - 1), b = (float)(2 * v - 1);
+            o[0] = wall == 0 ? -1.0f : (wall == 1 ? 1.0f : a);
+            o[1] = wall == 2 ? -1.0f : (wall == 3 ? 1.0f : (wall < 2 ? a : b));
+            o[2] = wall == 4 ? -1.0f : b;
+            break;
+        }
+        case 2:
+            o[0] = (float)floor(u * 4) * 0.25f, o[1] = (float)floor(v * 4) * 0.25f, o[2] = (float)floor(w * 4) * 0.25f;
+            break;
+        default:
+            o[0] = (float)(i % 24), o[1] = (float)(i / 24 % 24), o[2] = 0.0f;
+            break;
+        }
+    }
+    return p;
+}
+
+/* A query walk around the set: small steps (coherent, like the eye pass),
+ * a jump every 8th query, every 5th exactly on a point, some outside. */
+static void query_walk(const float *pts, uint32_t n, int kind, uint32_t nq, uint64_t seed, float *q)
+{
+    rng_stream s = rng_make(seed, 99);
+    float scale = kind == 3 ? 24.0f : 2.0f, step = scale * 0.01f;
+    float cur[3] = {0, 0, 0};
+    for (uint32_t i = 0; i < nq; i++) {
+        if (i % 8 == 0)
+            for (int a = 0; a < 3; a++)
+                cur[a] = (float)((rng_next_double(&s) * 1.4 - 0.2) * scale - (kind == 3 ? 0 : scale / 2));
+        else
+            for (int a = 0; a < 3; a++)
+                cur[a] += (float)((rng_next_double(&s) * 2 - 1) * step);
+        if (i % 5 == 4 && n > 0)
+            memcpy(cur, pts + 3 * (size_t)(rng_next_u64(&s) % n), sizeof cur);
+        memcpy(q + 3 * (size_t)i, cur, sizeof cur);
+    }
+}
+
+enum { KQ_NQ = 24 };
+
+/* Runs the walk for every k and cap on one tree and one instruction set:
+ * a state carried along the walk, a fresh state per query, and kd_knn
+ * must all give the brute-force answer. */
+static void check_walk(const kd_tree *t, uint32_t n, const float *q, kd_pair **all, kd_simd simd)
+{
+    const uint32_t ks[] = {1, 2, 5, 10, 16, 17, 31, 32, 33, 64, 100, 128, 129, 200, 300};
+    const float caps[] = {INFINITY, 0.05f, 1e-4f, 0.0f, 30.0f};
+    uint32_t *idx = malloc(sizeof(uint32_t) * 301);
+    float *d2 = malloc(sizeof(float) * 301);
+    kd_query carried;
+    CHECK(kd_query_init(&carried, 16) == 0);
+    CHECK(kd_query_simd(&carried, simd) == simd);
+    int bad = 0;
+    for (size_t ci = 0; ci < sizeof caps / sizeof caps[0]; ci++)
+        for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ki++)
+            for (uint32_t i = 0; i < KQ_NQ; i++) {
+                const float *qi = q + 3 * (size_t)i;
+                uint32_t k = ks[ki];
+                float cap = caps[ci], r2 = -1.0f;
+                uint32_t got = kd_query_knn(t, &carried, qi, k, cap, idx, d2, &r2);
+                bad += !check_answer(all[i], n, k, cap, got, idx, d2, r2, "carried state");
+                kd_query fresh;
+                CHECK(kd_query_init(&fresh, k) == 0);
+                kd_query_simd(&fresh, simd);
+                got = kd_query_knn(t, &fresh, qi, k, cap, idx, d2, &r2);
+                bad += !check_answer(all[i], n, k, cap, got, idx, d2, r2, "fresh state");
+                kd_query_free(&fresh);
+                got = kd_knn(t, qi, k, cap, idx, d2, &r2);
+                bad += !check_answer(all[i], n, k, cap, got, idx, d2, r2, "kd_knn");
+            }
+    CHECK_MSG(bad == 0, "%d answers differ from brute force", bad);
+    kd_query_free(&carried);
+    free(idx);
+    free(d2);
+}
+
+void test_kdtree_query_matches_brute_force(void)
+{
+    const uint32_t sizes[] = {1, 7, 13, 600, 4099};
+    const uint32_t leaves[] = {1, 3, KD_DEFAULT_LEAF, 1000};
+    kd_query probe;
+    CHECK(kd_query_init(&probe, 1) == 0);
+    int have_avx2 = kd_query_simd(&probe, KD_SIMD_AVX2) == KD_SIMD_AVX2;
+    CHECK(kd_query_simd(&probe, KD_SIMD_BASE) == KD_SIMD_BASE);
+    kd_query_free(&probe);
+    if (!have_avx2)
+        fprintf(stderr, "  (this CPU has no AVX2: only the base path is tested)\n");
+    for (int kind = 0; kind < 4; kind++)
+        for (size_t si = 0; si < sizeof sizes / sizeof sizes[0]; si++) {
+            uint32_t n = kind == 3 ? 576 : sizes[si];
+            if (kind == 3 && si != 3)
+                continue;
+            float *pts = point_set(kind, n, 77 + n);
+            float q[3 * KQ_NQ];
+            query_walk(pts, n, kind, KQ_NQ, 5 + n, q);
+            for (size_t li = 0; li < sizeof leaves / sizeof leaves[0]; li++) {
+                if (n < 600 && li != 2)
+                    continue;
+                uint32_t *perm = malloc(sizeof(uint32_t) * n);
+                kd_tree t;
+                CHECK(kd_build(&t, pts, n, leaves[li], perm) == 0);
+                kd_pair *all[KQ_NQ];
+                for (uint32_t i = 0; i < KQ_NQ; i++)
+                    all[i] = brute_sorted(pts, perm, n, q + 3 * (size_t)i);
+                check_walk(&t, n, q, all, KD_SIMD_BASE);
+                if (have_avx2)
+                    check_walk(&t, n, q, all, KD_SIMD_AVX2);
+                for (uint32_t i = 0; i < KQ_NQ; i++)
+                    free(all[i]);
+                kd_free(&t);
+                free(perm);
+            }
+            free(pts);
+        }
+}
+
+/* Whatever starting radius a state holds (none, zero, tiny, too small, too
+ * large, infinite, not a number, from another k), the answer is the same;
+ * too small takes more passes, too large fills the buffer. */
+void test_kdtree_query_hints(void)
+{
+    const uint32_t n = 20000;
+    float *pts = point_set(1, n, 3);
+    uint32_t *perm = malloc(sizeof(uint32_t) * n);
+    kd_tree t;
+    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm) == 0);
+    const float hints[] = {0.0f, 1e-30f, 1e-7f, 1e-4f, 0.01f, 1.0f, 1e30f, INFINITY, NAN};
+    const uint32_t hint_ks[] = {1, 10, 300};
+    const uint32_t ks[] = {1, 10, 100};
+    const float caps[] = {INFINITY, 0.05f};
+    uint32_t idx[100];
+    float d2[100];
+    int bad = 0;
+    uint64_t passes = 0, queries = 0;
+    for (int simd = KD_SIMD_BASE; simd <= KD_SIMD_AVX2; simd++) {
+        kd_query s;
+        CHECK(kd_query_init(&s, 100) == 0);
+        if (kd_query_simd(&s, (kd_simd)simd) != (kd_simd)simd) {
+            kd_query_free(&s);
+            continue;
+        }
+        float q[3] = {0.3f, -1.0f, 0.2f}; /* on the floor wall */
+        kd_pair *all = brute_sorted(pts, perm, n, q);
+        for (size_t hi = 0; hi < sizeof hints / sizeof hints[0]; hi++)
+            for (size_t hk = 0; hk < sizeof hint_ks / sizeof hint_ks[0]; hk++)
+                for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ki++)
+                    for (size_t ci = 0; ci < sizeof caps / sizeof caps[0]; ci++) {
+                        s.hint_k = hint_ks[hk];
+                        s.hint_r2 = hints[hi];
+                        float r2;
+                        uint32_t got = kd_query_knn(&t, &s, q, ks[ki], caps[ci], idx, d2, &r2);
+                        bad += !check_answer(all, n, ks[ki], caps[ci], got, idx, d2, r2, "forced hint");
+                    }
+        passes += s.passes;
+        queries += s.queries;
+        free(all);
+        kd_query_free(&s);
+    }
+    CHECK_MSG(bad == 0, "%d answers differ from brute force", bad);
+    CHECK(passes > queries); /* the too-small hints were widened */
+    kd_free(&t);
+    free(perm);
+    free(pts);
+}
+
+/* The result of a query does not depend on the queries before it: the same
+ * query after different histories (and on a grid, where many points tie at
+ * the k-th distance) gives the same set, and that set is brute force's. */
+void test_kdtree_query_history_independent(void)
+{
+    const uint32_t n = 576;
+    float *pts = point_set(3, n, 1);
+    uint32_t *perm = malloc(sizeof(uint32_t) * n);
+    kd_tree t;
+    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm) == 0);
+    float target[3] = {11.0f, 12.0f, 0.0f}, other[3] = {2.5f, 20.0f, 0.0f}, far[3] = {500.0f, 0.0f, 0.0f};
+    kd_pair *all = brute_sorted(pts, perm, n, target);
+    const uint32_t ks[] = {1, 4, 5, 9, 13, 21, 25, 50, 100};
+    int bad = 0;
+    for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ki++) {
+        uint32_t k = ks[ki];
+        uint32_t ref_idx[100], idx[100];
+        float ref_d2[100], d2[100], ref_r2, r2;
+        uint32_t ref = kd_knn(&t, target, k, INFINITY, ref_idx, ref_d2, &ref_r2);
+        bad += !check_answer(all, n, k, INFINITY, ref, ref_idx, ref_d2, ref_r2, "grid");
+        const float *before[] = {other, far, target, pts};
+        for (int simd = KD_SIMD_BASE; simd <= KD_SIMD_AVX2; simd++)
+            for (size_t b = 0; b < 4; b++)
+                for (uint32_t pk = 1; pk <= 64; pk *= 4) {
+                    kd_query s;
+                    CHECK(kd_query_init(&s, 1) == 0);
+                    kd_query_simd(&s, (kd_simd)simd);
+                    float pr2;
+                    kd_query_knn(&t, &s, before[b], pk, INFINITY, idx, d2, &pr2);
+                    uint32_t got = kd_query_knn(&t, &s, target, k, INFINITY, idx, d2, &r2);
+                    bad += !check_answer(all, n, k, INFINITY, got, idx, d2, r2, "after another query");
+                    kd_query_free(&s);
+                }
+    }
+    CHECK_MSG(bad == 0, "%d answers differ", bad);
+    free(all);
+    kd_free(&t);
+    free(perm);
+    free(pts);
+}
+
+/* State life cycle: k_max 0, growing past k_max, a state without a buffer
+ * (as after a failed init), queries that find nothing. */
+void test_kdtree_query_state(void)
+{
+    const uint32_t n = 3000;
+    float *pts = point_set(0, n, 9);
+    uint32_t *perm = malloc(sizeof(uint32_t) * n);
+    kd_tree t, empty;
+    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm) == 0);
+    CHECK(kd_build(&empty, NULL, 0, KD_DEFAULT_LEAF, NULL) == 0);
+    float q[3] = {0.1f, 0.2f, -0.3f}, nanq[3] = {NAN, 0.0f, 0.0f};
+    kd_pair *all = brute_sorted(pts, perm, n, q);
+    uint32_t idx[400];
+    float d2[400], r2;
+    kd_query s;
+    CHECK(kd_query_init(&s, 0) == 0);
+    int bad = 0;
+    for (uint32_t k = 1; k <= 400; k = k * 3 + 1) { /* grows the buffer each time */
+        uint32_t got = kd_query_knn(&t, &s, q, k, INFINITY, idx, d2, &r2);
+        bad += !check_answer(all, n, k, INFINITY, got, idx, d2, r2, "growing");
+    }
+    r2 = -1.0f;
+    CHECK(kd_query_knn(&t, &s, q, 0, INFINITY, idx, d2, &r2) == 0 && r2 == 0.0f);
+    CHECK(kd_query_knn(&empty, &s, q, 5, INFINITY, idx, d2, &r2) == 0 && r2 == 0.0f);
+    CHECK(kd_query_knn(&t, &s, nanq, 5, INFINITY, idx, d2, &r2) == 0 && r2 == 0.0f);
+    CHECK(kd_query_knn(&t, &s, q, 5, -1.0f, idx, d2, &r2) == 0 && r2 == 0.0f);
+    CHECK(kd_query_knn(&t, &s, q, 5, NAN, idx, d2, &r2) == 0 && r2 == 0.0f);
+    CHECK(kd_knn(&t, nanq, 5, INFINITY, idx, d2, &r2) == 0 && r2 == 0.0f);
+    kd_query_free(&s);
+    CHECK(s.buf == NULL && s.cap == 0);
+    /* a state with no buffer (as kd_query_init leaves it on failure) grows one and answers */
+    memset(&s, 0, sizeof s);
+    s.simd = KD_SIMD_BASE;
+    for (uint32_t k = 1; k <= 400; k = k * 3 + 1) {
+        uint32_t got = kd_query_knn(&t, &s, q, k, 0.3f, idx, d2, &r2);
+        bad += !check_answer(all, n, k, 0.3f, got, idx, d2, r2, "no buffer");
+        free(s.buf); /* drop it again: each k starts from an empty state */
+        s.buf = NULL;
+        s.cap = 0;
+    }
+    CHECK_MSG(bad == 0, "%d answers differ", bad);
+    free(all);
+    kd_free(&t);
+    kd_free(&empty);
+    free(perm);
+    free(pts);
+}

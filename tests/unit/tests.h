@@ -7,6 +7,10 @@
     X(kdtree_matches_brute_force)      \
     X(kdtree_edge_cases)               \
     X(kdtree_nearest_if)               \
+    X(kdtree_query_matches_brute_force) \
+    X(kdtree_query_hints)              \
+    X(kdtree_query_history_independent) \
+    X(kdtree_query_state)              \
     X(sphere_hits)                     \
     X(rect_hits)                       \
     X(fresnel_energy_and_tir)          \
