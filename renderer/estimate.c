@@ -22,9 +22,10 @@ est_scratch *est_scratch_new(unsigned threads, uint32_t nn)
         return NULL;
     for (unsigned t = 0; t < threads; t++) {
         s[t].cap = nn ? nn : 1;
+        s[t].last_rep = KD_NONE;
         s[t].idx = malloc(sizeof(uint32_t) * (s[t].cap + EST_SCRATCH_SLACK));
         s[t].d2 = malloc(sizeof(float) * (s[t].cap + EST_SCRATCH_SLACK));
-        if (!s[t].idx || !s[t].d2) {
+        if (!s[t].idx || !s[t].d2 || kd_query_init(&s[t].query, s[t].cap)) {
             est_scratch_delete(s, threads);
             return NULL;
         }
@@ -39,6 +40,7 @@ void est_scratch_delete(est_scratch *s, unsigned threads)
     for (unsigned t = 0; t < threads; t++) {
         free(s[t].idx);
         free(s[t].d2);
+        kd_query_free(&s[t].query);
     }
     free(s);
 }
@@ -57,7 +59,7 @@ static vec3 irradiance_at(const photons_map *m, const float q[3], vec3 n, const 
 {
     assert(g->nn <= s->cap);
     float r2f;
-    uint32_t k = kd_knn(&m->tree, q, g->nn, (float)g->max_r2, s->idx, s->d2, &r2f);
+    uint32_t k = kd_query_knn(&m->tree, &s->query, q, g->nn, (float)g->max_r2, s->idx, s->d2, &r2f);
     *found = k;
     if (k == 0)
         return vec_make(0, 0, 0);
@@ -197,7 +199,7 @@ static int pred_shared(uint32_t i, const void *arg)
 }
 
 vec3 est_lookup(const est_reps *r, const photons_map *m, vec3 x, vec3 n, double cos_min, const est_gather *g,
-                int *found)
+                est_scratch *s, int *found)
 {
     float max_r2 = (float)g->max_r2;
     float q[3], d2;
@@ -205,13 +207,15 @@ vec3 est_lookup(const est_reps *r, const photons_map *m, vec3 x, vec3 n, double 
     lookup_ctx c = {r, n, cos_min};
     const est_rep *rep = NULL;
     if (r->layout == EST_REPS_SEPARATE) {
-        uint32_t i = kd_nearest_if(&r->tree, q, max_r2, pred_separate, &c, &d2);
+        uint32_t i = kd_nearest_if(&r->tree, q, max_r2, pred_separate, &c, s->last_rep, &d2);
         if (i != KD_NONE)
             rep = &r->rep[i];
+        s->last_rep = i;
     } else {
-        uint32_t i = kd_nearest_if(&m->tree, q, max_r2, pred_shared, &c, &d2);
+        uint32_t i = kd_nearest_if(&m->tree, q, max_r2, pred_shared, &c, s->last_rep, &d2);
         if (i != KD_NONE)
             rep = &r->rep[r->rep_of[i]];
+        s->last_rep = i;
     }
     *found = rep != NULL;
     if (!rep)

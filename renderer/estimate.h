@@ -56,12 +56,16 @@ typedef struct {
     uint32_t *rep_of; /* shared: photon tree index -> rep index or KD_NONE */
 } est_reps;
 
-/* One thread's buffers for kNN queries of up to nn photons. */
+/* One thread's buffers for kNN queries of up to nn photons, and its query
+ * state (the last query's radius starts the next search: cheaper, never a
+ * different result). */
 typedef struct {
     uint32_t cap;
     uint32_t *idx;
     float *d2;
-    char pad[64]; /* threads' scratch structs share no cache line */
+    kd_query query;
+    uint32_t last_rep; /* the last lookup's answer (a tree index), tried first by the next one */
+    char pad[64];      /* threads' scratch structs share no cache line */
 } est_scratch;
 
 /* Scratch for `threads` workers, each for queries of up to nn photons.
@@ -84,9 +88,11 @@ int est_precompute(const photons_map *m, const est_gather *g, est_rep_layout lay
                    progress *prog, est_reps *out);
 /* Irradiance (W per unit^2) of the nearest representative within the
  * gather's radius cap of world point x whose normal has cosine > cos_min
- * with n. Returns 0 and sets *found = 0 when none qualifies. */
+ * with n (of equally near ones, the first in tree order, so the answer does
+ * not depend on s, whose last answer only starts the search). Returns 0 and
+ * sets *found = 0 when none qualifies. */
 vec3 est_lookup(const est_reps *r, const photons_map *m, vec3 x, vec3 n, double cos_min, const est_gather *g,
-                int *found);
+                est_scratch *s, int *found);
 /* Bytes the representatives hold. */
 size_t est_reps_bytes(const est_reps *r, const photons_map *m);
 /* Frees the representatives; a zeroed struct is fine. */

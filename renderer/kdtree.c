@@ -1154,10 +1154,19 @@ uint32_t kd_knn(const kd_tree *t, const float q[3], uint32_t k, float max_d2, ui
 
 /* ---- nearest with a predicate ---- */
 
-uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx, float *d2)
+uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx, uint32_t hint,
+                       float *d2)
 {
     uint32_t best = KD_NONE;
     float best_d2 = max_d2;
+    if (hint < t->n) {
+        float dx = t->x[hint] - q[0], dy = t->y[hint] - q[1], dz = t->z[hint] - q[2];
+        float d = dx * dx + dy * dy + dz * dz; /* as chunk_d2 computes it */
+        if (d <= max_d2 && (!pred || pred(hint, ctx))) {
+            best = hint;
+            best_d2 = d;
+        }
+    }
     if (t->n > 0) {
         kd_frame stack[KD_STACK];
         int sp = 0;
@@ -1174,7 +1183,8 @@ uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred
                     uint32_t m = end - c < KD_CHUNK ? end - c : KD_CHUNK;
                     for (uint32_t j = 0; j < m; j++) {
                         float d = dd[j];
-                        if (d <= best_d2 && (best == KD_NONE || d < best_d2) && (!pred || pred(c + j, ctx))) {
+                        if (d <= best_d2 && (best == KD_NONE || d < best_d2 || c + j < best) &&
+                            (!pred || pred(c + j, ctx))) {
                             best = c + j;
                             best_d2 = d;
                         }

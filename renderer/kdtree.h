@@ -90,8 +90,12 @@ uint32_t kd_knn(const kd_tree *t, const float q[3], uint32_t k, float max_d2, ui
 typedef int (*kd_pred)(uint32_t i, const void *ctx);
 
 /* The nearest qualifying point within max_d2 of q: returns its leaf-order
- * index and sets *d2, or returns KD_NONE when none qualifies. Exact. */
-uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx,
+ * index and sets *d2, or returns KD_NONE when none qualifies. Exact; of
+ * points at the same distance the one of lowest index, so the result does
+ * not depend on `hint`: a point (KD_NONE: none) tried first, whose distance,
+ * if it qualifies, bounds the search from the start (the previous query's
+ * answer, for coherent queries). */
+uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx, uint32_t hint,
                        float *d2);
 
 #endif

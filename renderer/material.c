@@ -21,11 +21,11 @@ vec3 material_reflect(vec3 d, vec3 n)
 double material_fresnel(double cos_i, double n1, double n2)
 {
     assert(n1 > 0.0 && n2 > 0.0);
-    cos_i = fmin(fmax(cos_i, 0.0), 1.0);
-    double sin_t = n1 / n2 * sqrt(fmax(0.0, 1.0 - cos_i * cos_i));
+    cos_i = vec_min2(vec_max2(cos_i, 0.0), 1.0);
+    double sin_t = n1 / n2 * sqrt(vec_max2(0.0, 1.0 - cos_i * cos_i));
     if (sin_t >= 1.0)
         return 1.0;
-    double cos_t = sqrt(fmax(0.0, 1.0 - sin_t * sin_t));
+    double cos_t = sqrt(vec_max2(0.0, 1.0 - sin_t * sin_t));
     double rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
     double rp = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i);
     return 0.5 * (rs * rs + rp * rp);
@@ -44,7 +44,7 @@ int material_refract(vec3 d, vec3 n, double eta, vec3 *out)
 vec3 material_sample_cosine(vec3 n, double u1, double u2)
 {
     double r = sqrt(u1), phi = 2.0 * VEC_PI * u2;
-    double x = r * cos(phi), y = r * sin(phi), z = sqrt(fmax(0.0, 1.0 - u1));
+    double x = r * cos(phi), y = r * sin(phi), z = sqrt(vec_max2(0.0, 1.0 - u1));
     vec3 t, b;
     vec_basis(n, &t, &b);
     return vec_norm(vec_add(vec_add(vec_scale(t, x), vec_scale(b, y)), vec_scale(n, z)));

@@ -18,9 +18,9 @@
 
 void photons_pack_dir(double x, double y, double z, int8_t out[3])
 {
-    out[0] = (int8_t)lrint(fmax(-1.0, fmin(1.0, x)) * 127.0);
-    out[1] = (int8_t)lrint(fmax(-1.0, fmin(1.0, y)) * 127.0);
-    out[2] = (int8_t)lrint(fmax(-1.0, fmin(1.0, z)) * 127.0);
+    out[0] = (int8_t)lrint(vec_max2(-1.0, vec_min2(1.0, x)) * 127.0);
+    out[1] = (int8_t)lrint(vec_max2(-1.0, vec_min2(1.0, y)) * 127.0);
+    out[2] = (int8_t)lrint(vec_max2(-1.0, vec_min2(1.0, z)) * 127.0);
 }
 
 vec3 photons_unpack_dir(const int8_t d[3])
@@ -84,7 +84,7 @@ static int trace_one(const trace_ctx *tc, uint64_t index, photons_chunk *c)
     rng_stream rs = rng_make(pp->seed, index);
     /* isotropic emission */
     double u1 = rng_next_double(&rs), u2 = rng_next_double(&rs);
-    double z = 1.0 - 2.0 * u1, s = sqrt(fmax(0.0, 1.0 - z * z)), phi = 2.0 * VEC_PI * u2;
+    double z = 1.0 - 2.0 * u1, s = sqrt(vec_max2(0.0, 1.0 - z * z)), phi = 2.0 * VEC_PI * u2;
     shape_ray r = {sc->light.position, vec_make(s * cos(phi), s * sin(phi), z)};
     vec3 power = vec_make(1, 1, 1);
     unsigned bounces = 0;

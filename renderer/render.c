@@ -100,7 +100,7 @@ static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t de
         vec3 e;
         if (c->cfg->method == CONFIG_METHOD_PRECOMPUTED) {
             int found;
-            e = est_lookup(c->reps, c->map, h.p, h.n, c->cfg->normal_cos, &c->gather, &found);
+            e = est_lookup(c->reps, c->map, h.p, h.n, c->cfg->normal_cos, &c->gather, &c->scratch[thread], &found);
             c->counts[thread].empty += !found;
         } else {
             uint32_t found;
@@ -230,12 +230,6 @@ static int step_build(render_state *rs)
     return 0;
 }
 
-/* Largest |coordinate| of v. */
-static double max_abs(vec3 v)
-{
-    return fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
-}
-
 /* Refuses a scene whose lit part is too small for double precision where it
  * sits: the photons' bounding box (the scene's, without photons) must span
  * at least RENDER_MIN_RELATIVE_EXTENT of its distance from the origin.
@@ -245,12 +239,12 @@ static int check_precision(const render_state *rs, char *err, size_t errlen)
     const scene *sc = rs->sc;
     double extent = rs->map.extent, far;
     if (extent > 0.0) {
-        far = max_abs(rs->map.centre) + 0.5 * extent;
+        far = vec_max_abs(rs->map.centre) + 0.5 * extent;
     } else {
         extent = sc->scale;
-        far = fmax(max_abs(sc->bounds_lo), max_abs(sc->bounds_hi));
+        far = fmax(vec_max_abs(sc->bounds_lo), vec_max_abs(sc->bounds_hi));
     }
-    far = fmax(far, max_abs(sc->camera.position));
+    far = fmax(far, vec_max_abs(sc->camera.position));
     if (extent >= RENDER_MIN_RELATIVE_EXTENT * far)
         return RENDER_OK;
     snprintf(err, errlen,

@@ -629,12 +629,6 @@ void scene_free(scene *s)
     free(s);
 }
 
-/* Largest |coordinate| of v. */
-static double max_abs(vec3 v)
-{
-    return fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
-}
-
 int scene_intersect(const scene *s, const shape_ray *r, double tmax, scene_hit *h)
 {
     int best = -1;
@@ -659,7 +653,7 @@ int scene_intersect(const scene *s, const shape_ray *r, double tmax, scene_hit *
      * ray starts SCENE_EPS_REL of that away from the surface, far beyond the
      * error and far below any feature, wherever the scene sits and whatever
      * its scale (pbrt's error-bounded offsets, with a fixed generous bound). */
-    h->eps = SCENE_EPS_REL * (max_abs(r->origin) + max_abs(h->p) + sh->magnitude);
+    h->eps = SCENE_EPS_REL * (vec_max_abs(r->origin) + vec_max_abs(h->p) + sh->magnitude);
     return 1;
 }
 

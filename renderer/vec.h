@@ -28,7 +28,13 @@ static inline double vec_len(vec3 a) { return sqrt(vec_dot(a, a)); }
 static inline vec3 vec_norm(vec3 a) { return vec_scale(a, 1.0 / vec_len(a)); }
 /* a + b*s */
 static inline vec3 vec_madd(vec3 a, vec3 b, double s) { return vec_make(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s); }
-static inline double vec_maxc(vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
+/* max and min of two finite numbers, without libm's NaN handling (fmax is a
+ * library call the compiler cannot inline) */
+static inline double vec_max2(double a, double b) { return a > b ? a : b; }
+static inline double vec_min2(double a, double b) { return a < b ? a : b; }
+static inline double vec_maxc(vec3 a) { return vec_max2(a.x, vec_max2(a.y, a.z)); }
+/* Largest |component| of a. */
+static inline double vec_max_abs(vec3 a) { return vec_max2(fabs(a.x), vec_max2(fabs(a.y), fabs(a.z))); }
 
 /* An orthonormal basis (t, b) completing the unit vector n (Duff et al. 2017). */
 static inline void vec_basis(vec3 n, vec3 *t, vec3 *b)

@@ -164,13 +164,17 @@ static uint64_t lookup_batch(const est_reps *r, const photons_map *m, const qset
 {
     uint64_t found = 0;
     double s = 0.0;
+    est_scratch *scratch = est_scratch_new(1, 1); /* the last answer starts the next search, as in the eye pass */
+    if (!scratch)
+        return 0;
     for (uint32_t i = 0; i < nq; i++) {
         const float *p = q->p + 3 * (size_t)i, *n = q->nr + 3 * (size_t)i;
         int f;
-        vec3 e = est_lookup(r, m, vec_make(p[0], p[1], p[2]), vec_make(n[0], n[1], n[2]), cos_min, g, &f);
+        vec3 e = est_lookup(r, m, vec_make(p[0], p[1], p[2]), vec_make(n[0], n[1], n[2]), cos_min, g, scratch, &f);
         found += (uint64_t)f;
         s += e.x;
     }
+    est_scratch_delete(scratch, 1);
     *esum += s;
     return found;
 }

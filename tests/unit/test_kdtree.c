@@ -178,13 +178,13 @@ void test_kdtree_nearest_if(void)
             }
         }
         float d2;
-        uint32_t got = kd_nearest_if(&t, q, cap, pred_even_orig, perm, &d2);
+        uint32_t got = kd_nearest_if(&t, q, cap, pred_even_orig, perm, KD_NONE, &d2);
         CHECK(got == KD_NONE ? best_i == KD_NONE : (perm[got] % 2 == 0 && d2 == best));
         /* without predicate: the plain nearest */
         uint32_t idx;
         float dd, r2;
         uint32_t k = kd_knn(&t, q, 1, cap, &idx, &dd, &r2);
-        uint32_t g2 = kd_nearest_if(&t, q, cap, NULL, NULL, &d2);
+        uint32_t g2 = kd_nearest_if(&t, q, cap, NULL, NULL, KD_NONE, &d2);
         CHECK(k == (g2 != KD_NONE) && (k == 0 || d2 == dd));
     }
     kd_free(&t);

@@ -65,7 +65,7 @@ void test_precomputed_equals_conventional_on_uniform_plane(void)
         uint32_t found;
         int ok;
         vec3 ec = est_irradiance(&m, x, vec_make(0, 1, 0), &g, s, &found);
-        vec3 ep = est_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, &g, &ok);
+        vec3 ep = est_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &ok);
         CHECK(found == nn && ok);
         sum_c += ec.y;
         sum_p += ep.y;
@@ -79,14 +79,16 @@ void test_precomputed_equals_conventional_on_uniform_plane(void)
     /* the same with representatives found in the photon tree by flag */
     est_reps shared;
     CHECK(est_precompute(&m, &g, EST_REPS_SHARED, 1, NULL, &shared) == 0);
+    est_scratch *s2 = est_scratch_new(1, nn); /* the two layouts' indices differ: a scratch each */
     for (int i = 0; i < 50; i++) {
         vec3 x = vec_make(rng_next_double(&q) - 0.5, 0, rng_next_double(&q) - 0.5);
         int a, b;
-        vec3 e1 = est_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, &g, &a);
-        vec3 e2 = est_lookup(&shared, &m, x, vec_make(0, 1, 0), 0.9, &g, &b);
+        vec3 e1 = est_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &a);
+        vec3 e2 = est_lookup(&shared, &m, x, vec_make(0, 1, 0), 0.9, &g, s2, &b);
         CHECK(a && b && e1.y == e2.y);
     }
     est_reps_free(&shared);
+    est_scratch_delete(s2, 1);
     est_scratch_delete(s, 1);
     est_reps_free(&reps);
     photons_map_free(&m);
@@ -156,14 +158,15 @@ void test_precomputed_normal_test_at_corner(void)
     est_reps reps;
     est_gather g = est_gather_make(&m, 50, 0.3, 0);
     CHECK(est_precompute(&m, &g, EST_REPS_SEPARATE, 1, NULL, &reps) == 0);
+    est_scratch *s = est_scratch_new(1, 1);
     /* floor E ~ 40000*1e-5/4 = 0.1; wall E ~ 4000*1e-2/4 = 10 */
     rng_stream q = rng_make(9, 0);
     int floor_ok = 1, wall_ok = 1;
     for (int i = 0; i < 500; i++) {
         double t = rng_next_double(&q) * 0.01, u = rng_next_double(&q) - 0.5;
         int f1, f2;
-        vec3 on_floor = est_lookup(&reps, &m, vec_make(u, 0, t), vec_make(0, 1, 0), 0.9, &g, &f1);
-        vec3 on_wall = est_lookup(&reps, &m, vec_make(u, t, 0), vec_make(0, 0, 1), 0.9, &g, &f2);
+        vec3 on_floor = est_lookup(&reps, &m, vec_make(u, 0, t), vec_make(0, 1, 0), 0.9, &g, s, &f1);
+        vec3 on_wall = est_lookup(&reps, &m, vec_make(u, t, 0), vec_make(0, 0, 1), 0.9, &g, s, &f2);
         floor_ok &= f1 && on_floor.y < 1.0;
         wall_ok &= f2 && on_wall.y > 1.0;
     }
@@ -171,9 +174,10 @@ void test_precomputed_normal_test_at_corner(void)
     CHECK(wall_ok);
     /* a tilted normal that agrees with neither (cos 0.707 < 0.9): defined zero */
     int f;
-    vec3 e = est_lookup(&reps, &m, vec_make(0, 0.001, 0.001), vec_norm(vec_make(0, 1, 1)), 0.9, &g, &f);
+    vec3 e = est_lookup(&reps, &m, vec_make(0, 0.001, 0.001), vec_norm(vec_make(0, 1, 1)), 0.9, &g, s, &f);
     CHECK(!f && e.x == 0.0 && e.y == 0.0 && e.z == 0.0);
     est_reps_free(&reps);
+    est_scratch_delete(s, 1);
     photons_map_free(&m);
 }
 
