@@ -33,7 +33,7 @@ TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 IMGMETRICS := $(BUILD)/imgmetrics
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
-.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures resolution estimator-bias stability bench reference reference-small fuzz
+.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures resolution estimator-bias scenes stability bench reference reference-small fuzz
 all: $(BUILD)/photonmap $(IMGMETRICS) ## build build/photonmap and build/imgmetrics
 deps: $(DEPS_STAMP) ## install the missing Debian packages (scripts/install-deps.sh, once)
 test: all unit-tests $(BUILD)/san/photonmap ## every test; ends with "N passed, N failed" (README)
@@ -44,6 +44,7 @@ list-runs: ## print the target of every render of reproduce-table, one per line 
 figures: ## Figure 3, error maps, trade-off and time plots -> results/figures/ (after reproduce-table)
 resolution: ## cheapest settings per output size -> results/resolution.md
 estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias.md
+scenes: ## the grid on every scene: equal-error speed-up, kNN share, where the error lies -> results/scenes.md
 stability: ## every extreme with its expected value and verdict -> results/stability-extremes.md
 bench: ## kNN, lookup and eye-pass benchmarks -> results/bench.md
 reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
@@ -112,6 +113,7 @@ include experiments/table.mk
 include experiments/resolution.mk
 include experiments/figures.mk
 include experiments/estimator-bias.mk
+include experiments/scenes.mk
 include experiments/bench.mk
 include reference/reference.mk
 include tests/fuzz/fuzz.mk

@@ -78,6 +78,14 @@ RES_REF ?= ours
 # where our high-photon reference renders go, one <WxH>.exr per size
 RES_REF_DIR = $(RESULTS)/runs/$(SCENE_NAME)-refhigh-p$(RES_REF_PHOTONS)-n$(RES_REF_NN)-s$(SUBPIXELS)
 
+# make scenes: every scene's grid at a smaller size, against our own
+# converged render of it (RES_REF_PHOTONS, RES_REF_NN); SCENES_CELL is the
+# (P_e, n) of the difference images
+SCENES ?= $(filter-out scenes/furnace.scene,$(wildcard scenes/*.scene))
+SCENES_SIZE ?= 512x384
+SCENES_SEEDS ?= 3
+SCENES_CELL ?= p100000-n50
+
 # make figures
 FIG_SIZE ?= 1024x768
 

@@ -6,18 +6,21 @@
 # RESULTS/resolution.md and, per size, RESULTS/resolution/{table,runs,cells,
 # equal-error}-<size>.* (experiments/resolution.sh, analysis/resolution.py).
 # Reference per size (RES_REF): "ours" (default) is our own high-photon
-# conventional render (RES_REF_PHOTONS emitted, RES_REF_NN nearest, all
+# conventional render (corrected estimate) (RES_REF_PHOTONS emitted, RES_REF_NN nearest, all
 # cores, seed 1) at every size, so that the error targets mean the same at
 # every size: POV-Ray references exist only at some sizes, and POV's
 # radiosity differs from a converged photon map by a few percent (reference/
 # notes), which would floor relMSE at a size-dependent level. "pov" uses the
 # POV-Ray render of that size in reference/ where there is one (else ours).
 
-# Our high-photon reference at one size (stem = WxH).
+# Our high-photon reference at one size (stem = WxH): the corrected
+# conventional estimate (unbiased; the paper's would be n/(n-1) = 0.5% high).
+print-res-ref-dir:
+	@echo $(RES_REF_DIR)
 $(RES_REF_DIR)/%.exr: | $(BUILD)/photonmap
 	@mkdir -p $(dir $@)
-	@echo "reference: conventional P_e=$(RES_REF_PHOTONS) n=$(RES_REF_NN) at $*, all cores"
-	$(PM) render $(SCENE) --method conventional --photons $(RES_REF_PHOTONS) --nn $(RES_REF_NN) \
+	@echo "reference: $(SCENE), conventional, corrected, P_e=$(RES_REF_PHOTONS) n=$(RES_REF_NN) at $*, all cores"
+	$(PM) render $(SCENE) --method conventional --bias-correction --photons $(RES_REF_PHOTONS) --nn $(RES_REF_NN) \
 	  --width $(word 1,$(subst x, ,$*)) --height $(word 2,$(subst x, ,$*)) --subpixels $(SUBPIXELS) --threads 0 \
 	  -o $@ --png $(@:.exr=.png) --stats $(@:.exr=.stats.json) --quiet
 
