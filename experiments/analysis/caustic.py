@@ -9,7 +9,10 @@ relMSE against the POV-Ray reference inside the window, the same for the
 whole image (from runs.csv), the peak ratio (how much of the reference's
 brightest 10% of window pixels the render keeps; metrics.peak_ratio) and
 the relMSE of the precomputed render against the conventional one of the
-same seed inside the window. Per cell and method: mean over seeds with its
+same seed inside the window, and the excess: the precomputed render's relMSE
+over the conventional one's of the same seed, in the window and over the
+whole image (a caustic smeared more than the rest of the picture has a
+larger excess in the window). Per cell and method: mean over seeds with its
 95% t-interval (stats.t_interval). Input: the runs.csv of `make caustic`
 (the table machinery run on the caustic scene), with the images it names.
 """
@@ -31,7 +34,7 @@ from plotting import kilo, plt  # noqa: E402
 from report import fmt, fmt_pm  # noqa: E402
 
 WHERE = "caustic.py"
-METRICS = ("win_relmse_ref", "win_peak_ratio", "relmse_ref", "win_relmse_conv")
+METRICS = ("win_relmse_ref", "win_peak_ratio", "relmse_ref", "win_relmse_conv", "win_excess", "img_excess")
 
 
 def measure(runs, ref, window, at):
@@ -56,8 +59,17 @@ def measure(runs, ref, window, at):
                     & (runs["photons"] == r["photons"]) & (runs["nn"] == r["nn"]) & (runs["seed"] == r["seed"])]
         row["win_relmse_conv"] = (metrics.relmse(xw, metrics.window(images[conv["run"].iloc[0]], window, at))
                                   if len(conv) else math.nan)
+        row["conv_run"] = conv["run"].iloc[0] if len(conv) else ""
         rows.append(row)
-    return pd.DataFrame(rows)
+    out = pd.DataFrame(rows)
+    # the precomputed render's error over the conventional one's of the same
+    # seed, in the window and over the whole image: does the caustic suffer
+    # more than the rest of the picture?
+    by_run = out.set_index("run")
+    for col, src in (("win_excess", "win_relmse_ref"), ("img_excess", "relmse_ref")):
+        out[col] = [r[src] / by_run.loc[r["conv_run"], src] if r["conv_run"] in by_run.index else math.nan
+                    for _, r in out.iterrows()]
+    return out
 
 
 def summarise(per_run):
@@ -90,7 +102,8 @@ def markdown(summary, args, per_run):
            "spread out); whole-image relMSE (runs.csv); window relMSE of the precomputed image against the "
            "conventional one of the same seed. Per cell: mean ± 95% t half-width over seeds.",
            f"- Machine: {report.machine()}; commit {report.commit()}.", ""]
-    for est in dict.fromkeys(summary["estimate"]):
+    ests = sorted(dict.fromkeys(summary["estimate"]), key=lambda e: (e != "paper", e))
+    for est in ests:
         s = summary[summary["estimate"] == est]
         out += [f"## {est} estimate", ""]
         rows = []
@@ -100,15 +113,17 @@ def markdown(summary, args, per_run):
             get = (lambda d, k: (d[k + "_mean"].iloc[0], d[k + "_ci95"].iloc[0]) if len(d) else (math.nan, math.nan))
             rows.append([kilo(p), n, int(g["seeds"].min()),
                          fmt_pm(*get(c, "win_relmse_ref")), fmt_pm(*get(q, "win_relmse_ref")),
+                         fmt_pm(*get(q, "win_excess")), fmt_pm(*get(q, "img_excess")),
                          fmt_pm(*get(c, "win_peak_ratio")), fmt_pm(*get(q, "win_peak_ratio")),
                          fmt_pm(*get(q, "win_relmse_conv")),
                          fmt_pm(*get(c, "relmse_ref")), fmt_pm(*get(q, "relmse_ref"))])
-        out += report.md_table(["P_e", "n", "seeds", "window relMSE conv.", "window relMSE prec.", "peak ratio conv.",
+        out += report.md_table(["P_e", "n", "seeds", "window relMSE conv.", "window relMSE prec.",
+                                "excess prec./conv., window", "excess prec./conv., image", "peak ratio conv.",
                                 "peak ratio prec.", "window relMSE prec. vs conv.", "image relMSE conv.",
                                 "image relMSE prec."], rows)
         out += [""]
         # what the intervals allow: per cell, precomputed against conventional in the window
-        worse, better, overlap, lower_peak = [], [], [], []
+        worse, better, overlap, lower_peak, higher_peak = [], [], [], [], []
         for (p, n), g in s.groupby(["photons", "nn"], sort=True):
             c = g[g["method"] == "conventional"]
             q = g[g["method"] == "precomputed"]
@@ -124,8 +139,8 @@ def markdown(summary, args, per_run):
                   q["win_peak_ratio_mean"].iloc[0] + q["win_peak_ratio_ci95"].iloc[0])
             pb = (c["win_peak_ratio_mean"].iloc[0] - c["win_peak_ratio_ci95"].iloc[0],
                   c["win_peak_ratio_mean"].iloc[0] + c["win_peak_ratio_ci95"].iloc[0])
-            if not stats.intervals_overlap(pa, pb) and pa[1] < pb[0]:
-                lower_peak.append(lab)
+            if not stats.intervals_overlap(pa, pb):
+                (lower_peak if pa[1] < pb[0] else higher_peak).append(lab)
         parts = []
         if worse:
             parts.append(f"precomputed worse in the window (95% intervals disjoint) at {', '.join(worse)}")
@@ -134,16 +149,33 @@ def markdown(summary, args, per_run):
         if overlap:
             parts.append(f"no ranking (intervals overlap) at {', '.join(overlap)}")
         out += ["- Window relMSE, precomputed vs conventional: " + "; ".join(parts) + "."]
-        out += ["- Peak ratio: the precomputed method keeps less of the caustic's peak than the conventional one "
-                f"(intervals disjoint) at {', '.join(lower_peak)}." if lower_peak else
-                "- Peak ratio: no cell where the precomputed method keeps significantly less of the peak.", ""]
+        more, less, same = [], [], []
+        for (p, n), g in s.groupby(["photons", "nn"], sort=True):
+            q = g[g["method"] == "precomputed"]
+            if q.empty:
+                continue
+            w = (q["win_excess_mean"].iloc[0] - q["win_excess_ci95"].iloc[0],
+                 q["win_excess_mean"].iloc[0] + q["win_excess_ci95"].iloc[0])
+            i = (q["img_excess_mean"].iloc[0] - q["img_excess_ci95"].iloc[0],
+                 q["img_excess_mean"].iloc[0] + q["img_excess_ci95"].iloc[0])
+            lab = f"({kilo(p)}, {n})"
+            (same if stats.intervals_overlap(w, i) else more if w[0] > i[1] else less).append(lab)
+        out += ["- Does the caustic suffer more than the rest of the image? The precomputed method's excess error "
+                "(its relMSE over the conventional one's, same seed) is larger in the window than over the whole "
+                f"image (intervals disjoint) at {', '.join(more) if more else 'no cell'}"
+                + (f"; smaller at {', '.join(less)}" if less else "")
+                + (f"; the same within the intervals at {', '.join(same)}" if same else "") + "."]
+        out += ["- Peak ratio, precomputed vs conventional (95% intervals disjoint): less of the caustic's peak kept "
+                f"at {', '.join(lower_peak) if lower_peak else 'no cell'}; more (a brighter peak) at "
+                f"{', '.join(higher_peak) if higher_peak else 'no cell'}; the others overlap.", ""]
     return "\n".join(out) + "\n"
 
 
 def figure(summary, per_run, ref, args):
     """caustic.png: the window enlarged (reference; conventional and
-    precomputed per cell, seed 1) and the window relMSE per cell with its
-    interval, both methods and estimates."""
+    precomputed per cell, the first seed), (a) the window relMSE per cell
+    with its interval, both methods and estimates, (b) the precomputed
+    method's excess error in the window and over the whole image."""
     cells = [tuple(int(v) for v in c.split(":")) for c in args.cells.split()]
     paper = per_run[per_run["estimate"] == "paper"]
     seed = int(sorted(set(paper["seed"]))[0])
@@ -152,7 +184,7 @@ def figure(summary, per_run, ref, args):
     expo = 1.0 / lum_max if lum_max > 0 else 1.0
     fig = plt.figure(figsize=(13.5, 2.35 * (len(cells) + 1) + 1.0))
     gs = fig.add_gridspec(len(cells) + 1, 4, width_ratios=[1, 1, 0.12, 2.6], left=0.03, right=0.985, top=0.93,
-                          bottom=0.1, hspace=0.42, wspace=0.08)
+                          bottom=0.07, hspace=0.6, wspace=0.08)
     ax = fig.add_subplot(gs[0, 0])
     ax.imshow(plotting.srgb(refw * expo), interpolation="nearest")
     ax.set_title("POV-Ray reference", fontsize=9)
@@ -174,7 +206,9 @@ def figure(summary, per_run, ref, args):
             img = metrics.window(metrics.read_exr(r["run"].iloc[0] + ".exr"), args.window, args.window_at)
             ax.imshow(plotting.srgb(img * expo), interpolation="nearest")
             ax.set_title(f"{m}, P_e={kilo(p)}, n={n}", fontsize=9)
-    axp = fig.add_subplot(gs[1:, 3])
+    half = 1 + len(cells) // 2
+    axp = fig.add_subplot(gs[1:half + 1, 3])
+    axe = fig.add_subplot(gs[half + 1:, 3]) if half + 1 < len(cells) + 1 else None
     labels = [f"({kilo(p)}, {n})" for p, n in cells]
     ypos = np.arange(len(cells))
     for k, (est, m, colour, mk, off) in enumerate((("paper", "conventional", plotting.METHOD_COLOUR["conventional"], "o", -0.24),
@@ -194,11 +228,32 @@ def figure(summary, per_run, ref, args):
     axp.set_yticks(ypos, labels)
     axp.invert_yaxis()
     axp.set_xscale("log")
-    axp.set_xlabel("relMSE against the POV-Ray reference inside the caustic window (mean, 95% t-interval)")
+    plotting.log_ticks(axp.xaxis, *axp.get_xlim())
+    axp.set_xlabel("relMSE against the POV-Ray reference inside the caustic window")
     axp.set_ylabel("cell (P_e, n)")
     axp.legend(fontsize=8, loc="best")
-    axp.set_title("The caustic window's error, every cell (the image rows on the left: seed "
-                  f"{seed}, paper estimate, window enlarged, exposure x{expo:.2g})", fontsize=9.5)
+    axp.set_title("(a) the caustic window's error (mean over seeds, 95% t-interval)", fontsize=10)
+    if axe is not None:
+        for est, colour, off in (("paper", plotting.METHOD_COLOUR["precomputed"], -0.1), ("corrected", "#f4a582", 0.1)):
+            s = summary[(summary["estimate"] == est) & (summary["method"] == "precomputed")]
+            for i, (p, n) in enumerate(cells):
+                r = s[(s["photons"] == p) & (s["nn"] == n)]
+                if r.empty:
+                    continue
+                for col, mk, dy in (("win_excess", "o", -0.08), ("img_excess", "D", 0.08)):
+                    axe.errorbar([r[col + "_mean"].iloc[0]], [i + off + dy], xerr=[np.nan_to_num(r[col + "_ci95"].iloc[0])],
+                                 fmt=mk, color=colour, mfc=colour if mk == "o" else "white", capsize=3, ms=6,
+                                 label=f"{est} estimate, {'caustic window' if col == 'win_excess' else 'whole image'}"
+                                 if i == 0 else None)
+        axe.axvline(1, color="#777777", lw=1, ls=":")
+        axe.set_yticks(ypos, labels)
+        axe.invert_yaxis()
+        axe.set_xlabel("precomputed relMSE / conventional relMSE (same seed)")
+        axe.set_ylabel("cell (P_e, n)")
+        axe.legend(fontsize=7.5, loc="best")
+        axe.set_title("(b) the precomputed method's excess error: the window against the whole image", fontsize=10)
+    axp.text(0.0, 1.08, f"Images on the left: seed {seed}, paper estimate, the window enlarged without smoothing, "
+             f"exposure x{expo:.2g}", transform=axp.transAxes, fontsize=8.5)
     fig.suptitle("The glass sphere's caustic: does the precomputed method smear it?", fontsize=12, weight="bold")
     first = per_run.iloc[0]
     plotting.footer(fig, f"Data: {args.runs} and the renders it names ({first['scene']}, {first['size']}, seeds "

@@ -39,6 +39,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import metrics  # noqa: E402
 import plotting  # noqa: E402
 import report  # noqa: E402
+import stats  # noqa: E402
 from plotting import kilo, plt  # noqa: E402
 from report import fmt, isnum  # noqa: E402
 
@@ -198,13 +199,16 @@ def fig3(args):
     ax = plotting.pixel_axes(fig, 2 * gap + cw, y + head, min(tw, cw), ch)
     ax.imshow(plotting.srgb(ref), interpolation="antialiased", extent=(0, W, H, 0))
     ax.add_patch(plt.Rectangle((cx, cy), cw0, ch0, fill=False, ec="#ffdd00", lw=2))
-    cax = plotting.pixel_axes(fig, 3 * gap + 2 * cw + 20, y + head + ch // 2 - 10, cw - 40, 18)
+    cx3 = 3 * gap + 2 * cw
+    cax = plotting.pixel_axes(fig, cx3 + 10, y + head + ch // 2 - 30, cw - 20, 18)
     cax.set_axis_on()
     cax.grid(False)
     sm = plt.cm.ScalarMappable(cmap="RdBu_r", norm=plt.Normalize(-lim, lim))
-    cb = fig.colorbar(sm, cax=cax, orientation="horizontal")
-    cb.set_label("(precomputed - conventional) / reference, luminance\n"
-                 f"same seed; symmetric range ±{lim:g} (99th percentile of |difference|), clipped", fontsize=8.5)
+    fig.colorbar(sm, cax=cax, orientation="horizontal")
+    plotting.pixel_text(fig, cx3 + 10, y + head + ch // 2 + 12,
+                        "Third column: (precomputed - conventional)\n/ reference, luminance, the same seed.\n"
+                        f"Symmetric range ±{lim:g} for every row\n(the 99th percentile of |difference|; clipped).\n"
+                        "Red: precomputed brighter.", fontsize=9)
     y += row_h
     for i, (p, n, imgs, diff, rc, rp) in enumerate(rows):
         letter = chr(ord("a") + i)
@@ -288,6 +292,9 @@ def fig3_errors(args):
     cax.set_axis_on()
     cax.grid(False)
     cb = fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap="magma"), cax=cax)
+    ticks = [v * 10.0 ** k for k in range(-5, 3) for v in (1, 2, 5) if lo <= v * 10.0 ** k <= hi]
+    cb.set_ticks(ticks, labels=[f"{v:g}" for v in ticks])
+    cb.ax.minorticks_off()
     cb.set_label("relative RMS error per block (log scale)")
     plotting.footer(fig, foot)
     plotting.save(fig, os.path.join(args.out, "fig3-errors.png"))
@@ -333,7 +340,8 @@ def fig2(args):
     wall for z, the floor for y), coloured by their precomputed irradiance;
     (b) the estimate they give there, constant around each representative
     (the nearest one, as the eye pass looks it up); (c) the same region in
-    the rendered image, its pixels enlarged without smoothing."""
+    the rendered image as luminance and (d) as displayed, its pixels
+    enlarged without smoothing."""
     from scipy.spatial import cKDTree
 
     d = args.fig2_dir
@@ -381,7 +389,7 @@ def fig2(args):
     cy0, cy1 = max(0, int(py.min()) - 4), min(H, int(math.ceil(py.max())) + 4)
     if cx1 - cx0 < 2 or cy1 - cy0 < 2:
         report.die(WHERE, f"FIG2_WINDOW '{args.fig2_window}' is not in view of {args.scene}'s camera")
-    fig = plt.figure(figsize=(15.5, 6.6))
+    fig = plt.figure(figsize=(19, 6.0))
     rule = f"count {st['rep_count']}" if st.get("rep_count", 0) else f"every {st['rep_every']}th stored photon"
     foot = (f"Data: {d}/ (reps.csv from `photonmap render --dump-reps`, image.exr and stats.json of the same render): "
             f"{st['scene']}, precomputed method, P_e = {kilo(st['photons_emitted'])}, n = {st['nn']}, seed "
@@ -390,7 +398,7 @@ def fig2(args):
             f"(b) is computed from reps.csv: the representative of this plane nearest to each point (within the "
             f"radius cap {float(st['max_radius']):.3g}; on a plane every normal agrees), i.e. the eye pass's lookup "
             "restricted to the plane; the radiance is rho/pi times this irradiance.")
-    gs = fig.add_gridspec(1, 3, left=0.045, right=0.99, top=0.86, bottom=0.22, wspace=0.16)
+    gs = fig.add_gridspec(1, 4, left=0.04, right=0.995, top=0.84, bottom=0.2, wspace=0.2)
     flip = axis == "y"  # the floor seen from above: z (towards the camera) downwards
     vlim = (v1, v0) if flip else (v0, v1)
     ax = fig.add_subplot(gs[0, 0])
@@ -410,14 +418,27 @@ def fig2(args):
     ax2.set_title("(b) the estimate at every point: E of the nearest\nrepresentative (white dots): constant cells")
     cb = fig.colorbar(sc, ax=[ax, ax2], orientation="horizontal", fraction=0.05, pad=0.12, aspect=50)
     cb.set_label("irradiance E, luminance (W per scene unit^2)")
-    ax3 = fig.add_subplot(gs[0, 2])
-    ax3.imshow(plotting.srgb(img[cy0:cy1, cx0:cx1]), interpolation="nearest", extent=(cx0, cx1, cy1, cy0))
-    ax3.add_patch(plt.Polygon(np.column_stack([px, py]), closed=True, fill=False, ec="#ffdd00", lw=1.2))
-    ax3.set_xlabel("image x (pixels)")
-    ax3.set_ylabel("image y (pixels)")
-    ax3.grid(False)
-    ax3.set_title(f"(c) this run's rendered image, pixels {cx0}-{cx1} x {cy0}-{cy1},\n"
-                  "enlarged without smoothing (a pixel is a uniform block);\noutline: the window of (a) and (b)")
+    sub = img[cy0:cy1, cx0:cx1]
+    lum = plotting.luminance(sub)
+    inside = plt.matplotlib.path.Path(np.column_stack([px, py]))
+    yy, xx = np.mgrid[cy0:cy1, cx0:cx1]
+    mask = inside.contains_points(np.column_stack([xx.ravel() + 0.5, yy.ravel() + 0.5])).reshape(lum.shape)
+    lnorm = plt.Normalize(*np.quantile(lum[mask] if mask.any() else lum, [0.01, 0.99]))
+    for k, (panel, title) in enumerate((
+            (None, f"(c) this run's rendered image: luminance of\npixels {cx0}-{cx1} x {cy0}-{cy1} (radiance = "
+                   "rho/pi x E;\nits own colour scale), enlarged without smoothing"),
+            (plotting.srgb(sub), "(d) the same pixels as displayed (sRGB):\nthe cells are the blotches of the "
+                                 "paper's remark"))):
+        a = fig.add_subplot(gs[0, 2 + k])
+        if panel is None:
+            a.imshow(lum, cmap="viridis", norm=lnorm, interpolation="nearest", extent=(cx0, cx1, cy1, cy0))
+        else:
+            a.imshow(panel, interpolation="nearest", extent=(cx0, cx1, cy1, cy0))
+        a.add_patch(plt.Polygon(np.column_stack([px, py]), closed=True, fill=False, ec="#ff3030", lw=1.2))
+        a.set_xlabel("image x (pixels; outline: the window of (a), (b))")
+        a.grid(False)
+        a.set_title(title)
+    fig.axes[-2].set_ylabel("image y (pixels)")
     fig.suptitle("Figure 2 reproduced: representatives carry precomputed irradiance; the eye pass takes the "
                  "nearest one's, so the radiance is piecewise constant", fontsize=12, weight="bold")
     plotting.footer(fig, foot)
@@ -467,37 +488,43 @@ def tradeoff(args):
                           f"{m}, P_e = {kilo(p)}")
         ax.set_title(f"({chr(ord('a') + k)}) {est} estimate" + (" (--bias-correction)" if est == "corrected" else ""))
     if rs is not None:
+        # the rules at one P_e (the largest, where they differ most), against its conventional cells
         ax = axes[-1]
-        conv = t[t["method"] == "conventional"]
-        for i, p in enumerate(allp):
-            errbar_xy(ax, conv[conv["photons"] == p], "paper", args, "#bbbbbb", plotting.photon_marker(p, allp),
-                      "conventional" if i == 0 else None)
+        pr = max(set(rs["photons"]) & set(allp)) if set(rs["photons"]) & set(allp) else max(rs["photons"])
+        conv = t[(t["method"] == "conventional") & (t["photons"] == pr)]
+        errbar_xy(ax, conv, "paper", args, "#888888", plotting.photon_marker(pr, allp), "conventional")
         for j, rule in enumerate(dict.fromkeys(rs["rule"])):
-            r = rs[rs["rule"] == rule]
+            r = rs[(rs["rule"] == rule) & (rs["photons"] == pr)].sort_values("nn")
+            if r.empty:
+                continue
             col = plotting.RULE_COLOURS[j % len(plotting.RULE_COLOURS)]
-            for i, p in enumerate(allp):
-                sel = r[r["photons"] == p].sort_values("nn")
-                if sel.empty:
-                    continue
-                x = sel["time_median_s"].to_numpy(float)
-                y = sel["relmse_ref_mean"].to_numpy(float)
-                ye = np.nan_to_num(sel["relmse_ref_ci95"].to_numpy(float))
-                ax.errorbar(x, y, xerr=[x - sel["time_min_s"], sel["time_max_s"] - x],
-                            yerr=[np.minimum(ye, y * 0.999), ye], fmt=plotting.photon_marker(p, allp) + "-",
-                            color=col, ms=5, lw=1, capsize=1.5, label=r["label"].iloc[0] if i == 0 else None)
-        ax.set_title(f"({chr(ord('a') + npanel - 1)}) representative rules (paper estimate; rep-study)")
+            x = r["time_median_s"].to_numpy(float)
+            y = r["relmse_ref_mean"].to_numpy(float)
+            ye = np.nan_to_num(r["relmse_ref_ci95"].to_numpy(float))
+            ax.errorbar(x, y, xerr=[x - r["time_min_s"], r["time_max_s"] - x], yerr=[np.minimum(ye, y * 0.999), ye],
+                        fmt=plotting.photon_marker(pr, allp) + "-", color=col, ms=5, lw=1, capsize=1.5,
+                        label=r["label"].iloc[0])
+        ax.set_title(f"({chr(ord('a') + npanel - 1)}) representative rules at P_e = {kilo(pr)} "
+                     "(paper estimate; rep-study)")
     med, _, _, tl = time_cols(args)
+    # the y range from the cells' means (few seeds give long error bars: they are clipped at the axes)
+    ys = [t["relmse_ref_mean" + sfx(e)] for e in estimates] + ([rs["relmse_ref_mean"]] if rs is not None else [])
+    ys = np.concatenate([np.asarray(v, dtype=float) for v in ys])
+    ys = ys[np.isfinite(ys) & (ys > 0)]
     for ax in axes:
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel(f"median time, {tl} (1 thread)")
         ax.legend(fontsize=7.5, loc="upper right", ncol=1)
-        ax.yaxis.set_major_formatter(plt.matplotlib.ticker.FormatStrFormatter("%g"))
-        ax.xaxis.set_major_formatter(plt.matplotlib.ticker.FormatStrFormatter("%g"))
+        plotting.log_ticks(ax.xaxis, *ax.get_xlim())
+    if ys.size:
+        axes[0].set_ylim(ys.min() / 1.6, ys.max() * 1.6)
+    plotting.log_ticks(axes[0].yaxis, *axes[0].get_ylim())
     axes[0].set_ylabel(f"relMSE against {args.ref_label}")
     fig.suptitle("Speed against accuracy: each line is one method and P_e, n = 10, 20, 50, 100 from top to "
                  "bottom (markers: P_e)", fontsize=11.5, weight="bold")
-    foot = provenance(args, (f"Rep-study points: {args.rep_study_cells}." if rs is not None else
+    foot = provenance(args, (f"Rep-study points: {args.rep_study_cells} (their seeds; error bars reaching past the "
+                             "axes are clipped)." if rs is not None else
                              "No rep-study data (run `make rep-study` to add its rules)."))
     fig.subplots_adjust(left=0.06, right=0.99, top=0.88, bottom=0.11 + 0.02 * plotting.footer_lines(foot, 6.2 * npanel))
     plotting.footer(fig, foot)
@@ -551,10 +578,27 @@ def ratio_vs_n(args):
     plotting.save(fig, os.path.join(args.out, "ratio-vs-n.png"))
 
 
+def phase_medians(args):
+    """{(photons, nn, method): {phase: seconds}}: per render of the paper
+    estimate, each phase's wall-clock time times the render's CPU / wall
+    ratio (cpu_s / total_s: the share of the wall clock the process ran,
+    so on a quiet machine the factor is about 1 and on a shared one the
+    phases add up to the CPU time), then the median over seeds."""
+    r = args.runs_frame
+    r = r[(r["status"] == "ok") & (r["role"] == "grid") & (r["estimate"] == "paper")]
+    out = {}
+    for (p, n, m), g in r.groupby(["photons", "nn", "method"]):
+        f = (g["cpu_s"] / g["total_s"]).to_numpy(float) if args.time == "cpu_s" else np.ones(len(g))
+        out[(int(p), int(n), m)] = {ph: stats.median_range(g[f"{ph}_s"].to_numpy(float) * f)[0]
+                                    for ph in ("trace", "build", "precompute", "render")}
+    return out
+
+
 def phases(args):
     """phases.png: per-phase median times (trace, build, precompute, eye
     pass) stacked, per cell, both methods, one panel per P_e."""
     t = args.table_frame
+    med = phase_medians(args)
     allp = sorted(set(t["photons"]))
     phase = [("trace", "trace photons", "#8c8c8c"), ("build", "build kd-tree", "#c7b37a"),
              ("precompute", "precompute at representatives", "#e6550d"), ("render", "eye pass", "#3182bd")]
@@ -564,14 +608,13 @@ def phases(args):
         ns = sorted(set(g["nn"]))
         for i, n in enumerate(ns):
             for j, m in enumerate(("conventional", "precomputed")):
-                r = g[(g["nn"] == n) & (g["method"] == m)]
-                if r.empty:
+                r = med.get((int(p), int(n), m))
+                if r is None:
                     continue
-                r = r.iloc[0]
                 x = i + (j - 0.5) * 0.38
                 bottom = 0.0
                 for key, label, colour in phase:
-                    v = float(r[f"{key}_median_s"]) if isnum(r[f"{key}_median_s"]) else 0.0
+                    v = float(r[key]) if isnum(r[key]) else 0.0
                     ax.bar(x, v, 0.36, bottom=bottom, color=colour, edgecolor="white", lw=0.5,
                            label=label if (i, j) == (0, 1) or (key != "precompute" and (i, j) == (0, 0)) else None)
                     bottom += v
@@ -579,17 +622,20 @@ def phases(args):
         ax.set_xticks(range(len(ns)), [f"n={n}" for n in ns])
         ax.set_title(f"P_e = {kilo(p)}   (C: conventional, P: precomputed)")
         ax.grid(axis="x", visible=False)
-    axes[0][0].set_ylabel("median seconds per phase (wall clock, 1 thread)")
+    axes[0][0].set_ylabel("seconds per phase, median over seeds\n" + ("(CPU-scaled wall clock, 1 thread)"
+                                                                      if args.time == "cpu_s" else "(wall clock, 1 thread)"))
     handles, labels = axes[0][0].get_legend_handles_labels()
     order = [labels.index(lab) for _, lab, _ in phase if lab in labels]
     axes[0][0].legend([handles[i] for i in order], [labels[i] for i in order], fontsize=8, loc="upper left")
     fig.suptitle("Where the time goes: the precomputed method moves kNN work from the eye pass to the "
                  "precompute", fontsize=11.5, weight="bold")
     load = args.runs_frame.loc[args.runs_frame["status"] == "ok", "loadavg_1min"]
-    foot = provenance(args, "Phases: the renderer's monotonic clock (stats JSON time_s), median over seeds of each "
-                            "phase on its own (table1.csv *_median_s), so they need not add up to the median total. "
-                            f"1-minute load average at the renders' start: median {fmt(load.median())} on "
-                            f"{os.cpu_count()} cores (above the core count, wall times are inflated).")
+    foot = provenance(args, "Phases: the renderer's monotonic clock per phase (runs.csv *_s from the stats JSON)"
+                            + (", scaled per render by its CPU seconds / wall seconds (cpu_s / total_s) so that a "
+                               "shared machine's waiting is left out" if args.time == "cpu_s" else "")
+                            + "; median over seeds of each phase on its own, so they need not add up to the median "
+                            f"total. 1-minute load average at the renders' start: median {fmt(load.median())} on "
+                            f"{os.cpu_count()} cores.")
     fig.subplots_adjust(left=0.07, right=0.99, top=0.87, wspace=0.06,
                         bottom=0.1 + 0.025 * plotting.footer_lines(foot, 4.6 * len(allp)))
     plotting.footer(fig, foot)
@@ -628,7 +674,8 @@ def main():
     args = ap.parse_args()
     args.table_frame = read_csv(args.table, TABLE_NEED, "run `make reproduce-table` first")
     args.runs_frame = read_csv(args.runs, ["method", "estimate", "photons", "nn", "seed", "status", "role", "run",
-                                           "loadavg_1min"], "run `make reproduce-table` first")
+                                           "loadavg_1min", "cpu_s", "total_s", "trace_s", "build_s", "precompute_s",
+                                           "render_s"], "run `make reproduce-table` first")
     cells = read_csv(args.cells_csv, ["ref"], "run `make reproduce-table` first")
     if not args.ref:
         refs = cells["ref"].dropna()

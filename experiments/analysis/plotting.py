@@ -14,6 +14,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 
 plt.rcParams.update({
@@ -117,3 +118,15 @@ def pixel_text(fig, x, y, text, **kw):
     kw.setdefault("va", "top")
     kw.setdefault("ha", "left")
     return fig.text(x / fw, 1 - y / fh, text, **kw)
+
+
+def log_ticks(axis, lo, hi):
+    """Major ticks at 1, 2, 5 x 10^k between LO and HI on a logarithmic
+    AXIS (ax.xaxis or ax.yaxis), labelled as plain numbers, no minor
+    labels."""
+    ticks = [v * 10.0 ** k for k in range(-6, 7) for v in (1, 2, 5) if lo <= v * 10.0 ** k <= hi]
+    if len(ticks) > 9:
+        ticks = [t for t in ticks if f"{t:g}"[0] in "15"]
+    axis.set_major_locator(matplotlib.ticker.FixedLocator(ticks))
+    axis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
