@@ -228,7 +228,7 @@ def fig3(args):
         ax = plotting.pixel_axes(fig, x, y + head, cw, ch)
         ax.imshow(np.clip(diff, -lim, lim), cmap="RdBu_r", vmin=-lim, vmax=lim, interpolation="nearest")
         plotting.pixel_text(fig, x, y + head + ch + 3,
-                            f"time ratio {ratio} %; relMSE prec. vs conv. (same seed)\n"
+                            f"time prec./conv. {ratio} %\nrelMSE prec. vs conv., same seed: "
                             f"{report.fmt_pm(rp['relmse_conv_mean'], rp['relmse_conv_ci95'])}", fontsize=8.5)
         y += row_h
     plotting.footer(fig, provenance(args))
@@ -390,7 +390,9 @@ def fig2(args):
     if cx1 - cx0 < 2 or cy1 - cy0 < 2:
         report.die(WHERE, f"FIG2_WINDOW '{args.fig2_window}' is not in view of {args.scene}'s camera")
     fig = plt.figure(figsize=(19, 6.0))
-    rule = f"count {st['rep_count']}" if st.get("rep_count", 0) else f"every {st['rep_every']}th stored photon"
+    rule = (f"a fixed count of {st['rep_count']}" if st.get("rep_count", 0) else
+            "every stored photon" if int(st["rep_every"]) == 1 else
+            f"every {plotting.ordinal(st['rep_every'])} stored photon")
     foot = (f"Data: {d}/ (reps.csv from `photonmap render --dump-reps`, image.exr and stats.json of the same render): "
             f"{st['scene']}, precomputed method, P_e = {kilo(st['photons_emitted'])}, n = {st['nn']}, seed "
             f"{st['seed']}, {W}x{H}, {int(st['representatives'])} representatives ({rule}), {len(wall)} on the plane "

@@ -42,6 +42,13 @@ def kilo(p):
     return str(p)
 
 
+def ordinal(k):
+    """'1st', '2nd', '3rd', '4th', ..., '11th', '12th', '13th', '21st'."""
+    k = int(k)
+    suffix = "th" if 10 <= k % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(k % 10, "th")
+    return f"{k}{suffix}"
+
+
 def photon_marker(photons, all_photons):
     """The marker of an emitted-photon count among ALL_PHOTONS (sorted)."""
     order = sorted(set(int(p) for p in all_photons))
@@ -120,13 +127,22 @@ def pixel_text(fig, x, y, text, **kw):
     return fig.text(x / fw, 1 - y / fh, text, **kw)
 
 
-def log_ticks(axis, lo, hi):
+def count_label(v):
+    """A count for an axis: '500', '5k', '50k', '1M', '2.5M'."""
+    if v >= 1e6:
+        return f"{v / 1e6:g}M"
+    if v >= 1e3:
+        return f"{v / 1e3:g}k"
+    return f"{v:g}"
+
+
+def log_ticks(axis, lo, hi, label=None):
     """Major ticks at 1, 2, 5 x 10^k between LO and HI on a logarithmic
-    AXIS (ax.xaxis or ax.yaxis), labelled as plain numbers, no minor
-    labels."""
-    ticks = [v * 10.0 ** k for k in range(-6, 7) for v in (1, 2, 5) if lo <= v * 10.0 ** k <= hi]
+    AXIS (ax.xaxis or ax.yaxis), labelled as plain numbers (or by LABEL, a
+    function of the value), no minor labels."""
+    ticks = [v * 10.0 ** k for k in range(-6, 9) for v in (1, 2, 5) if lo <= v * 10.0 ** k <= hi]
     if len(ticks) > 9:
         ticks = [t for t in ticks if f"{t:g}"[0] in "15"]
     axis.set_major_locator(matplotlib.ticker.FixedLocator(ticks))
-    axis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: label(v) if label else f"{v:g}"))
     axis.set_minor_formatter(matplotlib.ticker.NullFormatter())

@@ -68,7 +68,7 @@ def parse_rule(name):
         report.die("repstudy.py", f"rule '{name}': expected everyK, countN or shared")
     if m.group(1):
         k = int(m.group(1))
-        label = "every photon" if k == 1 else f"every {k}th" if k > 3 else ["", "", "every 2nd", "every 3rd"][k]
+        label = "every photon" if k == 1 else f"every {plotting.ordinal(k)}"
         return {"name": name, "kind": "every", "value": k, "label": label}
     if m.group(2):
         n = int(m.group(2))
@@ -484,7 +484,8 @@ def figure(res, args, caption):
         ax.set_yscale("log")
         ax.set_ylim(bottom, st.max() * 6)
         ax.set_xlim(grid[0], grid[-1])
-        plotting.log_ticks(ax.xaxis, *ax.get_xlim())
+        plotting.log_ticks(ax.xaxis, *ax.get_xlim(), label=plotting.count_label)
+        plotting.log_ticks(ax.yaxis, *ax.get_ylim(), label=plotting.count_label)
         ax.set_xlabel("stored photons")
         ax.set_ylabel("representatives R")
         ax.legend(loc="lower right", fontsize=7.5)
@@ -537,11 +538,11 @@ def figure(res, args, caption):
     ax.set_yscale("log")
     lo, hi = ax.get_xlim()
     ax.set_xlim(lo / 4, hi * 4)
-    plotting.log_ticks(ax.xaxis, *ax.get_xlim())
+    plotting.log_ticks(ax.xaxis, *ax.get_xlim(), label=plotting.count_label)
     ax.set_xlabel("representatives R (median over seeds)")
     ax.set_ylabel("relMSE of precomputed vs conventional image (same seed)")
-    ax.set_title(f"(d) accuracy against the number of representatives (n = {shown[0]} solid, {shown[-1]} dashed;\n"
-                 "colours and markers as in (c); the shared tree, with the default's R, left out)")
+    ax.set_title(f"(d) accuracy against the number of representatives\n(n = {shown[0]} solid, {shown[-1]} "
+                 "dashed; colours, markers as in (c); shared tree left out)")
     plotting.footer(fig, caption)
     plotting.save(fig, args.figure)
 
