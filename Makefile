@@ -33,7 +33,7 @@ TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 IMGMETRICS := $(BUILD)/imgmetrics
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
-.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures resolution estimator-bias scenes stability bench reference reference-small fuzz
+.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small fuzz
 all: $(BUILD)/photonmap $(IMGMETRICS) ## build build/photonmap and build/imgmetrics
 deps: $(DEPS_STAMP) ## install the missing Debian packages (scripts/install-deps.sh, once)
 test: all unit-tests $(BUILD)/san/photonmap ## every test; ends with "N passed, N failed" (README)
@@ -41,7 +41,9 @@ test: all unit-tests $(BUILD)/san/photonmap ## every test; ends with "N passed, 
 reproduce-table: ## Table 1 over SEEDS seeds, both estimates -> results/{runs,cells,table1,equal-error}.* (experiments/table.mk)
 reproduce-runs: ## only the renders of reproduce-table, one make target each (make -j; resumes)
 list-runs: ## print the target of every render of reproduce-table, one per line (for a job array)
-figures: ## Figure 3, error maps, trade-off and time plots -> results/figures/ (after reproduce-table)
+figures: ## Figures 2 and 3 at 1:1, error maps, trade-off, time ratio and phases -> results/figures/ (after reproduce-table)
+rep-study: ## representative rules (REP_RULES) against the paper's cost pattern -> results/rep-study.md, figures/rep-study.png
+caustic: ## the Fig. 3 cells on the caustic scene, caustic-window error over seeds -> results/caustic.md, figures/caustic.png
 resolution: ## cheapest settings per output size -> results/resolution.md
 estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias.md
 scenes: ## the grid on every scene: equal-error speed-up, kNN share, where the error lies -> results/scenes.md
@@ -112,6 +114,8 @@ include experiments/config.mk
 include experiments/table.mk
 include experiments/resolution.mk
 include experiments/figures.mk
+include experiments/repstudy.mk
+include experiments/caustic.mk
 include experiments/estimator-bias.mk
 include experiments/scenes.mk
 include experiments/bench.mk

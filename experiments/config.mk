@@ -86,8 +86,61 @@ SCENES_SIZE ?= 512x384
 SCENES_SEEDS ?= 3
 SCENES_CELL ?= p100000-n50
 
-# make figures
-FIG_SIZE ?= 1024x768
+# make figures (experiments/figures.mk): drawn from the grid's TABLE.csv,
+# RUNS_CSV and CELLS_CSV (their size, seeds, reference) and the renders
+# RUNS_CSV names. FIG3_CELLS: the cells of Figure 3 as P_e:n, the first
+# FIG3_PAPER_CELLS of them the paper's, the rest controls; FIG_SEED: the
+# seed whose images are shown; FIG3_CROP: the 1:1 crop WxH+X+Y, given for
+# FIG3_CROP_AT and scaled to the grid's size; FIG_ERROR_BLOCK: the error
+# maps' block size in pixels; FIG_REF: the reference (empty: the one in
+# CELLS_CSV); FIG_TIME: the time shown (cpu_s or total_s).
+FIGURES ?= $(RESULTS)/figures
+FIG3_CELLS ?= 50000:10 100000:100 500000:100 50000:100 500000:10
+FIG3_PAPER_CELLS ?= 3
+FIG_SEED ?= $(firstword $(SEED_LIST))
+FIG3_CROP ?= 384x288+150+440
+FIG3_CROP_AT ?= 1024x768
+FIG_ERROR_BLOCK ?= 2
+FIG_REF ?=
+FIG_TIME ?= $(EE_TIME)
+# Figure 2: one precomputed render of SCENE at WIDTHxHEIGHT with
+# --dump-reps (P_e FIG2_PHOTONS, n FIG2_NN, seed FIG_SEED); the plane drawn
+# (FIG2_PLANE: the normal axis, at that coordinate's minimum: z = the back
+# wall, y = the floor) and the window on it (u0 u1 v0 v1, u and v the other
+# two axes in x, y, z order)
+FIG2_PHOTONS ?= 50000
+FIG2_NN ?= 10
+FIG2_PLANE ?= z
+FIG2_WINDOW ?= -0.4 0.2 1.0 1.45
+FIG2_DIR = $(RESULTS)/runs/fig2-$(SCENE_NAME)-$(WIDTH)x$(HEIGHT)-s$(SUBPIXELS)-p$(FIG2_PHOTONS)-n$(FIG2_NN)-seed$(FIG_SEED)
+
+# make rep-study (experiments/repstudy.mk): the representative rules run
+# besides the renderer's default (everyK: --rep-every K; countN: --rep-count
+# N; shared: --rep-tree shared), precomputed only, paper estimate, REP_SEEDS
+# seeds each, compared with the untagged grid's conventional renders;
+# outputs REP_STUDY.md, .csv, -cells.csv and FIGURES/rep-study.png.
+# count1100000: the fixed count that fits the paper's slopes (rep-study.md)
+REP_RULES ?= every1 every2 every8 every16 shared count1100000
+REP_SEEDS ?= $(SEEDS)
+REP_STUDY ?= $(RESULTS)/rep-study
+
+# make caustic (experiments/caustic.mk): the Figure 3 cells' photon counts
+# and n on the caustic scene (the glass sphere lifted so its caustic is in
+# view; scenes/caustic.scene if there is one, else reference/caustic.scene)
+# at CAUSTIC_SIZE, both methods and ESTIMATES, CAUSTIC_SEEDS seeds; the
+# caustic window CAUSTIC_WINDOW given at CAUSTIC_WINDOW_AT
+# (tests/povray.test.sh); reference CAUSTIC_REF (default: the POV-Ray render
+# of that scene and size in reference/); outputs CAUSTIC.md, .csv,
+# CAUSTIC-{runs,cells,table1}.* and FIGURES/caustic.png
+CAUSTIC_SCENE ?= $(firstword $(wildcard scenes/caustic.scene reference/caustic.scene))
+CAUSTIC_SIZE ?= 128x96
+CAUSTIC_PHOTONS ?= 50000 100000 500000
+CAUSTIC_NNS ?= 10 100
+CAUSTIC_SEEDS ?= 5
+CAUSTIC_WINDOW ?= 24x20+52+76
+CAUSTIC_WINDOW_AT ?= 128x96
+CAUSTIC_REF ?=
+CAUSTIC ?= $(RESULTS)/caustic
 
 # make estimator-bias: the analytic scene, every n, method and estimate
 BIAS_SCENE ?= scenes/furnace.scene

@@ -16,6 +16,7 @@ config_render config_defaults(void)
     c.threads = 0;
     c.seed = CONFIG_DEFAULT_SEED;
     c.rep_every = CONFIG_DEFAULT_REP_EVERY;
+    c.rep_count = CONFIG_DEFAULT_REP_COUNT;
     c.normal_cos = CONFIG_DEFAULT_NORMAL_COS;
     c.max_radius = 0.0;
     c.max_radius_frac = CONFIG_DEFAULT_MAX_RADIUS_FRAC;
@@ -24,6 +25,7 @@ config_render config_defaults(void)
     c.reps_shared = 0;
     c.allow_nonfinite = 0;
     c.bias_correction = 0;
+    c.dump_reps = NULL;
     return c;
 }
 
@@ -31,6 +33,10 @@ const char *config_check(const config_render *c)
 {
     if (c->nn < CONFIG_MIN_NN)
         return "--nn 1: the estimate has no finite mean (1/r^2 of the nearest photon diverges); use --nn 2 or more";
+    if (c->dump_reps && c->method != CONFIG_METHOD_PRECOMPUTED)
+        return "--dump-reps writes the representatives of the precomputed method: use it with --method precomputed";
+    if (c->rep_count > 0 && c->rep_every != CONFIG_DEFAULT_REP_EVERY)
+        return "--rep-count and --rep-every are two rules for choosing the representatives: give one";
     if (c->method != CONFIG_METHOD_PRECOMPUTED)
         return NULL;
     if (!c->bias_correction && c->nn < 3)

@@ -19,6 +19,8 @@ typedef struct {
     uint32_t threads;         /* 0 = all online cores */
     uint64_t seed;            /* names every random stream */
     uint32_t rep_every;       /* precomputed: every K-th stored photon is a representative */
+    uint64_t rep_count;       /* precomputed: this many representatives, spread evenly over the stored
+                                 photons (all when fewer are stored); 0: the rep_every rule */
     double normal_cos;        /* precomputed: representative's normal must agree above this cosine */
     double max_radius;        /* search radius cap in scene units; <= 0: derived from the photon map */
     double max_radius_frac;   /* the derived cap: this fraction of the photons' bounding-box diagonal */
@@ -29,6 +31,8 @@ typedef struct {
     int allow_nonfinite;      /* 1: a pixel out of the float range is reported but does not fail the run */
     int bias_correction;      /* 1: the unbiased estimate (README): photons strictly inside r; for the
                                  precomputed method, from the photons that are not representatives */
+    const char *dump_reps;    /* precomputed: write the representatives (position, normal, precomputed
+                                 irradiance) to this CSV file; NULL: none */
 } config_render;
 
 #define CONFIG_DEFAULT_PHOTONS 100000u
@@ -38,6 +42,8 @@ typedef struct {
 #define CONFIG_DEFAULT_SUBPIXELS 2u
 #define CONFIG_DEFAULT_SEED 1u
 #define CONFIG_DEFAULT_REP_EVERY 4u
+#define CONFIG_DEFAULT_REP_COUNT 0u /* 0: the rep_every rule */
+#define CONFIG_MAX_REP_COUNT 4294967295ull /* the map holds at most 2^32-1 photons */
 #define CONFIG_DEFAULT_NORMAL_COS 0.9
 #define CONFIG_DEFAULT_MAX_RADIUS_FRAC 0.05
 /* The same as text, for the usage line (keep the two equal). */

@@ -223,6 +223,29 @@ vec3 est_lookup(const est_reps *r, const photons_map *m, vec3 x, vec3 n, double 
     return vec_mul(vec_make(rep->irradiance[0], rep->irradiance[1], rep->irradiance[2]), world_factor(m));
 }
 
+int est_reps_write_csv(const est_reps *r, const photons_map *m, FILE *f)
+{
+    vec3 wf = world_factor(m);
+    fputs("x,y,z,nx,ny,nz,e_r,e_g,e_b\n", f);
+    for (uint32_t i = 0; i < r->count; i++) {
+        /* where representative i sits in the map frame: its own tree's leaf
+         * i (separate layout) or the map's representative i (shared) */
+        float q[3];
+        if (r->layout == EST_REPS_SEPARATE) {
+            q[0] = r->tree.x[i];
+            q[1] = r->tree.y[i];
+            q[2] = r->tree.z[i];
+        } else {
+            memcpy(q, m->rep[i].pos, sizeof q);
+        }
+        const est_rep *e = &r->rep[i];
+        fprintf(f, "%.9g,%.9g,%.9g,%.6f,%.6f,%.6f,%.9g,%.9g,%.9g\n", m->centre.x + m->scale * q[0],
+                m->centre.y + m->scale * q[1], m->centre.z + m->scale * q[2], e->normal[0], e->normal[1],
+                e->normal[2], e->irradiance[0] * wf.x, e->irradiance[1] * wf.y, e->irradiance[2] * wf.z);
+    }
+    return ferror(f) ? -1 : 0;
+}
+
 size_t est_reps_bytes(const est_reps *r, const photons_map *m)
 {
     size_t b = (size_t)r->count * sizeof(est_rep);

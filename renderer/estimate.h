@@ -16,6 +16,7 @@
 #define PM_ESTIMATE_H
 
 #include <stdint.h>
+#include <stdio.h>
 
 #include "kdtree.h"
 #include "photons.h"
@@ -93,6 +94,12 @@ int est_precompute(const photons_map *m, const est_gather *g, est_rep_layout lay
  * sets *found = 0 when none qualifies. */
 vec3 est_lookup(const est_reps *r, const photons_map *m, vec3 x, vec3 n, double cos_min, const est_gather *g,
                 est_scratch *s, int *found);
+/* Writes the representatives as CSV to f: the header
+ * "x,y,z,nx,ny,nz,e_r,e_g,e_b", then one line per representative: its
+ * position in scene units, its unit normal and its precomputed irradiance
+ * in W per scene unit^2 (what est_lookup returns for it). Returns 0, or -1
+ * on a write error. */
+int est_reps_write_csv(const est_reps *r, const photons_map *m, FILE *f);
 /* Bytes the representatives hold. */
 size_t est_reps_bytes(const est_reps *r, const photons_map *m);
 /* Frees the representatives; a zeroed struct is fine. */

@@ -66,6 +66,9 @@ static const cli_option render_options[] = {
     {"--seed", CLI_U64, "S", RC(seed), 0, UINT64_MAX, 0, 0, NULL, 0, "names every random stream", NULL},
     {"--rep-every", CLI_U32, "K", RC(rep_every), 1, UINT32_MAX, 0, 0, NULL, 0,
      "precomputed: every K-th stored photon is a representative", NULL},
+    {"--rep-count", CLI_U64, "N", RC(rep_count), 0, CONFIG_MAX_REP_COUNT, 0, 0, NULL, 0,
+     "precomputed: a fixed count of representatives instead of --rep-every: N stored photons spread evenly "
+     "over the trace order (every stored photon when fewer are stored); 0: the --rep-every rule", NULL},
     {"--normal-cos", CLI_REAL, "C", RC(normal_cos), 0, 0, -1.0, 1.0, NULL, 0,
      "precomputed: a representative's normal must agree above this cosine", NULL},
     {"--rep-tree", CLI_CHOICE, NULL, RC(reps_shared), 0, 0, 0, 0, rep_tree_names, 0,
@@ -82,6 +85,9 @@ static const cli_option render_options[] = {
     {"--png", CLI_STRING, "FILE.png", RO(png), 0, 0, 0, 0, NULL, 0, "sRGB 8-bit preview", NULL},
     {"--exposure", CLI_REAL, "E", RO(exposure), 0, 0, 0.0, 1e30, NULL, 0, "scale of the PNG preview", NULL},
     {"--stats", CLI_STRING, "FILE.json", RO(stats), 0, 0, 0, 0, NULL, 0, "run statistics as JSON", NULL},
+    {"--dump-reps", CLI_STRING, "FILE.csv", RC(dump_reps), 0, 0, 0, 0, NULL, 0,
+     "precomputed: the representatives as CSV (x,y,z, normal nx,ny,nz, precomputed irradiance e_r,e_g,e_b "
+     "in W per scene unit^2), written after the render, outside its times", NULL},
     {"--allow-nonfinite", CLI_FLAG, NULL, RC(allow_nonfinite), 0, 0, 0, 0, NULL, 1,
      "keep an image whose radiance leaves the float range (Inf, or below the smallest normal float; "
      "otherwise exit 2, no image)", NULL},
@@ -113,7 +119,7 @@ static uint64_t physical_memory(void)
  * pilot of the photon pass. Returns 0 or an exit code. */
 static int check_memory(const scene *sc, const config_render *cfg)
 {
-    photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS, 0};
+    photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS, 0, 0};
     double per_emitted = photons_stored_per_emitted(sc, &pp);
     if (per_emitted < 0.0) {
         fprintf(stderr, "photonmap: out of memory in the pilot photon pass\n");
@@ -233,8 +239,9 @@ static int cmd_render(int argc, char **argv)
     scene *sc = NULL;
     if ((rc = load_scene(a.scene, &sc)))
         return rc;
-    const char *paths[3] = {a.exr, a.png, a.stats}, *names[3] = {"-o", "--png", "--stats"};
-    if ((rc = check_memory(sc, cfg)) || (rc = claim_outputs(&render_command, paths, names, 3))) {
+    const char *paths[4] = {a.exr, a.png, a.stats, cfg->dump_reps};
+    const char *names[4] = {"-o", "--png", "--stats", "--dump-reps"};
+    if ((rc = check_memory(sc, cfg)) || (rc = claim_outputs(&render_command, paths, names, 4))) {
         scene_free(sc);
         return rc;
     }

@@ -181,7 +181,15 @@ int photons_trace(const scene *sc, const photons_params *p, unsigned threads, pr
     }
     out->count = total;
     out->unit = p->photons ? vec_scale(sc->light.power, 1.0 / (double)p->photons) : vec_make(0, 0, 0);
-    if (p->rep_every > 0) {
+    if (p->rep_count > 0) {
+        /* a fixed count, spread evenly over the trace order: photon
+         * floor(j * total / count) = j * q + floor(j * r / count), which
+         * cannot overflow (j * r < count^2 and count < 2^32) */
+        uint64_t count = p->rep_count < total ? p->rep_count : total;
+        uint64_t q = total / count, r = total % count;
+        for (uint64_t j = 0; j < count; j++)
+            out->ph[j * q + j * r / count].flags |= PHOTONS_FLAG_REP;
+    } else if (p->rep_every > 0) {
         for (uint64_t i = 0; i < total; i += p->rep_every)
             out->ph[i].flags |= PHOTONS_FLAG_REP;
     }

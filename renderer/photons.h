@@ -43,6 +43,8 @@ typedef struct {
     uint32_t max_depth;    /* bounces before a path is cut */
     int store_first_hits;  /* 0: direct light comes from shadow rays, store bounced light only */
     uint32_t rep_every;    /* the representative rule: every K-th stored photon (trace order); 0: none */
+    uint64_t rep_count;    /* the fixed-count rule instead, when > 0: stored photon floor(j * stored /
+                              rep_count) for j = 0 .. rep_count-1 (every stored photon when fewer) */
 } photons_params;
 
 /* The photon pass's output: positions in world coordinates (double), in

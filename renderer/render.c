@@ -11,6 +11,7 @@
 
 #include "estimate.h"
 #include "material.h"
+#include "outfile.h"
 #include "parallel.h"
 #include "photons.h"
 #include "progress.h"
@@ -198,8 +199,9 @@ static double seconds_since(int64_t t0)
 static int step_trace(render_state *rs)
 {
     const config_render *cfg = rs->cfg;
+    int pre = cfg->method == CONFIG_METHOD_PRECOMPUTED;
     photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS,
-                         cfg->method == CONFIG_METHOD_PRECOMPUTED ? cfg->rep_every : 0};
+                         pre ? cfg->rep_every : 0, pre ? cfg->rep_count : 0};
     progress prog;
     progress_begin(&prog, "photons", cfg->photons, rs->show_progress);
     int64_t t0 = stats_now_ns();
@@ -212,6 +214,23 @@ static int step_trace(render_state *rs)
     rs->st->photon_paths_truncated = rs->list.truncated;
     rs->st->photons_escaped = rs->list.escaped;
     return 0;
+}
+
+/* Refuses a fixed count of representatives that takes every stored photon
+ * when the corrected precomputed estimate needs the others (config_check
+ * refuses --rep-every 1 up front; the count is known only now). Returns
+ * RENDER_OK, or RENDER_ERR_INPUT with the reason in err. */
+static int check_rep_count(const render_state *rs, char *err, size_t errlen)
+{
+    const config_render *cfg = rs->cfg;
+    if (!(cfg->method == CONFIG_METHOD_PRECOMPUTED && cfg->bias_correction && cfg->rep_count > 0 &&
+          rs->list.count > 0 && cfg->rep_count >= rs->list.count))
+        return RENDER_OK;
+    snprintf(err, errlen,
+             "--rep-count %llu flags every one of the %llu stored photons, and --bias-correction estimates at "
+             "representatives from the photons that are not: use a count below the stored photons",
+             (unsigned long long)cfg->rep_count, (unsigned long long)rs->list.count);
+    return RENDER_ERR_INPUT;
 }
 
 /* Step 2: build the photon map (kd-tree). Returns 0, or -1 out of memory. */
@@ -274,6 +293,21 @@ static int step_precompute(render_state *rs)
     return 0;
 }
 
+/* --dump-reps: the representatives as CSV (est_reps_write_csv), through a
+ * temporary file. Returns 0, or -1 with the reason in err. */
+static int dump_reps(const render_state *rs, char *err, size_t errlen)
+{
+    outfile f;
+    if (outfile_begin(&f, rs->cfg->dump_reps, 1, err, errlen))
+        return -1;
+    if (est_reps_write_csv(&rs->reps, &rs->map, f.f)) {
+        snprintf(err, errlen, "%s: write error", rs->cfg->dump_reps);
+        outfile_abort(&f);
+        return -1;
+    }
+    return outfile_commit(&f, err, errlen);
+}
+
 /* Step 4: the eye pass into *out. Returns 0, or -1 out of memory. */
 static int step_eye(render_state *rs, image *out)
 {
@@ -329,13 +363,22 @@ int render_run(const scene *sc, const config_render *cfg, unsigned threads, int 
     rs.show_progress = show_progress;
     rs.st = st;
     int64_t t_start = stats_now_ns();
-    int rc = step_trace(&rs) || step_build(&rs) ? RENDER_ERR_MEMORY : RENDER_OK;
+    int rc = step_trace(&rs) ? RENDER_ERR_MEMORY : check_rep_count(&rs, err, errlen);
+    if (rc == RENDER_OK && step_build(&rs))
+        rc = RENDER_ERR_MEMORY;
     if (rc == RENDER_OK)
         rc = check_precision(&rs, err, errlen);
     if (rc == RENDER_OK && cfg->method == CONFIG_METHOD_PRECOMPUTED && step_precompute(&rs))
         rc = RENDER_ERR_MEMORY;
     if (rc == RENDER_OK && step_eye(&rs, out))
         rc = RENDER_ERR_MEMORY;
+    if (rc == RENDER_OK && cfg->dump_reps) {
+        /* not part of the render's time */
+        int64_t t_dump = stats_now_ns();
+        if (dump_reps(&rs, err, errlen))
+            rc = RENDER_ERR_IO;
+        t_start += stats_now_ns() - t_dump;
+    }
     est_reps_free(&rs.reps);
     photons_map_free(&rs.map);
     photons_list_free(&rs.list);

@@ -41,14 +41,16 @@ double render_max_radius(const scene *sc, const config_render *cfg, const photon
  * about 16,000 doubles across the span; measured in results/stability.md). */
 #define RENDER_MIN_RELATIVE_EXTENT 0x1p-38
 
-/* Results of render_run: done, out of memory, or a scene the renderer
- * cannot render faithfully (a user input error). */
-enum { RENDER_OK = 0, RENDER_ERR_MEMORY = 1, RENDER_ERR_INPUT = 2 };
+/* Results of render_run: done, out of memory, a scene or setting the
+ * renderer cannot render faithfully (a user input error), or a file it was
+ * asked to write (cfg->dump_reps) could not be written. */
+enum { RENDER_OK = 0, RENDER_ERR_MEMORY = 1, RENDER_ERR_INPUT = 2, RENDER_ERR_IO = 3 };
 
 /* Renders sc with cfg into *out (allocated here; image_free it) and fills
- * *st. `threads` workers (>= 1); progress bars on stderr if show_progress.
- * Returns RENDER_OK, or RENDER_ERR_MEMORY / RENDER_ERR_INPUT with the
- * reason in err (out is then empty). */
+ * *st; with cfg->dump_reps also writes the representatives there (after the
+ * eye pass, outside the times in *st). `threads` workers (>= 1); progress bars on stderr if show_progress.
+ * Returns RENDER_OK, or RENDER_ERR_MEMORY / RENDER_ERR_INPUT /
+ * RENDER_ERR_IO with the reason in err (out is then empty). */
 int render_run(const scene *sc, const config_render *cfg, unsigned threads, int show_progress, image *out,
                stats_run *st, char *err, size_t errlen);
 

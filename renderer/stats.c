@@ -65,6 +65,7 @@ int stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, 
     fprintf(f, "  \"photons_escaped\": %llu,\n", (unsigned long long)st->photons_escaped);
     fprintf(f, "  \"representatives\": %llu,\n", (unsigned long long)st->representatives);
     fprintf(f, "  \"rep_every\": %u,\n", cfg->rep_every);
+    fprintf(f, "  \"rep_count\": %llu,\n", (unsigned long long)cfg->rep_count);
     fprintf(f, "  \"normal_cos\": %.17g,\n", cfg->normal_cos);
     fprintf(f, "  \"nn\": %u,\n", cfg->nn);
     fprintf(f, "  \"max_radius\": %.17g,\n", st->max_radius);

@@ -288,6 +288,102 @@ def equal_error_no_common_range():
     assert math.isnan(res["rows"][0]["precomputed_s"]) and math.isnan(res["rows"][0]["speedup"])
 
 
+# ---- stats: the cost model's fit and the ratio of two slopes
+
+def linear_fit_known():
+    """An exact line gives its coefficients and zero standard errors; the
+    standard errors of a noisy line agree with the closed form (numpy's
+    polyfit covariance with the N-2 scaling)."""
+    fit = stats.linear_fit([10, 20, 50, 100], [3.0 + 0.5 * n for n in (10, 20, 50, 100)])
+    close(fit["a"], 3.0, 1e-12, "a")
+    close(fit["b"], 0.5, 1e-12, "b")
+    close(fit["se_b"], 0.0, 1e-12, "se_b")
+    close(fit["r2"], 1.0, 1e-12, "r2")
+    rng = np.random.default_rng(3)
+    x = np.repeat([10.0, 20.0, 50.0, 100.0], 3)
+    y = 2.0 + 0.1 * x + rng.normal(0, 0.3, x.size)
+    fit = stats.linear_fit(x, y)
+    coef, cov = np.polyfit(x, y, 1, cov="unscaled")
+    s2 = np.sum(np.square(y - np.polyval(coef, x))) / (x.size - 2)
+    close(fit["b"], coef[0], 1e-10, "b")
+    close(fit["a"], coef[1], 1e-10, "a")
+    close(fit["se_b"], math.sqrt(s2 * cov[0, 0]), 1e-10, "se_b")
+    close(fit["se_a"], math.sqrt(s2 * cov[1, 1]), 1e-10, "se_a")
+    close(fit["half_b"], 2.2281388519649385 * fit["se_b"], 1e-9, "t_{0.975,10}")
+    assert fit["dof"] == 10 and fit["points"] == 12
+    two = stats.linear_fit([1, 2], [1, 3])
+    assert two["b"] == 2 and math.isnan(two["se_b"])
+    assert math.isnan(stats.linear_fit([1, 1, 1], [1, 2, 3])["b"])
+
+
+def linear_fit_coverage():
+    """The 95% interval of the slope covers the true slope in about 95% of
+    2000 noisy lines of 4 points (the paper's fits: 2 degrees of freedom)."""
+    rng = np.random.default_rng(11)
+    x = np.array([10.0, 20.0, 50.0, 100.0])
+    hits = 0
+    for _ in range(2000):
+        fit = stats.linear_fit(x, 5.0 + 0.4 * x + rng.normal(0, 4.0, x.size))
+        hits += abs(fit["b"] - 0.4) <= fit["half_b"]
+    close(hits / 2000, 0.95, 0.015, "coverage")
+
+
+def fieller_known():
+    """Fieller's interval: exact without noise in the denominator (num/den
+    +- t se_num/den); covers the true ratio of two noisy independent
+    estimates in about 95% of trials; unbounded (nan) when the denominator
+    is not significant."""
+    r, lo, hi = stats.fieller_ratio(2.0, 0.5, 4.0, 0.0, 10)
+    t = 2.2281388519649385
+    close(r, 0.5, 1e-12, "ratio")
+    close(lo, (2.0 - t * 0.5) / 4.0, 1e-12, "lo")
+    close(hi, (2.0 + t * 0.5) / 4.0, 1e-12, "hi")
+    rng = np.random.default_rng(5)
+    hits = 0
+    for _ in range(4000):
+        num, den = rng.normal(1.0, 0.2), rng.normal(4.0, 0.8)
+        _, lo, hi = stats.fieller_ratio(num, 0.2, den, 0.8, 1000)
+        hits += lo <= 0.25 <= hi
+    close(hits / 4000, 0.95, 0.012, "coverage")
+    r, lo, hi = stats.fieller_ratio(1.0, 0.1, 0.1, 0.1, 10)
+    assert r == 10.0 and math.isnan(lo) and math.isnan(hi)
+    # the delta method's standard error against a simulation of the ratio
+    sims = rng.normal(1.0, 0.02, 200000) / rng.normal(4.0, 0.08, 200000)
+    close(stats.ratio_se(1.0, 0.02, 4.0, 0.08), float(np.std(sims)), 0.02 * float(np.std(sims)), "delta se")
+    close(stats.ratio_se(0.0, 0.5, 2.0, 1.0), 0.25, 1e-12, "num 0")
+
+
+def window_scaling():
+    """The caustic window 24x20+52+76 at 128x96 is 96x80+208+304 at 512x384
+    and the same pixels at 128x96; a window that leaves the image, or a
+    malformed one, is an error."""
+    assert metrics.scale_window("24x20+52+76", "128x96", "512x384") == (96, 80, 208, 304)
+    assert metrics.scale_window("24x20+52+76", "128x96", (128, 96)) == (24, 20, 52, 76)
+    img = np.arange(96 * 128 * 3, dtype=float).reshape(96, 128, 3)
+    win = metrics.window(img, "24x20+52+76", "128x96")
+    assert win.shape == (20, 24, 3) and win[0, 0, 0] == img[76, 52, 0] and win[-1, -1, 2] == img[95, 75, 2]
+    for bad in ("24x20+110+0", "24x20", "0x5+1+1"):
+        try:
+            metrics.scale_window(bad, "128x96", "128x96")
+        except ValueError:
+            continue
+        raise AssertionError(f"{bad} accepted")
+
+
+def peak_ratio_known():
+    """A copy keeps its peak (1); a box-blurred spot keeps less (about the
+    blurred mean over the spot); a uniform scale is the scale."""
+    r = np.full((20, 24, 3), 0.1)
+    r[8:12, 10:14] = 2.0
+    close(metrics.peak_ratio(r, r), 1.0, 1e-12, "copy")
+    close(metrics.peak_ratio(0.5 * r, r), 0.5, 1e-12, "scale")
+    from scipy.ndimage import uniform_filter
+    blurred = uniform_filter(r, size=(5, 5, 1), mode="nearest")
+    pr = metrics.peak_ratio(blurred, r, top=16 / 480)
+    close(pr, float(blurred[8:12, 10:14, 1].mean()) / 2.0, 1e-9, "blur")
+    assert pr < 0.7
+
+
 def main():
     """Run every check; exit 1 when one fails."""
     checks = [(f.__name__.replace("_", " "), f) for f in (
@@ -295,7 +391,8 @@ def main():
         intervals_overlap_known, pareto_front_known, interpolation_power_law, interpolation_outside_is_undefined,
         relmse_known, bias_variance_recovers_truth, bias_variance_identity_and_definition,
         bias_variance_counts_are_repeats, relmse_matches_imgmetrics, read_exr_missing_file,
-        equal_error_recovers_speedup, equal_error_no_common_range)]
+        equal_error_recovers_speedup, equal_error_no_common_range, linear_fit_known, linear_fit_coverage,
+        fieller_known, window_scaling, peak_ratio_known)]
     passed, failed = run_checks(checks)
     print(f"{passed} passed, {failed} failed")
     sys.exit(1 if failed else 0)

@@ -38,6 +38,41 @@ check "precomputed method runs and reports representatives" precomputed_ok
 
 check "no arguments: usage, exit 2" expect_exit 2 "usage" $PM
 
+# --dump-reps: one CSV line per representative (as many as the stats count),
+# in both layouts; the image and its times do not depend on it
+dump_reps() { # extra options...
+  $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed --threads 1 "$@" --dump-reps "$TMP/reps.csv" \
+      --stats "$TMP/d.json" -o "$TMP/d.exr" &&
+  $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed --threads 1 "$@" -o "$TMP/nd.exr" &&
+  cmp "$TMP/d.exr" "$TMP/nd.exr" && head -n 1 "$TMP/reps.csv" | grep -qx 'x,y,z,nx,ny,nz,e_r,e_g,e_b' &&
+  reps=$(sed -n 's/.*"representatives": \([0-9]*\),/\1/p' "$TMP/d.json") &&
+  [ "$reps" -gt 0 ] && [ "$(($(wc -l < "$TMP/reps.csv") - 1))" -eq "$reps" ] &&
+  awk -F, 'NR > 1 && (NF != 9 || $2 < -0.001 || $2 > 2.001 || $7 < 0) { bad = 1 } END { exit bad }' "$TMP/reps.csv" &&
+  ! ls "$TMP"/*.tmp.* 2>/dev/null
+}
+check "--dump-reps: a CSV line per representative, image unchanged" dump_reps
+check "--dump-reps with --rep-tree shared" dump_reps --rep-tree shared
+check "--dump-reps without --method precomputed: exit 2" \
+  expect_exit 2 "--dump-reps writes the representatives of the precomputed method" \
+  $PM render scenes/cornell.scene "${SMALL[@]}" --dump-reps "$TMP/x.csv"
+check "--dump-reps to an unwritable path: exit 1 before rendering" \
+  expect_exit 1 "/nonexistent-dir/reps.csv: cannot write" \
+  $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed --dump-reps /nonexistent-dir/reps.csv
+check "--dump-reps and -o on one file: exit 2" expect_exit 2 "name the same file" \
+  $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed -o "$TMP/same" --dump-reps "$TMP/same"
+
+# --rep-count: the fixed-count rule, reported in the stats
+rep_count_ok() {
+  $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed --rep-count 1234 --stats "$TMP/c.json" &&
+  grep -q '"representatives": 1234,' "$TMP/c.json" && grep -q '"rep_count": 1234,' "$TMP/c.json"
+}
+check "--rep-count N: N representatives" rep_count_ok
+check "--rep-count with --rep-every: exit 2" expect_exit 2 "--rep-count and --rep-every are two rules" \
+  $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed --rep-count 100 --rep-every 2
+check "--rep-count at or above the stored photons with --bias-correction: exit 2 naming both" \
+  expect_exit 2 "--rep-count 10000000 flags every one of the [0-9]+ stored photons" \
+  $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed --rep-count 10000000 --bias-correction
+
 # --help of each subcommand: exit 0, every option with its default (and its
 # range for numbers), from the one option table that also parses
 help_lists() { # subcommand, options...
@@ -54,8 +89,8 @@ help_lists() { # subcommand, options...
     { echo "a number without its range:"; grep -E '\(default: [0-9.e+-]+\)$' "$TMP/help.txt"; return 1; }
 }
 check "render --help: exit 0, every option with default and range" help_lists render --method --photons --nn --width \
-  --height --subpixels --threads --seed --rep-every --normal-cos --rep-tree --max-radius --direct --photon-depth \
-  --eye-depth -o --png --exposure --stats --allow-nonfinite --quiet
+  --height --subpixels --threads --seed --rep-every --rep-count --normal-cos --rep-tree --max-radius --direct \
+  --photon-depth --eye-depth -o --png --exposure --stats --dump-reps --allow-nonfinite --quiet
 check "export-pov --help: exit 0, every option with default and range" help_lists export-pov --width --height \
   --quality --no-radiosity --no-photons -o
 check "photonmap --help: both subcommands, exit 0" bash -c "$PM --help | grep -q 'usage: photonmap render' && $PM --help | grep -q 'usage: photonmap export-pov'"

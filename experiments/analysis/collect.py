@@ -38,7 +38,7 @@ import report  # noqa: E402
 
 RUN_COLUMNS = [
     "scene", "size", "width", "height", "subpixels", "threads", "tag", "method", "estimate",
-    "photons", "nn", "seed", "rep_every", "status", "exit", "message",
+    "photons", "nn", "seed", "rep_every", "rep_count", "status", "exit", "message",
     "trace_s", "build_s", "precompute_s", "render_s", "total_s", "cpu_s", "user_s", "sys_s",
     "photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "loadavg_1min",
     "relmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "role", "run",
@@ -88,6 +88,7 @@ def read_run(root, method, estimate, photons, nn, seed):
         for key in ("photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "rep_every", "threads"):
             row[key] = st[key]
         row["width"], row["height"] = st["width"], st["height"]
+        row["rep_count"] = st.get("rep_count", 0)  # renderers before --rep-count have none
     except KeyError as e:
         report.die("collect.py", f"{base}.stats.json: no {e}")
     if not os.path.isfile(base + ".exr"):

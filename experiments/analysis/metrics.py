@@ -1,7 +1,8 @@
 """Image error metrics: the one implementation the analysis layer uses.
 
-Owns reading a linear RGB EXR into a float64 array, the per-image metrics
-(relMSE, RMSE, PSNR) and the split of a cell's error over seeds into a bias
+Owns reading a linear RGB EXR into a float64 array, windows of an image
+(a region given as WxH+X+Y at one size, scaled to another), the per-image
+metrics (relMSE, RMSE, PSNR, the peak ratio of the brightest light) and the split of a cell's error over seeds into a bias
 and a variance term in the relMSE weighting. Every number about images in
 runs.csv, cells.csv and the tables comes from here. (build/imgmetrics, the C
 tool of the shell tests, computes the same relMSE, RMSE and PSNR;
@@ -40,6 +41,42 @@ def read_exr(path):
     return np.asarray(pixels, dtype=np.float64).reshape(spec.height, spec.width, spec.nchannels)[:, :, :3]
 
 
+def parse_window(spec):
+    """'WxH+X+Y' (oiiotool's --cut form) -> (w, h, x, y) integers; raises
+    ValueError naming SPEC when it is not of that form."""
+    import re
+
+    m = re.fullmatch(r"\s*(\d+)x(\d+)\+(\d+)\+(\d+)\s*", str(spec))
+    if not m:
+        raise ValueError(f"window '{spec}': expected WxH+X+Y")
+    w, h, x, y = (int(v) for v in m.groups())
+    if w == 0 or h == 0:
+        raise ValueError(f"window '{spec}': empty")
+    return w, h, x, y
+
+
+def scale_window(spec, at, size):
+    """The window SPEC ('WxH+X+Y'), given for an image of size AT ('WxH'),
+    scaled to an image of SIZE ('WxH' or (width, height)): (w, h, x, y) in
+    SIZE's pixels, rounded to whole pixels (the same region of the frame).
+    Raises ValueError when the window leaves the image."""
+    w, h, x, y = parse_window(spec)
+    aw, ah = (int(v) for v in str(at).lower().split("x"))
+    sw, sh = (int(v) for v in (size.lower().split("x") if isinstance(size, str) else size))
+    fx, fy = sw / aw, sh / ah
+    out = (max(1, round(w * fx)), max(1, round(h * fy)), round(x * fx), round(y * fy))
+    if out[2] + out[0] > sw or out[3] + out[1] > sh or x + w > aw or y + h > ah:
+        raise ValueError(f"window '{spec}' at {at} leaves the {sw}x{sh} image")
+    return out
+
+
+def window(img, spec, at):
+    """The pixels of IMG (H, W, C) inside window SPEC given at size AT (see
+    scale_window)."""
+    w, h, x, y = scale_window(spec, at, (img.shape[1], img.shape[0]))
+    return img[y:y + h, x:x + w]
+
+
 def _check_same_shape(x, r):
     """Raise ValueError unless the two images have the same shape."""
     if x.shape != r.shape:
@@ -72,6 +109,20 @@ def psnr(x, r, peak=1.0):
     """PSNR in dB of X against R with the given peak; inf when X equals R."""
     m = mse(x, r)
     return math.inf if m == 0 else 10.0 * math.log10(peak * peak / m)
+
+
+def peak_ratio(x, r, top=0.1):
+    """How much of the reference's brightest light X keeps: mean luminance
+    of X over the pixels where R's luminance is in its top TOP fraction,
+    divided by R's mean there (1: kept; below 1: spread out or lost, as a
+    blurred caustic). Luminance: Rec. 709 weights. nan when R is black."""
+    _check_same_shape(x, r)
+    w = np.array([0.2126, 0.7152, 0.0722])
+    lx, lr = (x.reshape(-1, x.shape[-1])[:, :3] @ w), (r.reshape(-1, r.shape[-1])[:, :3] @ w)
+    k = max(1, int(round(top * lr.size)))
+    idx = np.argsort(lr)[-k:]
+    den = float(lr[idx].mean())
+    return float(lx[idx].mean()) / den if den > 0 else math.nan
 
 
 def weighted_gram(images, r):

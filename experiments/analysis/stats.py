@@ -2,8 +2,10 @@
 
 Owns the summaries of per-seed values (t-interval of a mean, median with
 min-max), bootstrap resampling over seeds (percentile intervals, the ratio of
-two medians), the Pareto front of (time, error) cells and the log-log
-interpolation of the time a front needs to reach an error. Nothing here
+two medians), the Pareto front of (time, error) cells, the log-log
+interpolation of the time a front needs to reach an error, the
+least-squares line with its standard errors (the cost model time = a + b n)
+and Fieller's interval of the ratio of two independent estimates. Nothing here
 reads files; random numbers come from a numpy Generator the caller passes.
 """
 
@@ -146,3 +148,76 @@ def front_time_at_error(times, errors, target):
     t = np.asarray(times, dtype=np.float64)[f]
     e = np.asarray(errors, dtype=np.float64)[f]
     return time_at_error(t, e, target)
+
+
+def linear_fit(x, y, level=LEVEL):
+    """Least-squares line y = a + b x over the points (X, Y) (NaN pairs
+    dropped), with the uncertainty of ordinary least squares.
+
+    Returns a dict: a, b; se_a, se_b (standard errors from the residual
+    variance s^2 = SSR / (N - 2)); dof = N - 2; half_a, half_b (half-widths
+    of the Student-t intervals at LEVEL); r2 (coefficient of
+    determination). With fewer than three points (or one distinct x) the
+    uncertainties are nan; with fewer than two, everything is."""
+    x = np.asarray(x, dtype=np.float64)
+    y = np.asarray(y, dtype=np.float64)
+    ok = ~(np.isnan(x) | np.isnan(y))
+    x, y = x[ok], y[ok]
+    nan = math.nan
+    out = {"a": nan, "b": nan, "se_a": nan, "se_b": nan, "dof": max(int(x.size) - 2, 0),
+           "half_a": nan, "half_b": nan, "r2": nan, "points": int(x.size)}
+    sxx = float(np.sum(np.square(x - x.mean()))) if x.size else 0.0
+    if x.size < 2 or not sxx > 0:
+        return out
+    b = float(np.sum((x - x.mean()) * (y - y.mean())) / sxx)
+    a = float(y.mean() - b * x.mean())
+    out["a"], out["b"] = a, b
+    ssr = float(np.sum(np.square(y - (a + b * x))))
+    sst = float(np.sum(np.square(y - y.mean())))
+    out["r2"] = 1.0 - ssr / sst if sst > 0 else nan
+    if x.size < 3:
+        return out
+    s2 = ssr / (x.size - 2)
+    out["se_b"] = math.sqrt(s2 / sxx)
+    out["se_a"] = math.sqrt(s2 * (1.0 / x.size + x.mean() ** 2 / sxx))
+    t = float(sps.t.ppf(0.5 + level / 2, x.size - 2))
+    out["half_a"], out["half_b"] = t * out["se_a"], t * out["se_b"]
+    return out
+
+
+def ratio_se(num, se_num, den, se_den):
+    """Standard error of NUM / DEN for two independent estimates by the
+    delta method: |num/den| sqrt((se_num/num)^2 + (se_den/den)^2), written
+    as sqrt(se_num^2 + (num/den)^2 se_den^2) / |den| so that num = 0 is
+    fine; nan when DEN is 0 or an input is not a number."""
+    vals = (num, se_num, den, se_den)
+    if any(not math.isfinite(v) for v in vals) or den == 0:
+        return math.nan
+    q = num / den
+    return math.sqrt(se_num * se_num + q * q * se_den * se_den) / abs(den)
+
+
+def fieller_ratio(num, se_num, den, se_den, dof, level=LEVEL):
+    """(ratio, lo, hi): NUM / DEN with Fieller's interval at LEVEL for two
+    independent, normally distributed estimates with standard errors SE_NUM
+    and SE_DEN and DOF degrees of freedom (Student-t quantile).
+
+    The interval is the set of ratios q with (num - q den)^2 <= t^2 (se_num^2
+    + q^2 se_den^2). When DEN is not significantly different from zero
+    (t se_den >= |den|) the set is unbounded: lo and hi are nan. Also nan
+    when an input is not a number or DOF < 1."""
+    vals = (num, se_num, den, se_den)
+    if any(not math.isfinite(v) for v in vals) or den == 0:
+        return math.nan, math.nan, math.nan
+    ratio = num / den
+    if not dof >= 1:
+        return ratio, math.nan, math.nan
+    t = float(sps.t.ppf(0.5 + level / 2, dof))
+    qa = den * den - t * t * se_den * se_den
+    if not qa > 0:
+        return ratio, math.nan, math.nan
+    qb = -2.0 * num * den
+    qc = num * num - t * t * se_num * se_num
+    disc = qb * qb - 4.0 * qa * qc
+    root = math.sqrt(max(disc, 0.0))
+    return ratio, (-qb - root) / (2.0 * qa), (-qb + root) / (2.0 * qa)

@@ -243,7 +243,7 @@ int main(int argc, char **argv)
         printf("|---:|---:|---:|---|---:|---:|---:|---:|\n");
     }
     for (int si = 0; si < nsizes; si++) {
-        photons_params pp = {sizes[si], cfg.seed, cfg.photon_depth, 1, cfg.rep_every};
+        photons_params pp = {sizes[si], cfg.seed, cfg.photon_depth, 1, cfg.rep_every, 0};
         photons_list list;
         photons_map map;
         if (photons_trace(sc, &pp, 1, NULL, &list)) {

@@ -220,3 +220,93 @@ void test_precomputed_extremes(void)
     image_free(&im);
     scene_free(sc);
 }
+
+/* --rep-count: exactly min(N, stored) representatives, spread evenly over
+ * the trace order (gaps of floor or ceil of stored / N), all when N is at
+ * or above the stored count. */
+void test_precomputed_rep_count(void)
+{
+    char err[512];
+    scene *sc = NULL;
+    CHECK_MSG(scene_load("scenes/cornell.scene", &sc, err, sizeof err) == SCENE_OK, "%s", err);
+    if (!sc)
+        return;
+    const uint64_t counts[4] = {1, 777, 5000, 1000000};
+    for (int c = 0; c < 4; c++) {
+        photons_params pp = {20000, 3, 64, 1, 4, counts[c]};
+        photons_list l;
+        CHECK(photons_trace(sc, &pp, 2, NULL, &l) == 0);
+        uint64_t want = counts[c] < l.count ? counts[c] : l.count, got = 0, last = 0, gap_lo = UINT64_MAX, gap_hi = 0;
+        for (uint64_t i = 0; i < l.count; i++) {
+            if (!(l.ph[i].flags & PHOTONS_FLAG_REP))
+                continue;
+            if (got > 0) {
+                gap_lo = i - last < gap_lo ? i - last : gap_lo;
+                gap_hi = i - last > gap_hi ? i - last : gap_hi;
+            }
+            last = i;
+            got++;
+        }
+        CHECK_MSG(got == want, "rep_count %llu: %llu representatives of %llu stored", (unsigned long long)counts[c],
+                  (unsigned long long)got, (unsigned long long)l.count);
+        CHECK(l.count > 5000 && (l.ph[0].flags & PHOTONS_FLAG_REP));
+        if (got > 1)
+            CHECK_MSG(gap_lo >= l.count / want && gap_hi <= (l.count + want - 1) / want,
+                      "gaps %llu..%llu for %llu of %llu", (unsigned long long)gap_lo, (unsigned long long)gap_hi,
+                      (unsigned long long)want, (unsigned long long)l.count);
+        photons_list_free(&l);
+    }
+    scene_free(sc);
+}
+
+/* est_reps_write_csv (--dump-reps): one line per representative with its
+ * position, normal and precomputed irradiance, in scene units; a lookup at
+ * a dumped position returns the dumped irradiance (the representative is
+ * its own nearest), in both layouts, on a plane far from the origin. */
+void test_precomputed_dump_reps(void)
+{
+    photons_list l = {0};
+    add_square(&l, 20000, vec_make(99, 5, -1), vec_make(2, 0, 0), vec_make(0, 0, 2), vec_make(0, 1, 0), 1e-5f, 5);
+    flag_every(&l, 8);
+    photons_map m;
+    CHECK(photons_build_map(&l, 0, &m) == 0);
+    est_gather g = est_gather_make(&m, 50, 0.3, 0);
+    for (int layout = 0; layout < 2; layout++) {
+        est_reps reps;
+        CHECK(est_precompute(&m, &g, layout ? EST_REPS_SHARED : EST_REPS_SEPARATE, 2, NULL, &reps) == 0);
+        FILE *f = tmpfile();
+        CHECK(f != NULL);
+        if (!f)
+            break;
+        CHECK(est_reps_write_csv(&reps, &m, f) == 0);
+        rewind(f);
+        char line[512];
+        CHECK(fgets(line, sizeof line, f) && !strcmp(line, "x,y,z,nx,ny,nz,e_r,e_g,e_b\n"));
+        uint32_t rows = 0, bad = 0, lookups_equal = 0;
+        double sum_e = 0;
+        double v[9];
+        while (fscanf(f, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6],
+                      &v[7], &v[8]) == 9) {
+            rows++;
+            /* on the plane y = 5 inside the square, normal +y, E about 20000 * 1e-5 / 4 = 0.05 */
+            bad += !(v[0] >= 99 && v[0] <= 101 && fabs(v[1] - 5) < 1e-5 && v[2] >= -1 && v[2] <= 1 &&
+                     fabs(v[4] - 1) < 0.01 && v[6] > 0 && v[6] == v[7] && v[7] == v[8]);
+            sum_e += v[7];
+            if (rows % 97 == 0) {
+                int found;
+                est_scratch *ls = est_scratch_new(1, 1);
+                vec3 e = est_lookup(&reps, &m, vec_make(v[0], v[1], v[2]), vec_make(0, 1, 0), 0.9, &g, ls, &found);
+                est_scratch_delete(ls, 1);
+                lookups_equal += found && fabs(e.y - v[7]) <= 1e-6 * v[7];
+            }
+        }
+        CHECK_MSG(rows == reps.count && rows == 2500, "%u rows, %u representatives", rows, reps.count);
+        CHECK_MSG(bad == 0, "%u rows off the plane or with a wrong normal or irradiance", bad);
+        CHECK_NEAR(sum_e / rows, 0.05, 0.05 * 0.05); /* edges lose up to half of the disc */
+        CHECK_MSG(lookups_equal == rows / 97, "%u of %u lookups at a dumped position gave its irradiance",
+                  lookups_equal, rows / 97);
+        fclose(f);
+        est_reps_free(&reps);
+    }
+    photons_map_free(&m);
+}

@@ -28,6 +28,8 @@
     X(precomputed_converges_on_cornell) \
     X(precomputed_normal_test_at_corner) \
     X(precomputed_extremes)            \
+    X(precomputed_rep_count)           \
+    X(precomputed_dump_reps)           \
     X(stability_nn_one_and_at_stored_count) \
     X(stability_coincident_photons)    \
     X(stability_few_or_no_photons_in_range) \

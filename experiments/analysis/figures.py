@@ -1,0 +1,701 @@
+#!/usr/bin/python3
+"""figures.py: the figures of `make figures` (experiments/figures.mk).
+
+Owns drawing, from the analysis layer's files and the renders they name:
+  fig3.png          the paper's Figure 3 at 1:1: for each (P_e, n) cell a
+                    crop of the conventional and the precomputed render (one
+                    seed) and their signed difference, with time and error
+                    (mean and 95% intervals over seeds) from table1.csv; the
+                    POV-Ray reference once.
+  fig3-errors.png   per-pixel error against the reference of every cell and
+                    method, whole frame, on a logarithmic colour scale.
+  fig2.png          the paper's Figure 2 for one real run: the
+                    representatives (renderer's --dump-reps) with their
+                    precomputed irradiance, the piecewise-constant estimate
+                    they give, and the same region in the rendered image.
+  tradeoff.png      time against relMSE for every cell, both estimates, with
+                    intervals on both axes, and the rep-study's rules.
+  ratio-vs-n.png    precomputed / conventional time against n per P_e, ours
+                    with bootstrap intervals and the paper's.
+  phases.png        per-phase times (trace, build, precompute, eye pass) of
+                    every cell, both methods.
+Tables are read with pandas by column name (table1.csv, runs.csv, cells.csv
+for the reference, rep-study-cells.csv), images with OpenImageIO
+(metrics.read_exr) from the paths runs.csv names;
+statistics come from table1.csv (computed by table.py with stats.py) and
+image metrics from metrics.py. Every figure names its data in a footer.
+"""
+
+import argparse
+import math
+import os
+import re
+import sys
+
+import numpy as np
+import pandas as pd
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import metrics  # noqa: E402
+import plotting  # noqa: E402
+import report  # noqa: E402
+import stats  # noqa: E402
+from plotting import kilo, plt  # noqa: E402
+from report import fmt, isnum  # noqa: E402
+
+WHERE = "figures.py"
+TABLE_NEED = ["photons", "nn", "method", "seeds", "cpu_median_s", "cpu_min_s", "cpu_max_s", "total_median_s",
+              "total_min_s", "total_max_s", "relmse_ref_mean", "relmse_ref_ci95", "relmse_conv_mean",
+              "relmse_conv_ci95", "cpu_ratio_percent", "cpu_ratio_ci95_lo", "cpu_ratio_ci95_hi",
+              "ratio_percent", "ratio_ci95_lo", "ratio_ci95_hi", "paper_ratio_percent", "trace_median_s",
+              "build_median_s", "precompute_median_s", "render_median_s", "width", "height", "subpixels"]
+
+
+# ---- inputs
+
+def read_csv(path, need, what):
+    """A CSV with the columns NEED checked by name; exits naming PATH."""
+    if not os.path.isfile(path):
+        report.die(WHERE, f"{path}: missing ({what})")
+    try:
+        f = pd.read_csv(path, comment="#")
+    except (pd.errors.ParserError, pd.errors.EmptyDataError) as e:
+        report.die(WHERE, f"{path}: {e}")
+    missing = [c for c in need if c not in f.columns]
+    if missing:
+        report.die(WHERE, f"{path}: no column(s) {', '.join(missing)}")
+    return f
+
+
+def read_image(path, what):
+    """An EXR as (H, W, 3) float64; exits naming PATH and WHAT it is."""
+    if not os.path.isfile(path):
+        report.die(WHERE, f"{path}: missing ({what}); run `make reproduce-table` first")
+    try:
+        return metrics.read_exr(path)
+    except ValueError as e:
+        report.die(WHERE, str(e))
+
+
+def parse_cells(text):
+    """'50000:10 100000:100' -> [(50000, 10), (100000, 100)]."""
+    cells = []
+    for item in text.split():
+        m = re.fullmatch(r"(\d+):(\d+)", item)
+        if not m:
+            report.die(WHERE, f"cell '{item}': expected P_E:N")
+        cells.append((int(m.group(1)), int(m.group(2))))
+    return cells
+
+
+def image_path(args, method, photons, nn):
+    """The EXR of one render of the grid (paper estimate, seed --seed), as
+    runs.csv names it; exits when runs.csv has no such ok render."""
+    r = args.runs_frame
+    sel = r[(r["method"] == method) & (r["estimate"] == "paper") & (r["photons"] == photons) & (r["nn"] == nn)
+            & (r["seed"] == args.seed) & (r["status"] == "ok") & (r["role"] == "grid")]
+    if sel.empty:
+        report.die(WHERE, f"{args.runs} has no ok render of {method}, paper estimate, P_e={photons}, n={nn}, seed "
+                   f"{args.seed}: add it to the grid (PHOTONS, NNS, SEEDS) or change FIG3_CELLS / FIG_SEED")
+    return sel["run"].iloc[0] + ".exr"
+
+
+def table_row(table, photons, nn, method):
+    """The table1.csv row of a cell and method; exits when there is none."""
+    r = table[(table["photons"] == photons) & (table["nn"] == nn) & (table["method"] == method)]
+    if r.empty:
+        report.die(WHERE, f"table1.csv has no row for {method} P_e={photons} n={nn}: add it to the grid "
+                   "(PHOTONS, NNS) or change FIG3_CELLS")
+    return r.iloc[0]
+
+
+def sfx(estimate):
+    """Column suffix of an estimate in table1.csv."""
+    return "" if estimate == "paper" else f"_{estimate}"
+
+
+def time_cols(args):
+    """(median, min, max, label) columns of the time the figures show."""
+    if args.time == "cpu_s":
+        return "cpu_median_s", "cpu_min_s", "cpu_max_s", "CPU s"
+    return "total_median_s", "total_min_s", "total_max_s", "wall s"
+
+
+def time_text(row, args, est="paper"):
+    """'3.21 s CPU [3.18-3.30]' for a table row (median, min-max over seeds)."""
+    med, lo, hi, label = time_cols(args)
+    s = sfx(est)
+    return f"{fmt(row[med + s])} {label} [{fmt(row[lo + s])}-{fmt(row[hi + s])}]"
+
+
+def error_text(row, est="paper"):
+    """'relMSE 0.139 ± 0.011' (mean ± 95% t half-width over seeds)."""
+    s = sfx(est)
+    return f"relMSE {report.fmt_pm(row['relmse_ref_mean' + s], row['relmse_ref_ci95' + s])}"
+
+
+def provenance(args, extra=""):
+    """The footer text shared by the figures of the grid."""
+    t = args.table_frame
+    first = t.iloc[0]
+    size = f"{int(first['width'])}x{int(first['height'])}, {int(first['subpixels'])}x{int(first['subpixels'])} samples"
+    seeds = int(t["seeds"].max())
+    return (f"Data: {args.table} and {args.runs} ({size}; {seeds} seeds per cell; the renders runs.csv names); "
+            f"reference: {args.ref_label} ({args.ref}). Time: {time_cols(args)[3]} (median, bars min-max over seeds); "
+            f"errors: mean over seeds with 95% t-interval." + (" " + extra if extra else ""))
+
+
+# ---- Figure 3 at 1:1
+
+def fig3(args):
+    """fig3.png: crops at 1:1 of each cell's two renders and their signed
+    difference, the reference once, time and error per panel."""
+    t = args.table_frame
+    cells = parse_cells(args.cells)
+    ref = read_image(args.ref, "the reference")
+    H, W = ref.shape[:2]
+    cw0, ch0, cx, cy = metrics.scale_window(args.crop, args.crop_at, (W, H))
+    # small renders: each pixel drawn as a zoom x zoom block, so panels stay legible
+    zoom = max(1, math.ceil(300 / cw0))
+    crop = lambda img: np.repeat(np.repeat(img[cy:cy + ch0, cx:cx + cw0], zoom, 0), zoom, 1)  # noqa: E731
+    cw, ch = cw0 * zoom, ch0 * zoom
+    rows = []
+    for p, n in cells:
+        imgs = {}
+        for m in ("conventional", "precomputed"):
+            path = image_path(args, m, p, n)
+            img = read_image(path, f"{m} P_e={p} n={n} seed {args.seed}")
+            if img.shape != ref.shape:
+                report.die(WHERE, f"{path} is {img.shape[1]}x{img.shape[0]}, the reference {W}x{H}")
+            imgs[m] = crop(img)
+        lr = np.maximum(plotting.luminance(crop(ref)), 1e-3)
+        diff = (plotting.luminance(imgs["precomputed"]) - plotting.luminance(imgs["conventional"])) / lr
+        rows.append((p, n, imgs, diff, table_row(t, p, n, "conventional"), table_row(t, p, n, "precomputed")))
+    lim = float(np.quantile(np.abs(np.concatenate([r[3].ravel() for r in rows])), 0.99))
+    lim = float(f"{max(lim, 1e-3):.1g}")
+    gap, head, cap = 12, 26, 36
+    title_h, foot_h = 72, 14 * plotting.footer_lines(provenance(args), (3 * cw + 4 * gap) / 100) + 10
+    row_h = head + ch + cap
+    fw = 3 * cw + 4 * gap
+    fh = title_h + row_h * (len(rows) + 1) + foot_h
+    fig = plotting.pixel_figure(fw, fh)
+    scale = "1:1" if zoom == 1 else f"{zoom}:1 (each pixel a {zoom}x{zoom} block)"
+    plotting.pixel_text(fig, gap, 8, f"Figure 3 at {scale}: conventional | precomputed | precomputed - conventional",
+                        fontsize=12, weight="bold")
+    plotting.pixel_text(fig, gap, 30, f"Rows (a)-({chr(ord('a') + len(rows) - 1)}): the paper's cells "
+                        f"{', '.join(f'({kilo(p)}, {n})' for p, n in cells[:args.paper_cells])}"
+                        + (f", and controls {', '.join(f'({kilo(p)}, {n})' for p, n in cells[args.paper_cells:])}"
+                           if len(cells) > args.paper_cells else "")
+                        + f". Crop {cw0}x{ch0}+{cx}+{cy} of the {W}x{H} renders, seed {args.seed}, paper "
+                        "estimate.\nUnder each panel: median time [min-max] and relMSE against the reference "
+                        "(mean ± 95% t half-width over seeds).", fontsize=9)
+    y = title_h
+    # the reference row: crop, the whole frame (reduced, for location only), colour bar
+    plotting.pixel_text(fig, gap, y + 4, f"{args.ref_label}: the same crop, and the whole frame (reduced) "
+                        "with the crop outlined", fontsize=10, weight="bold")
+    ax = plotting.pixel_axes(fig, gap, y + head, cw, ch)
+    ax.imshow(plotting.srgb(crop(ref)), interpolation="nearest")
+    tw = int(round(W * ch / H))
+    ax = plotting.pixel_axes(fig, 2 * gap + cw, y + head, min(tw, cw), ch)
+    ax.imshow(plotting.srgb(ref), interpolation="antialiased", extent=(0, W, H, 0))
+    ax.add_patch(plt.Rectangle((cx, cy), cw0, ch0, fill=False, ec="#ffdd00", lw=2))
+    cx3 = 3 * gap + 2 * cw
+    cax = plotting.pixel_axes(fig, cx3 + 10, y + head + ch // 2 - 30, cw - 20, 18)
+    cax.set_axis_on()
+    cax.grid(False)
+    sm = plt.cm.ScalarMappable(cmap="RdBu_r", norm=plt.Normalize(-lim, lim))
+    fig.colorbar(sm, cax=cax, orientation="horizontal")
+    plotting.pixel_text(fig, cx3 + 10, y + head + ch // 2 + 12,
+                        "Third column: (precomputed - conventional)\n/ reference, luminance, the same seed.\n"
+                        f"Symmetric range ±{lim:g} for every row\n(the 99th percentile of |difference|; clipped).\n"
+                        "Red: precomputed brighter.", fontsize=9)
+    y += row_h
+    for i, (p, n, imgs, diff, rc, rp) in enumerate(rows):
+        letter = chr(ord("a") + i)
+        kind = "the paper's Fig. 3 cell" if i < args.paper_cells else "control"
+        plotting.pixel_text(fig, gap, y + 4, f"({letter}) P_e = {kilo(p)}, n = {n} ({kind})", fontsize=10.5,
+                            weight="bold")
+        ratio = report.fmt_ci(rp["cpu_ratio_percent" if args.time == "cpu_s" else "ratio_percent"],
+                              rp["cpu_ratio_ci95_lo" if args.time == "cpu_s" else "ratio_ci95_lo"],
+                              rp["cpu_ratio_ci95_hi" if args.time == "cpu_s" else "ratio_ci95_hi"], 0)
+        for j, (m, r) in enumerate((("conventional", rc), ("precomputed", rp))):
+            x = gap + j * (cw + gap)
+            ax = plotting.pixel_axes(fig, x, y + head, cw, ch)
+            ax.imshow(plotting.srgb(imgs[m]), interpolation="nearest")
+            plotting.pixel_text(fig, x, y + head + ch + 3, f"{m}: {time_text(r, args)}\n{error_text(r)}",
+                                fontsize=8.5)
+        x = gap + 2 * (cw + gap)
+        ax = plotting.pixel_axes(fig, x, y + head, cw, ch)
+        ax.imshow(np.clip(diff, -lim, lim), cmap="RdBu_r", vmin=-lim, vmax=lim, interpolation="nearest")
+        plotting.pixel_text(fig, x, y + head + ch + 3,
+                            f"time prec./conv. {ratio} %\nrelMSE prec. vs conv., same seed: "
+                            f"{report.fmt_pm(rp['relmse_conv_mean'], rp['relmse_conv_ci95'])}", fontsize=8.5)
+        y += row_h
+    plotting.footer(fig, provenance(args))
+    plotting.save(fig, os.path.join(args.out, "fig3.png"))
+
+
+# ---- error maps
+
+def fig3_errors(args):
+    """fig3-errors.png: per-pixel relative error against the reference of
+    every cell and method, whole frame, averaged over 2x2 blocks, on a
+    logarithmic colour scale with a colour bar."""
+    t = args.table_frame
+    cells = parse_cells(args.cells)
+    ref = read_image(args.ref, "the reference")
+    H, W = ref.shape[:2]
+    b = max(1, int(args.error_block))
+    h2, w2 = H // b, W // b
+    wgt = metrics.rel_weight(ref)
+    maps = []
+    for p, n in cells:
+        row = []
+        for m in ("conventional", "precomputed"):
+            x = read_image(image_path(args, m, p, n), f"{m} P_e={p} n={n}")
+            if x.shape != ref.shape:
+                report.die(WHERE, f"{image_path(args, m, p, n)}: {x.shape[1]}x{x.shape[0]}, the reference {W}x{H}")
+            # the relMSE integrand averaged over channels, then over bxb blocks:
+            # the map's mean is the image's relMSE; shown as its square root
+            e = (np.square(x - ref) * wgt).mean(axis=2)[:h2 * b, :w2 * b]
+            e = e.reshape(h2, b, w2, b).mean(axis=(1, 3))
+            row.append((m, np.sqrt(e), table_row(t, p, n, m), metrics.relmse(x, ref)))
+        maps.append((p, n, row))
+    allv = np.concatenate([r[1].ravel() for _, _, rr in maps for r in rr])
+    lo = float(f"{max(np.quantile(allv, 0.01), 1e-4):.1g}")
+    hi = float(f"{np.quantile(allv, 0.999):.1g}")
+    norm = plt.matplotlib.colors.LogNorm(vmin=lo, vmax=hi)
+    foot = provenance(args, f"Map: sqrt of the relMSE integrand (x - r)^2 / (r^2 + 0.01), mean over RGB and "
+                            f"{b}x{b}-pixel blocks (its square's mean is the image's relMSE), seed {args.seed}.")
+    zoom = max(1, math.ceil(300 / w2))  # small renders: each block drawn as zoom x zoom pixels
+    gap, head, cap = 10, 22, 20
+    pw, ph = w2 * zoom, h2 * zoom
+    cbar_w = 90
+    fw = 2 * pw + 3 * gap + cbar_w
+    foot_h = 14 * plotting.footer_lines(foot, fw / 100) + 8
+    fh = 40 + len(maps) * (head + ph + cap) + foot_h
+    fig = plotting.pixel_figure(fw, fh)
+    plotting.pixel_text(fig, gap, 8, f"Error against {args.ref_label}, per {b}x{b}-pixel block, logarithmic scale "
+                        f"(seed {args.seed}, paper estimate)", fontsize=12, weight="bold")
+    y = 40
+    for i, (p, n, row) in enumerate(maps):
+        plotting.pixel_text(fig, gap, y + 2, f"({chr(ord('a') + i)}) P_e = {kilo(p)}, n = {n}", fontsize=10.5,
+                            weight="bold")
+        for j, (m, e, r, this) in enumerate(row):
+            x = gap + j * (pw + gap)
+            ax = plotting.pixel_axes(fig, x, y + head, pw, ph)
+            ax.imshow(np.repeat(np.repeat(e, zoom, 0), zoom, 1), cmap="magma", norm=norm, interpolation="nearest")
+            plotting.pixel_text(fig, x, y + head + ph + 2,
+                                f"{m}: this seed {fmt(this)}; over seeds {error_text(r)}", fontsize=8.5)
+        y += head + ph + cap
+    cax = plotting.pixel_axes(fig, 2 * pw + 3 * gap + 8, 60, 18, fh - 60 - foot_h - 30)
+    cax.set_axis_on()
+    cax.grid(False)
+    cb = fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap="magma"), cax=cax)
+    ticks = [v * 10.0 ** k for k in range(-5, 3) for v in (1, 2, 5) if lo <= v * 10.0 ** k <= hi]
+    cb.set_ticks(ticks, labels=[f"{v:g}" for v in ticks])
+    cb.ax.minorticks_off()
+    cb.set_label("relative RMS error per block (log scale)")
+    plotting.footer(fig, foot)
+    plotting.save(fig, os.path.join(args.out, "fig3-errors.png"))
+
+
+# ---- Figure 2: the representatives and the cells they make
+
+def read_camera(scene_path):
+    """The scene file's camera: (position, look_at, up, hfov_deg)."""
+    try:
+        with open(scene_path, encoding="utf-8", errors="replace") as f:
+            for line in f:
+                line = line.split("#", 1)[0]
+                if line.split()[:1] == ["camera"]:
+                    w = line.split()
+                    get = lambda k, n: [float(v) for v in w[w.index(k) + 1:w.index(k) + 1 + n]]  # noqa: E731
+                    return (np.array(get("position", 3)), np.array(get("look_at", 3)), np.array(get("up", 3)),
+                            get("fov", 1)[0])
+    except (OSError, ValueError, IndexError) as e:
+        report.die(WHERE, f"{scene_path}: cannot read the camera: {e}")
+    report.die(WHERE, f"{scene_path}: no camera statement")
+
+
+def project(camera, pts, width, height):
+    """Pixel coordinates (x, y) of world points PTS (N, 3) through the
+    renderer's pinhole camera (render_camera_make / render_camera_at)."""
+    pos, look, up, hfov = camera
+    fwd = (look - pos) / np.linalg.norm(look - pos)
+    right = np.cross(fwd, up)
+    right /= np.linalg.norm(right)
+    upv = np.cross(right, fwd)
+    hw = math.tan(math.radians(hfov) / 2)
+    d = np.asarray(pts, dtype=float) - pos
+    z = d @ fwd
+    u = ((d @ right) / z / hw + 1) / 2
+    v = (1 - (d @ upv) / z / (hw * height / width)) / 2
+    return u * width, v * height
+
+
+def fig2(args):
+    """fig2.png: (a) the representatives of one real run on one wall (the
+    plane whose normal is +FIG2_PLANE, at that coordinate's minimum: the back
+    wall for z, the floor for y), coloured by their precomputed irradiance;
+    (b) the estimate they give there, constant around each representative
+    (the nearest one, as the eye pass looks it up); (c) the same region in
+    the rendered image as luminance and (d) as displayed, its pixels
+    enlarged without smoothing."""
+    from scipy.spatial import cKDTree
+
+    d = args.fig2_dir
+    reps = read_csv(os.path.join(d, "reps.csv"), ["x", "y", "z", "nx", "ny", "nz", "e_r", "e_g", "e_b"],
+                    "the representatives of the Fig. 2 run (--dump-reps)")
+    img = read_image(os.path.join(d, "image.exr"), "the Fig. 2 run's image")
+    st = pd.read_json(os.path.join(d, "stats.json"), typ="series")
+    H, W = img.shape[:2]
+    axis = args.fig2_plane
+    if axis not in ("x", "y", "z"):
+        report.die(WHERE, f"FIG2_PLANE '{axis}': expected x, y or z")
+    u, v = [a for a in "xyz" if a != axis]
+    try:
+        u0, u1, v0, v1 = (float(w) for w in args.fig2_window.split())
+    except ValueError:
+        report.die(WHERE, f"FIG2_WINDOW '{args.fig2_window}': expected four numbers u0 u1 v0 v1")
+    facing = reps[reps["n" + axis] > args.normal_cos]
+    if facing.empty:
+        report.die(WHERE, f"{d}/reps.csv: no representative faces +{axis}")
+    at = float(facing[axis].min())
+    wall = facing[np.abs(facing[axis] - at) <= 1e-6 * max(1.0, abs(at))]
+    e = plotting.luminance(wall[["e_r", "e_g", "e_b"]].to_numpy())
+    inwin = ((wall[u] >= u0) & (wall[u] <= u1) & (wall[v] >= v0) & (wall[v] <= v1)).to_numpy()
+    if inwin.sum() < 3:
+        report.die(WHERE, f"FIG2_WINDOW '{args.fig2_window}' holds {int(inwin.sum())} representatives of the plane "
+                   f"{axis} = {at:g}")
+    ew = e[inwin]
+    norm = plt.Normalize(float(np.quantile(ew, 0.01)), float(np.quantile(ew, 0.99)))
+    # (b): the nearest representative of the plane within the radius cap, on a fine grid
+    tree = cKDTree(wall[[u, v]].to_numpy())
+    res = 700
+    gu = np.linspace(u0, u1, res)
+    gv = np.linspace(v0, v1, max(2, int(res * (v1 - v0) / (u1 - u0))))
+    GU, GV = np.meshgrid(gu, gv)
+    dist, idx = tree.query(np.column_stack([GU.ravel(), GV.ravel()]))
+    field = np.where(dist <= float(st["max_radius"]), e[idx], 0.0).reshape(GU.shape)
+    # (c): the window's outline in the image and the pixels around it
+    corners = np.zeros((4, 3))
+    ia, iu, iv = "xyz".index(axis), "xyz".index(u), "xyz".index(v)
+    corners[:, ia] = at
+    corners[:, iu] = [u0, u1, u1, u0]
+    corners[:, iv] = [v0, v0, v1, v1]
+    px, py = project(read_camera(args.scene), corners, W, H)
+    cx0, cx1 = max(0, int(px.min()) - 4), min(W, int(math.ceil(px.max())) + 4)
+    cy0, cy1 = max(0, int(py.min()) - 4), min(H, int(math.ceil(py.max())) + 4)
+    if cx1 - cx0 < 2 or cy1 - cy0 < 2:
+        report.die(WHERE, f"FIG2_WINDOW '{args.fig2_window}' is not in view of {args.scene}'s camera")
+    fig = plt.figure(figsize=(19, 6.0))
+    rule = (f"a fixed count of {st['rep_count']}" if st.get("rep_count", 0) else
+            "every stored photon" if int(st["rep_every"]) == 1 else
+            f"every {plotting.ordinal(st['rep_every'])} stored photon")
+    foot = (f"Data: {d}/ (reps.csv from `photonmap render --dump-reps`, image.exr and stats.json of the same render): "
+            f"{st['scene']}, precomputed method, P_e = {kilo(st['photons_emitted'])}, n = {st['nn']}, seed "
+            f"{st['seed']}, {W}x{H}, {int(st['representatives'])} representatives ({rule}), {len(wall)} on the plane "
+            f"{axis} = {at:g}, {int(inwin.sum())} in the window {u} in [{u0:g}, {u1:g}], {v} in [{v0:g}, {v1:g}]. "
+            f"(b) is computed from reps.csv: the representative of this plane nearest to each point (within the "
+            f"radius cap {float(st['max_radius']):.3g}; on a plane every normal agrees), i.e. the eye pass's lookup "
+            "restricted to the plane; the radiance is rho/pi times this irradiance.")
+    gs = fig.add_gridspec(1, 4, left=0.04, right=0.995, top=0.84, bottom=0.2, wspace=0.2)
+    flip = axis == "y"  # the floor seen from above: z (towards the camera) downwards
+    vlim = (v1, v0) if flip else (v0, v1)
+    ax = fig.add_subplot(gs[0, 0])
+    sc = ax.scatter(wall[u][inwin], wall[v][inwin], c=ew, cmap="viridis", norm=norm, s=22, edgecolors="none")
+    ax2 = fig.add_subplot(gs[0, 1], sharex=ax, sharey=ax)
+    ax2.imshow(field, cmap="viridis", norm=norm, extent=(u0, u1, v0, v1), origin="lower", interpolation="nearest")
+    ax2.plot(wall[u][inwin], wall[v][inwin], ".", color="white", ms=2, alpha=0.9)
+    for a in (ax, ax2):
+        a.set_xlim(u0, u1)
+        a.set_ylim(*vlim)
+        a.set_aspect("equal")
+        a.set_xlabel(f"{u} (scene units)")
+        a.grid(False)
+    ax.set_ylabel(f"{v} (scene units)")
+    where = {"x": "the wall x", "y": "the floor", "z": "the back wall"}[axis] + f" ({axis} = {at:g})"
+    ax.set_title(f"(a) representatives on {where},\ncoloured by their precomputed irradiance E")
+    ax2.set_title("(b) the estimate at every point: E of the nearest\nrepresentative (white dots): constant cells")
+    cb = fig.colorbar(sc, ax=[ax, ax2], orientation="horizontal", fraction=0.05, pad=0.12, aspect=50)
+    cb.set_label("irradiance E, luminance (W per scene unit^2)")
+    sub = img[cy0:cy1, cx0:cx1]
+    lum = plotting.luminance(sub)
+    inside = plt.matplotlib.path.Path(np.column_stack([px, py]))
+    yy, xx = np.mgrid[cy0:cy1, cx0:cx1]
+    mask = inside.contains_points(np.column_stack([xx.ravel() + 0.5, yy.ravel() + 0.5])).reshape(lum.shape)
+    lnorm = plt.Normalize(*np.quantile(lum[mask] if mask.any() else lum, [0.01, 0.99]))
+    for k, (panel, title) in enumerate((
+            (None, f"(c) this run's rendered image: luminance of\npixels {cx0}-{cx1} x {cy0}-{cy1} (radiance = "
+                   "rho/pi x E;\nits own colour scale), enlarged without smoothing"),
+            (plotting.srgb(sub), "(d) the same pixels as displayed (sRGB):\nthe cells are the blotches of the "
+                                 "paper's remark"))):
+        a = fig.add_subplot(gs[0, 2 + k])
+        if panel is None:
+            a.imshow(lum, cmap="viridis", norm=lnorm, interpolation="nearest", extent=(cx0, cx1, cy1, cy0))
+        else:
+            a.imshow(panel, interpolation="nearest", extent=(cx0, cx1, cy1, cy0))
+        a.add_patch(plt.Polygon(np.column_stack([px, py]), closed=True, fill=False, ec="#ff3030", lw=1.2))
+        a.set_xlabel("image x (pixels; outline: the window of (a), (b))")
+        a.grid(False)
+        a.set_title(title)
+    fig.axes[-2].set_ylabel("image y (pixels)")
+    fig.suptitle("Figure 2 reproduced: representatives carry precomputed irradiance; the eye pass takes the "
+                 "nearest one's, so the radiance is piecewise constant", fontsize=12, weight="bold")
+    plotting.footer(fig, foot)
+    plotting.save(fig, os.path.join(args.out, "fig2.png"))
+
+
+# ---- plots of the grid
+
+def errbar_xy(ax, t, est, args, colour, marker, label, **kw):
+    """Median time (bars: min-max) against mean relMSE (bars: 95% t) of the
+    rows T of table1.csv for estimate EST, joined in order of n."""
+    s = sfx(est)
+    med, lo, hi, _ = time_cols(args)
+    t = t.sort_values("nn")
+    x, y = t[med + s].to_numpy(float), t["relmse_ref_mean" + s].to_numpy(float)
+    ok = np.isfinite(x) & np.isfinite(y)
+    if not ok.any():
+        return
+    t, x, y = t[ok], x[ok], y[ok]
+    xe = [x - t[lo + s].to_numpy(float), t[hi + s].to_numpy(float) - x]
+    ye = np.nan_to_num(t["relmse_ref_ci95" + s].to_numpy(float))
+    ax.errorbar(x, y, xerr=xe, yerr=[np.minimum(ye, y * 0.999), ye], fmt=marker + "-", color=colour, label=label,
+                ms=6, lw=1.1, capsize=2, elinewidth=0.9, **kw)
+
+
+def tradeoff(args):
+    """tradeoff.png: time against relMSE, with intervals on both axes: (a)
+    the paper estimate, (b) the corrected one, (c) the rep-study's rules."""
+    t = args.table_frame
+    estimates = ["paper"] + (["corrected"] if "relmse_ref_mean_corrected" in t
+                             and t["relmse_ref_mean_corrected"].notna().any() else [])
+    rs = None
+    if args.rep_study_cells and os.path.isfile(args.rep_study_cells):
+        rs = read_csv(args.rep_study_cells, ["rule", "label", "photons", "nn", "time_median_s", "time_min_s",
+                                             "time_max_s", "relmse_ref_mean", "relmse_ref_ci95"], "rep-study cells")
+    npanel = len(estimates) + (1 if rs is not None else 0)
+    fig, axes = plt.subplots(1, npanel, figsize=(6.2 * npanel, 6.4), sharey=True, squeeze=False)
+    axes = axes[0]
+    allp = sorted(set(t["photons"]))
+    shades = {"conventional": ["#9ecae1", "#3182bd", "#08306b"], "precomputed": ["#fcae91", "#e6550d", "#7f2704"]}
+    for k, est in enumerate(estimates):
+        ax = axes[k]
+        for m in ("conventional", "precomputed"):
+            for i, p in enumerate(allp):
+                sel = t[(t["method"] == m) & (t["photons"] == p)]
+                errbar_xy(ax, sel, est, args, shades[m][i % 3], plotting.photon_marker(p, allp),
+                          f"{m}, P_e = {kilo(p)}")
+        ax.set_title(f"({chr(ord('a') + k)}) {est} estimate" + (" (--bias-correction)" if est == "corrected" else ""))
+    if rs is not None:
+        # the rules at one P_e (the largest, where they differ most), against its conventional cells
+        ax = axes[-1]
+        pr = max(set(rs["photons"]) & set(allp)) if set(rs["photons"]) & set(allp) else max(rs["photons"])
+        conv = t[(t["method"] == "conventional") & (t["photons"] == pr)]
+        errbar_xy(ax, conv, "paper", args, "#888888", plotting.photon_marker(pr, allp), "conventional")
+        for j, rule in enumerate(dict.fromkeys(rs["rule"])):
+            r = rs[(rs["rule"] == rule) & (rs["photons"] == pr)].sort_values("nn")
+            if r.empty:
+                continue
+            col = plotting.RULE_COLOURS[j % len(plotting.RULE_COLOURS)]
+            x = r["time_median_s"].to_numpy(float)
+            y = r["relmse_ref_mean"].to_numpy(float)
+            ye = np.nan_to_num(r["relmse_ref_ci95"].to_numpy(float))
+            ax.errorbar(x, y, xerr=[x - r["time_min_s"], r["time_max_s"] - x], yerr=[np.minimum(ye, y * 0.999), ye],
+                        fmt=plotting.photon_marker(pr, allp) + "-", color=col, ms=5, lw=1, capsize=1.5,
+                        label=r["label"].iloc[0])
+        ax.set_title(f"({chr(ord('a') + npanel - 1)}) representative rules at P_e = {kilo(pr)} "
+                     "(paper estimate; rep-study)")
+    med, _, _, tl = time_cols(args)
+    # the y range from the cells' means (few seeds give long error bars: they are clipped at the axes)
+    ys = [t["relmse_ref_mean" + sfx(e)] for e in estimates] + ([rs["relmse_ref_mean"]] if rs is not None else [])
+    ys = np.concatenate([np.asarray(v, dtype=float) for v in ys])
+    ys = ys[np.isfinite(ys) & (ys > 0)]
+    for ax in axes:
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(f"median time, {tl} (1 thread)")
+        ax.legend(fontsize=7.5, loc="upper right", ncol=1)
+        plotting.log_ticks(ax.xaxis, *ax.get_xlim())
+    if ys.size:
+        axes[0].set_ylim(ys.min() / 1.6, ys.max() * 1.6)
+    plotting.log_ticks(axes[0].yaxis, *axes[0].get_ylim())
+    axes[0].set_ylabel(f"relMSE against {args.ref_label}")
+    fig.suptitle("Speed against accuracy: each line is one method and P_e, n = 10, 20, 50, 100 from top to "
+                 "bottom (markers: P_e)", fontsize=11.5, weight="bold")
+    foot = provenance(args, (f"Rep-study points: {args.rep_study_cells} (their seeds; error bars reaching past the "
+                             "axes are clipped)." if rs is not None else
+                             "No rep-study data (run `make rep-study` to add its rules)."))
+    fig.subplots_adjust(left=0.06, right=0.99, top=0.88, bottom=0.11 + 0.02 * plotting.footer_lines(foot, 6.2 * npanel))
+    plotting.footer(fig, foot)
+    plotting.save(fig, os.path.join(args.out, "tradeoff.png"))
+
+
+def ratio_vs_n(args):
+    """ratio-vs-n.png: precomputed / conventional time (%) against n, one
+    panel per P_e: ours with the bootstrap interval of the ratio of medians,
+    both estimates, and the paper's (single runs, no interval)."""
+    t = args.table_frame
+    pre = t[t["method"] == "precomputed"]
+    allp = sorted(set(pre["photons"]))
+    cpu = args.time == "cpu_s"
+    col, lo, hi = ("cpu_ratio_percent", "cpu_ratio_ci95_lo", "cpu_ratio_ci95_hi") if cpu else \
+        ("ratio_percent", "ratio_ci95_lo", "ratio_ci95_hi")
+    fig, axes = plt.subplots(1, len(allp), figsize=(4.6 * len(allp), 5), sharey=True, squeeze=False)
+    ymax = 100
+    for ax, p in zip(axes[0], allp):
+        g = pre[pre["photons"] == p].sort_values("nn")
+        for est, style, off in (("paper", "o-", 0.97), ("corrected", "s--", 1.03)):
+            s = sfx(est)
+            if col + s not in g or not g[col + s].notna().any():
+                continue
+            y = g[col + s].to_numpy(float)
+            err = [y - g[lo + s].to_numpy(float), g[hi + s].to_numpy(float) - y]
+            ax.errorbar(g["nn"] * off, y, yerr=np.nan_to_num(err), fmt=style, color=plotting.METHOD_COLOUR["precomputed"]
+                        if est == "paper" else "#e08a1e", capsize=3, ms=6, label=f"ours, {est} estimate (95% bootstrap)")
+            ymax = max(ymax, np.nanmax(g[hi + s]))
+        if g["paper_ratio_percent"].notna().any():
+            ax.plot(g["nn"], g["paper_ratio_percent"], "*-", color=plotting.PAPER_COLOUR, ms=10,
+                    label="paper, Table 1 (one run per cell)")
+            ymax = max(ymax, g["paper_ratio_percent"].max())
+        ax.axhline(100, color="#777777", lw=1, ls=":")
+        ax.text(g["nn"].min(), 101, "equal time", fontsize=8, color="#555555", va="bottom")
+        ax.set_xscale("log")
+        ax.set_xticks(sorted(set(g["nn"])), [str(v) for v in sorted(set(g["nn"]))])
+        ax.set_xlabel("n (nearest photons)")
+        ax.set_title(f"P_e = {kilo(p)}")
+    for ax in axes[0]:
+        ax.set_ylim(0, ymax * 1.08)
+    axes[0][0].set_ylabel(f"precomputed / conventional time, % ({'CPU' if cpu else 'wall'})")
+    axes[0][0].legend(fontsize=8, loc="lower left")
+    fig.suptitle("The comparable quantity: time of the precomputed method relative to the conventional one",
+                 fontsize=11.5, weight="bold")
+    foot = provenance(args, "Ours: ratio of the median times, interval from resampling the seeds of both cells "
+                            "(table.py); offsets along n only separate the estimates.")
+    fig.subplots_adjust(left=0.07, right=0.99, top=0.86, wspace=0.08,
+                        bottom=0.13 + 0.025 * plotting.footer_lines(foot, 4.6 * len(allp)))
+    plotting.footer(fig, foot)
+    plotting.save(fig, os.path.join(args.out, "ratio-vs-n.png"))
+
+
+def phase_medians(args):
+    """{(photons, nn, method): {phase: seconds}}: per render of the paper
+    estimate, each phase's wall-clock time times the render's CPU / wall
+    ratio (cpu_s / total_s: the share of the wall clock the process ran,
+    so on a quiet machine the factor is about 1 and on a shared one the
+    phases add up to the CPU time), then the median over seeds."""
+    r = args.runs_frame
+    r = r[(r["status"] == "ok") & (r["role"] == "grid") & (r["estimate"] == "paper")]
+    out = {}
+    for (p, n, m), g in r.groupby(["photons", "nn", "method"]):
+        f = (g["cpu_s"] / g["total_s"]).to_numpy(float) if args.time == "cpu_s" else np.ones(len(g))
+        out[(int(p), int(n), m)] = {ph: stats.median_range(g[f"{ph}_s"].to_numpy(float) * f)[0]
+                                    for ph in ("trace", "build", "precompute", "render")}
+    return out
+
+
+def phases(args):
+    """phases.png: per-phase median times (trace, build, precompute, eye
+    pass) stacked, per cell, both methods, one panel per P_e."""
+    t = args.table_frame
+    med = phase_medians(args)
+    allp = sorted(set(t["photons"]))
+    phase = [("trace", "trace photons", "#8c8c8c"), ("build", "build kd-tree", "#c7b37a"),
+             ("precompute", "precompute at representatives", "#e6550d"), ("render", "eye pass", "#3182bd")]
+    fig, axes = plt.subplots(1, len(allp), figsize=(4.6 * len(allp), 5.2), sharey=True, squeeze=False)
+    for ax, p in zip(axes[0], allp):
+        g = t[t["photons"] == p]
+        ns = sorted(set(g["nn"]))
+        for i, n in enumerate(ns):
+            for j, m in enumerate(("conventional", "precomputed")):
+                r = med.get((int(p), int(n), m))
+                if r is None:
+                    continue
+                x = i + (j - 0.5) * 0.38
+                bottom = 0.0
+                for key, label, colour in phase:
+                    v = float(r[key]) if isnum(r[key]) else 0.0
+                    ax.bar(x, v, 0.36, bottom=bottom, color=colour, edgecolor="white", lw=0.5,
+                           label=label if (i, j) == (0, 1) or (key != "precompute" and (i, j) == (0, 0)) else None)
+                    bottom += v
+                ax.text(x, bottom, "C" if m == "conventional" else "P", ha="center", va="bottom", fontsize=8)
+        ax.set_xticks(range(len(ns)), [f"n={n}" for n in ns])
+        ax.set_title(f"P_e = {kilo(p)}   (C: conventional, P: precomputed)")
+        ax.grid(axis="x", visible=False)
+    axes[0][0].set_ylabel("seconds per phase, median over seeds\n" + ("(CPU-scaled wall clock, 1 thread)"
+                                                                      if args.time == "cpu_s" else "(wall clock, 1 thread)"))
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    order = [labels.index(lab) for _, lab, _ in phase if lab in labels]
+    axes[0][0].legend([handles[i] for i in order], [labels[i] for i in order], fontsize=8, loc="upper left")
+    fig.suptitle("Where the time goes: the precomputed method moves kNN work from the eye pass to the "
+                 "precompute", fontsize=11.5, weight="bold")
+    load = args.runs_frame.loc[args.runs_frame["status"] == "ok", "loadavg_1min"]
+    foot = provenance(args, "Phases: the renderer's monotonic clock per phase (runs.csv *_s from the stats JSON)"
+                            + (", scaled per render by its CPU seconds / wall seconds (cpu_s / total_s) so that a "
+                               "shared machine's waiting is left out" if args.time == "cpu_s" else "")
+                            + "; median over seeds of each phase on its own, so they need not add up to the median "
+                            f"total. 1-minute load average at the renders' start: median {fmt(load.median())} on "
+                            f"{os.cpu_count()} cores.")
+    fig.subplots_adjust(left=0.07, right=0.99, top=0.87, wspace=0.06,
+                        bottom=0.1 + 0.025 * plotting.footer_lines(foot, 4.6 * len(allp)))
+    plotting.footer(fig, foot)
+    plotting.save(fig, os.path.join(args.out, "phases.png"))
+
+
+FIGURES = {"fig3": fig3, "fig3-errors": fig3_errors, "fig2": fig2, "tradeoff": tradeoff, "ratio-vs-n": ratio_vs_n,
+           "phases": phases}
+
+
+def main():
+    """Command line: see the module docstring and experiments/figures.mk."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--table", required=True, help="table1.csv of the FIG_SIZE grid")
+    ap.add_argument("--runs", required=True, help="runs.csv of the same grid")
+    ap.add_argument("--cells-csv", required=True, help="cells.csv of the same grid (names its reference)")
+    ap.add_argument("--ref", default="", help="reference EXR (default: the one cells.csv names)")
+    ap.add_argument("--ref-label", default="", help="what the reference is (default: from its file name)")
+    ap.add_argument("--cells", default="50000:10 100000:100 500000:100 50000:100 500000:10")
+    ap.add_argument("--paper-cells", type=int, default=3, help="how many of --cells are the paper's")
+    ap.add_argument("--seed", type=int, default=1, help="the seed whose images are shown")
+    ap.add_argument("--crop", default="384x288+150+440", help="Fig. 3 crop WxH+X+Y, given at --crop-at")
+    ap.add_argument("--crop-at", default="1024x768")
+    ap.add_argument("--error-block", type=int, default=2)
+    ap.add_argument("--fig2-dir", default="", help="the Fig. 2 run: reps.csv, image.exr, stats.json")
+    ap.add_argument("--fig2-plane", default="z", help="the plane of Fig. 2: normal +x, +y or +z, at the lowest "
+                    "such coordinate (z: the back wall, y: the floor)")
+    ap.add_argument("--fig2-window", default="-0.4 0.2 1.0 1.45",
+                    help="window 'u0 u1 v0 v1' on that plane (u, v: the other two axes in x, y, z order)")
+    ap.add_argument("--normal-cos", type=float, default=0.9)
+    ap.add_argument("--scene", default="scenes/cornell.scene")
+    ap.add_argument("--rep-study-cells", default="", help="rep-study-cells.csv (optional)")
+    ap.add_argument("--time", default="cpu_s", choices=["cpu_s", "total_s"])
+    ap.add_argument("--out", required=True, help="output directory")
+    ap.add_argument("--only", default="", help="draw only these figures (space-separated names)")
+    args = ap.parse_args()
+    args.table_frame = read_csv(args.table, TABLE_NEED, "run `make reproduce-table` first")
+    args.runs_frame = read_csv(args.runs, ["method", "estimate", "photons", "nn", "seed", "status", "role", "run",
+                                           "loadavg_1min", "cpu_s", "total_s", "trace_s", "build_s", "precompute_s",
+                                           "render_s"], "run `make reproduce-table` first")
+    cells = read_csv(args.cells_csv, ["ref"], "run `make reproduce-table` first")
+    if not args.ref:
+        refs = cells["ref"].dropna()
+        if refs.empty or not str(refs.iloc[0]):
+            report.die(WHERE, f"{args.cells_csv} names no reference (the grid had none of its size): set FIG_REF")
+        args.ref = str(refs.iloc[0])
+    if not args.ref_label:
+        base = os.path.basename(args.ref)
+        args.ref_label = ("the POV-Ray reference" if base.startswith(("cornell-reference", "caustic-reference"))
+                          else f"the reference {base}")
+    names = args.only.split() or list(FIGURES)
+    for n in names:
+        if n not in FIGURES:
+            report.die(WHERE, f"unknown figure '{n}' (one of {', '.join(FIGURES)})")
+        if n == "fig2" and not args.fig2_dir:
+            report.die(WHERE, "fig2 needs --fig2-dir")
+        FIGURES[n](args)
+
+
+if __name__ == "__main__":
+    main()
