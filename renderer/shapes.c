@@ -1,6 +1,5 @@
-/* shapes: ray/sphere (numerically careful quadratic, Haines et al., "Precision
- * improvements for ray/sphere intersection", Ray Tracing Gems ch. 7) and
- * ray/rectangle intersection. */
+/* shapes: constructors, bounds, normals and hit points of the two shapes
+ * (the ray intersections themselves are inline in shapes.h). */
 #include "shapes.h"
 
 #include <assert.h>
@@ -40,63 +39,6 @@ shape shape_rect(vec3 corner, vec3 edge1, vec3 edge2, int material)
     s.inv_len2_2 = 1.0 / l2;
     s.magnitude = bounds_magnitude(&s);
     return s;
-}
-
-static int sphere_intersect(const shape *s, const shape_ray *r, double tmin, double tmax, double *t)
-{
-    vec3 oc = vec_sub(r->origin, s->center);
-    double b = vec_dot(oc, r->dir);
-    vec3 f = vec_madd(oc, r->dir, -b);          /* oc minus its projection on dir */
-    double r2 = s->radius * s->radius;
-    double disc = r2 - vec_len2(f);
-    if (disc < 0.0)
-        return 0;
-    double c = vec_len2(oc) - r2;
-    double q = -b - copysign(sqrt(disc), b);
-    double t0, t1;
-    if (q == 0.0) { /* ray through the centre's tangent point: one double root */
-        t0 = t1 = -b;
-    } else {
-        t0 = c / q;
-        t1 = q;
-    }
-    if (t0 > t1) {
-        double tmp = t0;
-        t0 = t1;
-        t1 = tmp;
-    }
-    if (t0 > tmin && t0 < tmax) {
-        *t = t0;
-        return 1;
-    }
-    if (t1 > tmin && t1 < tmax) {
-        *t = t1;
-        return 1;
-    }
-    return 0;
-}
-
-static int rect_intersect(const shape *s, const shape_ray *r, double tmin, double tmax, double *t)
-{
-    double denom = vec_dot(r->dir, s->normal);
-    if (denom == 0.0)
-        return 0;
-    double th = vec_dot(vec_sub(s->corner, r->origin), s->normal) / denom;
-    if (!(th > tmin && th < tmax))
-        return 0;
-    vec3 d = vec_sub(vec_madd(r->origin, r->dir, th), s->corner);
-    double u = vec_dot(d, s->edge1) * s->inv_len2_1;
-    double v = vec_dot(d, s->edge2) * s->inv_len2_2;
-    if (u < 0.0 || u > 1.0 || v < 0.0 || v > 1.0)
-        return 0;
-    *t = th;
-    return 1;
-}
-
-int shape_intersect(const shape *s, const shape_ray *r, double tmin, double tmax, double *t)
-{
-    return s->kind == SHAPE_SPHERE ? sphere_intersect(s, r, tmin, tmax, t)
-                                   : rect_intersect(s, r, tmin, tmax, t);
 }
 
 vec3 shape_hit_point(const shape *s, const shape_ray *r, double t)

@@ -32,9 +32,6 @@ shape shape_sphere(vec3 center, double radius, int material);
 /* A rectangle from a corner and two perpendicular non-zero edges (asserted). */
 shape shape_rect(vec3 corner, vec3 edge1, vec3 edge2, int material);
 
-/* Nearest hit of r with s at distance t in (tmin, tmax). Returns 1 and sets *t
- * on a hit, 0 on a miss (including a ray exactly parallel to a rectangle). */
-int shape_intersect(const shape *s, const shape_ray *r, double tmin, double tmax, double *t);
 /* The point at distance t along r on s, moved onto the surface (the sphere
  * or the rectangle's plane) so that its error does not grow along chains of
  * reflections. */
@@ -44,5 +41,71 @@ vec3 shape_hit_point(const shape *s, const shape_ray *r, double t);
 vec3 shape_normal(const shape *s, vec3 p);
 /* Axis-aligned bounds of s. */
 void shape_bounds(const shape *s, vec3 *lo, vec3 *hi);
+
+/* ---- ray/shape intersection: inline, since the scene's loop and the BVH
+ * run it for every shape a ray meets (sphere: the numerically careful
+ * quadratic of Haines et al., "Precision improvements for ray/sphere
+ * intersection", Ray Tracing Gems ch. 7) ---- */
+
+/* Sphere and rectangle cases of shape_intersect (the same contract). */
+static inline int shape_sphere_intersect_(const shape *s, const shape_ray *r, double tmin, double tmax, double *t)
+{
+    vec3 oc = vec_sub(r->origin, s->center);
+    double b = vec_dot(oc, r->dir);
+    vec3 f = vec_madd(oc, r->dir, -b);          /* oc minus its projection on dir */
+    double r2 = s->radius * s->radius;
+    double disc = r2 - vec_len2(f);
+    if (disc < 0.0)
+        return 0;
+    double c = vec_len2(oc) - r2;
+    double q = -b - copysign(sqrt(disc), b);
+    double t0, t1;
+    if (q == 0.0) { /* ray through the centre's tangent point: one double root */
+        t0 = t1 = -b;
+    } else {
+        t0 = c / q;
+        t1 = q;
+    }
+    if (t0 > t1) {
+        double tmp = t0;
+        t0 = t1;
+        t1 = tmp;
+    }
+    if (t0 > tmin && t0 < tmax) {
+        *t = t0;
+        return 1;
+    }
+    if (t1 > tmin && t1 < tmax) {
+        *t = t1;
+        return 1;
+    }
+    return 0;
+}
+
+static inline int shape_rect_intersect_(const shape *s, const shape_ray *r, double tmin, double tmax, double *t)
+{
+    double denom = vec_dot(r->dir, s->normal);
+    if (denom == 0.0)
+        return 0;
+    double th = vec_dot(vec_sub(s->corner, r->origin), s->normal) / denom;
+    if (!(th > tmin && th < tmax))
+        return 0;
+    vec3 d = vec_sub(vec_madd(r->origin, r->dir, th), s->corner);
+    double u = vec_dot(d, s->edge1) * s->inv_len2_1;
+    double v = vec_dot(d, s->edge2) * s->inv_len2_2;
+    if (u < 0.0 || u > 1.0 || v < 0.0 || v > 1.0)
+        return 0;
+    *t = th;
+    return 1;
+}
+
+/* Nearest hit of r with s at distance t in (tmin, tmax). Returns 1 and sets *t
+ * on a hit, 0 on a miss (including a ray exactly parallel to a rectangle). */
+static inline int shape_intersect(const shape *s, const shape_ray *r, double tmin, double tmax, double *t)
+{
+    return s->kind == SHAPE_SPHERE ? shape_sphere_intersect_(s, r, tmin, tmax, t)
+                                   : shape_rect_intersect_(s, r, tmin, tmax, t);
+}
+
 
 #endif
