@@ -568,6 +568,11 @@ int scene_parse_buffer(const char *name, const char *text, size_t len, scene **o
         scene_free(p.sc);
         return SCENE_ERR_INPUT;
     }
+    if (scene_set_accel(p.sc, SCENE_ACCEL_AUTO)) {
+        snprintf(err, errlen, "%s: out of memory building the BVH of %zu shapes", name, p.sc->nshapes);
+        scene_free(p.sc);
+        return SCENE_ERR_RUNTIME;
+    }
     *out = p.sc;
     return SCENE_OK;
 }
@@ -624,6 +629,7 @@ void scene_free(scene *s)
 {
     if (!s)
         return;
+    bvh_free(s->accel);
     free(s->materials);
     free(s->shapes);
     free(s);
@@ -635,14 +641,36 @@ static double max_abs(vec3 v)
     return fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
 }
 
+int scene_set_accel(scene *s, scene_accel mode)
+{
+    assert(s && s->nshapes > 0);
+    assert(mode == SCENE_ACCEL_AUTO || mode == SCENE_ACCEL_BVH || mode == SCENE_ACCEL_LINEAR);
+    int want = mode == SCENE_ACCEL_BVH || (mode == SCENE_ACCEL_AUTO && s->nshapes >= SCENE_BVH_MIN_SHAPES);
+    if (!want) {
+        bvh_free(s->accel);
+        s->accel = NULL;
+        return 0;
+    }
+    if (s->accel) /* the shapes never change after parsing */
+        return 0;
+    /* every ray starts at the camera, the light or a point on a shape */
+    double reach = fmax(max_abs(s->camera.position), fmax(max_abs(s->bounds_lo), max_abs(s->bounds_hi)));
+    s->accel = bvh_build(s->shapes, s->nshapes, reach);
+    return s->accel ? 0 : -1;
+}
+
 int scene_intersect(const scene *s, const shape_ray *r, double tmax, scene_hit *h)
 {
     int best = -1;
-    double tt;
-    for (size_t i = 0; i < s->nshapes; i++) {
-        if (shape_intersect(&s->shapes[i], r, 0.0, tmax, &tt)) {
-            tmax = tt;
-            best = (int)i;
+    if (s->accel) {
+        best = bvh_intersect(s->accel, s->shapes, r, tmax, &tmax);
+    } else {
+        double tt;
+        for (size_t i = 0; i < s->nshapes; i++) {
+            if (shape_intersect(&s->shapes[i], r, 0.0, tmax, &tt)) {
+                tmax = tt;
+                best = (int)i;
+            }
         }
     }
     if (best < 0)
@@ -665,6 +693,8 @@ int scene_intersect(const scene *s, const shape_ray *r, double tmax, scene_hit *
 
 int scene_occluded(const scene *s, const shape_ray *r, double tmax)
 {
+    if (s->accel)
+        return bvh_occluded(s->accel, s->shapes, r, tmax);
     double t;
     for (size_t i = 0; i < s->nshapes; i++)
         if (shape_intersect(&s->shapes[i], r, 0.0, tmax, &t))
