@@ -329,10 +329,15 @@ static int parse_camera(parser *p)
      * decided from the photon map, render.c check_precision) */
     if (dir.x == 0.0 && dir.y == 0.0 && dir.z == 0.0)
         return perr(p, f[CAM_LOOK_AT].col, "camera look_at equals its position (after rounding to double precision)");
+    /* so short that its squared length underflows: no direction to normalize
+     * (fuzz_scene finding: position z 2.41e-300, look_at z 0) */
+    if (!(vec_len(dir) > 0.0))
+        return perr(p, f[CAM_LOOK_AT].col, "camera look_at is too close to its position (%g apart)",
+                    vec_maxc(vec_make(fabs(dir.x), fabs(dir.y), fabs(dir.z))));
     if (vec_len(f[CAM_UP].v) == 0.0)
-        return perr(p, f[CAM_UP].col, "camera up vector is zero");
+        return perr(p, f[CAM_UP].col, "camera up vector is zero (or too short to normalize)");
     vec3 side = vec_cross(vec_norm(dir), vec_norm(f[CAM_UP].v));
-    if (vec_len(side) < 1e-6)
+    if (!(vec_len(side) >= 1e-6))
         return perr(p, f[CAM_UP].col, "camera up vector is parallel to the view direction");
     p->sc->camera.position = f[CAM_POSITION].v;
     p->sc->camera.look_at = f[CAM_LOOK_AT].v;
