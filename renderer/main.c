@@ -289,6 +289,13 @@ static const cli_option pov_options_table[] = {
      "no indirect diffuse light (radiosity on unless given)", NULL},
     {"--no-photons", CLI_FLAG, NULL, PO(pov.photons), 0, 0, 0, 0, NULL, 0,
      "no caustics; glass still shadows direct light (photons on unless given)", NULL},
+    {"--rect-thickness", CLI_REAL, "F", PO(pov.rect_thickness), 0, 0, POVRAY_RECT_THICKNESS_MIN,
+     POVRAY_RECT_THICKNESS_MAX, NULL, 0,
+     "a rectangle becomes a box this fraction of the scene's diagonal thick, behind its lit face; thin "
+     "geometry needs less", NULL},
+    {"--bounces", CLI_U32, "B", PO(pov.bounces), 1, POVRAY_BOUNCES_MAX, 0, 0, NULL, 0,
+     "indirect diffuse bounces of the radiosity (its recursion_limit); the same light paths as "
+     "render --photon-depth B+1", NULL},
     {"-o", CLI_STRING, "FILE.pov", PO(out), 0, 0, 0, 0, NULL, 0, "where to write the SDL", "standard output"},
 };
 #undef PO

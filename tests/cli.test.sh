@@ -76,6 +76,9 @@ accel_identical() { # the BVH and the loop over every shape give the same image
   cmp "$TMP/bvh.exr" "$TMP/lin.exr"
 }
 check "exr bit-identical with --accel bvh and linear" accel_identical
+check "export-pov: --rect-thickness out of range: exit 2" expect_exit 2 "--rect-thickness: expected a number in \[1e-09, 0.01\]" \
+  $PM export-pov scenes/cornell.scene --rect-thickness 0.1
+check "export-pov: --bounces 0: exit 2" expect_exit 2 "--bounces: expected an integer in \[1, 20\]" $PM export-pov scenes/cornell.scene --bounces 0
 check "missing scene file: exit 1 naming it" expect_exit 1 "nope.scene: cannot open" $PM render nope.scene
 
 bad_scene() {
