@@ -72,5 +72,26 @@ $(eval $(call ref_render,caustic-nocaustic-128x96,$(REF_CAUSTIC),128,96,2,--qual
   bash scripts/pov-nocaustic.sh $(REF_TMP)/caustic-nocaustic-128x96.pov $(REF_CAUSTIC) 256 192 > $(REF_TMP)/nc.pov && \
   mv $(REF_TMP)/nc.pov $(REF_TMP)/caustic-nocaustic-128x96.pov))
 
+# The scenes that stress the method (scenes/slabs, library, tworooms;
+# reference/README.md, "More scenes"): direct light only for the per-pixel
+# check, the fast preset and reference quality for the full image. Their
+# rectangles become boxes 1e-7 of the diagonal thick (0.45 um), not the
+# default 1e-3 (4.5 mm), which closes the millimetre gaps of slabs.scene and
+# the library's books (measured: reference/README.md).
+REF_THIN := --rect-thickness 1e-7
+define ref_scene
+$(eval $(call ref_render,$(1)-direct-129x96,scenes/$(1).scene,129,96,3,--no-radiosity --no-photons $(REF_THIN),))
+$(eval $(call ref_render,$(1)-fast-128x96,scenes/$(1).scene,128,96,2,--quality fast $(REF_THIN),))
+$(eval $(call ref_render,$(1)-reference-128x96,scenes/$(1).scene,128,96,2,--quality reference $(REF_THIN),))
+endef
+$(foreach s,slabs library tworooms,$(eval $(call ref_scene,$(s))))
+# tworooms.scene is lit through many bounces, and POV-Ray adds no light
+# beyond about 8 (reference/README.md): its tests compare 2 bounces, ours
+# rendered with --photon-depth 3
+$(eval $(call ref_render,tworooms-b2-fast-128x96,scenes/tworooms.scene,128,96,2,--quality fast --bounces 2 $(REF_THIN),))
+$(eval $(call ref_render,tworooms-b2-reference-128x96,scenes/tworooms.scene,128,96,2,--quality reference --bounces 2 $(REF_THIN),))
+REF_SMALL += $(foreach s,slabs library tworooms,$(s)-direct-129x96 $(s)-fast-128x96 $(s)-reference-128x96) \
+             tworooms-b2-fast-128x96 tworooms-b2-reference-128x96
+
 reference-small: $(REF_SMALL:%=$(REF_DIR)/%.exr)
 reference: reference-small $(REF_LARGE:%=$(REF_DIR)/%.exr)
