@@ -31,7 +31,7 @@ TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 IMGMETRICS := $(BUILD)/imgmetrics
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
-.PHONY: all deps test help clean reproduce-table figures resolution bench reference reference-small fuzz
+.PHONY: all deps test help clean reproduce-table figures resolution bench reference reference-small fuzz sweep-slurm
 all: $(BUILD)/photonmap $(IMGMETRICS) ## build build/photonmap and build/imgmetrics
 deps: $(DEPS_STAMP) ## install the missing Debian packages (scripts/install-deps.sh, once)
 test: all unit-tests $(BUILD)/san/photonmap ## every test; ends with "N passed, N failed" (README)
@@ -43,6 +43,7 @@ bench: ## kNN, lookup and eye-pass benchmarks -> results/bench.md
 reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one
 fuzz: ## run the scene parser's libFuzzer target for FUZZ_SECONDS (60)
+sweep-slurm: ## a Slurm job array of make targets: TASKS=FILE or SWEEP=TARGET -> SLURM_DIR/sweep.sbatch
 help: ## this list
 	@awk -F':.*## ' '/^[a-z][a-z-]*:.*## / { printf "  make %-17s %s\n", $$1, $$2 }' $(firstword $(MAKEFILE_LIST))
 clean: ## remove the build (not results/ or reference/)
@@ -101,5 +102,6 @@ include experiments/table.mk
 include experiments/resolution.mk
 include experiments/figures.mk
 include experiments/bench.mk
+include experiments/slurm.mk
 include reference/reference.mk
 include tests/fuzz/fuzz.mk

@@ -13,6 +13,7 @@ PACKAGES=(
   libclang-rt-14-dev                # sanitizer and libFuzzer runtimes for clang
   time                              # /usr/bin/time: CPU seconds of every table cell
   valgrind linux-perf python3       # make bench: instruction counts, profile, JSON
+  slurmctld slurmd slurm-client munge  # tests/slurm.test.sh: a private single-node Slurm for make sweep-slurm
 )
 
 missing=()
