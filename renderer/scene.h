@@ -39,8 +39,8 @@ typedef struct {
 typedef enum { SCENE_ACCEL_AUTO = 0, SCENE_ACCEL_BVH = 1, SCENE_ACCEL_LINEAR = 2 } scene_accel;
 /* Below this many shapes the linear loop is faster than the BVH (measured:
  * README.md, "Ray casting"). The text form is for the usage line. */
-#define SCENE_BVH_MIN_SHAPES 16
-#define SCENE_BVH_MIN_SHAPES_TEXT "16"
+#define SCENE_BVH_MIN_SHAPES 24
+#define SCENE_BVH_MIN_SHAPES_TEXT "24"
 
 /* Result codes of the parser: SCENE_OK, a user input error (exit 2), or a
  * runtime failure such as I/O or memory (exit 1). */
