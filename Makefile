@@ -33,7 +33,7 @@ TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 IMGMETRICS := $(BUILD)/imgmetrics
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
-.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small fuzz
+.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small fuzz sweep-slurm
 all: $(BUILD)/photonmap $(IMGMETRICS) ## build build/photonmap and build/imgmetrics
 deps: $(DEPS_STAMP) ## install the missing Debian packages (scripts/install-deps.sh, once)
 test: all unit-tests $(BUILD)/san/photonmap ## every test; ends with "N passed, N failed" (README)
@@ -52,6 +52,7 @@ bench: ## kNN, lookup and eye-pass benchmarks -> results/bench.md
 reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one
 fuzz: ## run the scene parser's libFuzzer target for FUZZ_SECONDS (60)
+sweep-slurm: ## a Slurm job array of make targets: TASKS=FILE or SWEEP=TARGET -> SLURM_DIR/sweep.sbatch
 help: ## this list
 	@awk -F':.*## ' '/^[a-z][a-z-]*:.*## / { printf "  make %-17s %s\n", $$1, $$2 }' $(firstword $(MAKEFILE_LIST))
 clean: ## remove the build (not results/ or reference/)
@@ -119,5 +120,6 @@ include experiments/caustic.mk
 include experiments/estimator-bias.mk
 include experiments/scenes.mk
 include experiments/bench.mk
+include experiments/slurm.mk
 include reference/reference.mk
 include tests/fuzz/fuzz.mk

@@ -153,3 +153,12 @@ BIAS_OUT ?= $(RESULTS)/estimator-bias
 
 # make bench
 BENCH_BIN := $(BUILD)/bench/bench
+
+# make sweep-slurm (experiments/slurm.mk): the tasks, from a file of make
+# targets (TASKS) or from a target's prerequisites (SWEEP); where the task
+# list, the sbatch script and the logs go; extra #SBATCH options (words
+# without spaces, e.g. "--time=2:00:00 --cpus-per-task=1 --partition=short")
+TASKS ?=
+SWEEP ?=
+SLURM_DIR ?= $(BUILD)/slurm
+SBATCH_OPTS ?=

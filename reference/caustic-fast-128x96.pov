@@ -1,4 +1,4 @@
-// POV-Ray 3.7 SDL exported by `photonmap export-pov` from reference/caustic.scene
+// POV-Ray 3.7 SDL exported by `photonmap export-pov` from scenes/caustic.scene
 // settings: 256x192, quality fast, radiosity on, photons on
 // Render single-threaded for reproducibility, linear OpenEXR, no antialiasing:
 //   povray +I<this> +O<out>.exr +FE +W256 +H192 -A -J +WT1 -D -V +GS

@@ -33,14 +33,18 @@ typedef struct {
     const char *exr, *png, *stats;
     double exposure;
     int quiet;
+    int accel; /* scene_accel */
 } render_args;
 
 static const char *const method_names[] = {"conventional", "precomputed", NULL};
 static const char *const direct_names[] = {"photons", "shadow-rays", NULL};
 static const char *const rep_tree_names[] = {"separate", "shared", NULL};
+/* in the order of scene_accel */
+static const char *const accel_names[] = {"auto", "bvh", "linear", NULL};
 /* the table writes these choices as ints into enum fields */
 _Static_assert(sizeof(config_method) == sizeof(int), "config_method is int-sized");
 _Static_assert(sizeof(config_direct) == sizeof(int), "config_direct is int-sized");
+_Static_assert(SCENE_ACCEL_AUTO == 0 && SCENE_ACCEL_BVH == 1 && SCENE_ACCEL_LINEAR == 2, "accel_names order");
 
 #define RO(field) offsetof(render_args, field)
 #define RC(field) offsetof(render_args, cfg.field)
@@ -81,6 +85,9 @@ static const cli_option render_options[] = {
      "maximum bounces of a photon path", NULL},
     {"--eye-depth", CLI_U32, "D", RC(eye_depth), 0, CONFIG_MAX_DEPTH, 0, 0, NULL, 0,
      "maximum specular bounces of an eye path", NULL},
+    {"--accel", CLI_CHOICE, NULL, RO(accel), 0, 0, 0, 0, accel_names, 0,
+     "ray casting: a BVH over the shapes from " SCENE_BVH_MIN_SHAPES_TEXT " shapes on (auto), always, or a loop over "
+     "every shape; the image does not depend on it", NULL},
     {"-o", CLI_STRING, "FILE.exr", RO(exr), 0, 0, 0, 0, NULL, 0, "linear float RGB OpenEXR", NULL},
     {"--png", CLI_STRING, "FILE.png", RO(png), 0, 0, 0, 0, NULL, 0, "sRGB 8-bit preview", NULL},
     {"--exposure", CLI_REAL, "E", RO(exposure), 0, 0, 0.0, 1e30, NULL, 0, "scale of the PNG preview", NULL},
@@ -239,6 +246,11 @@ static int cmd_render(int argc, char **argv)
     scene *sc = NULL;
     if ((rc = load_scene(a.scene, &sc)))
         return rc;
+    if (scene_set_accel(sc, (scene_accel)a.accel)) {
+        fprintf(stderr, "photonmap: %s: out of memory building the BVH of %zu shapes\n", a.scene, sc->nshapes);
+        scene_free(sc);
+        return CLI_EXIT_RUNTIME;
+    }
     const char *paths[4] = {a.exr, a.png, a.stats, cfg->dump_reps};
     const char *names[4] = {"-o", "--png", "--stats", "--dump-reps"};
     if ((rc = check_memory(sc, cfg)) || (rc = claim_outputs(&render_command, paths, names, 4))) {
@@ -292,6 +304,13 @@ static const cli_option pov_options_table[] = {
      "no indirect diffuse light (radiosity on unless given)", NULL},
     {"--no-photons", CLI_FLAG, NULL, PO(pov.photons), 0, 0, 0, 0, NULL, 0,
      "no caustics; glass still shadows direct light (photons on unless given)", NULL},
+    {"--rect-thickness", CLI_REAL, "F", PO(pov.rect_thickness), 0, 0, POVRAY_RECT_THICKNESS_MIN,
+     POVRAY_RECT_THICKNESS_MAX, NULL, 0,
+     "a rectangle becomes a box this fraction of the scene's diagonal thick, behind its lit face; thin "
+     "geometry needs less", NULL},
+    {"--bounces", CLI_U32, "B", PO(pov.bounces), 1, POVRAY_BOUNCES_MAX, 0, 0, NULL, 0,
+     "indirect diffuse bounces of the radiosity (its recursion_limit); the same light paths as "
+     "render --photon-depth B+1", NULL},
     {"-o", CLI_STRING, "FILE.pov", PO(out), 0, 0, 0, 0, NULL, 0, "where to write the SDL", "standard output"},
 };
 #undef PO

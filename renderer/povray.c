@@ -31,9 +31,6 @@
 /* fade_distance in scene units: the light's 2/(1+(d/D)^2) is 2 D^2/d^2 to a
  * relative error (D/d)^2, far below half-float precision at room scale. */
 #define POV_FADE_DISTANCE 1e-3
-/* Thickness of the box that stands for a rectangle, as a fraction of the
- * scene's bounding-box diagonal. */
-#define POV_RECT_THICKNESS 1e-3
 /* Relative shrink of the shadow-only proxy of a glass sphere (photons off). */
 #define POV_PROXY_SHRINK 1e-4
 
@@ -48,6 +45,8 @@ povray_options povray_defaults(void)
     o.quality = POVRAY_QUALITY_FAST;
     o.radiosity = 1;
     o.photons = 1;
+    o.rect_thickness = POVRAY_RECT_THICKNESS;
+    o.bounces = POVRAY_BOUNCES;
     return o;
 }
 
@@ -103,7 +102,13 @@ static void put_header(FILE *f, const scene *sc, const char *scene_name, const p
     fprintf(f, "// (for the renderer's 2x2 subpixels render at 2W x 2H and box-downsample by 2).\n");
     fprintf(f, "// Units: z negated (left-handed); light colour = I/(2 pi D^2) with fade_distance D,\n");
     fprintf(f, "// fade_power 2, so that colour x 2/(1+(d/D)^2) x diffuse 1 = I/(pi d^2).\n");
-    fprintf(f, "// Scene bounds diagonal %g.\n\n", sc->scale);
+    fprintf(f, "// Scene bounds diagonal %g.\n", sc->scale);
+    if (o->rect_thickness != POVRAY_RECT_THICKNESS) /* (the default's line predates the option) */
+        fprintf(f, "// Rectangles are boxes %g of the diagonal thick (--rect-thickness).\n", o->rect_thickness);
+    if (o->radiosity && o->bounces != POVRAY_BOUNCES)
+        fprintf(f, "// %u indirect bounces (--bounces): compare with render --photon-depth %u.\n", o->bounces,
+                o->bounces + 1);
+    fputc('\n', f);
     fprintf(f, "#version 3.7;\n\n");
     fprintf(f, "global_settings {\n");
     fprintf(f, "  assumed_gamma 1.0\n");
@@ -118,7 +123,7 @@ static void put_header(FILE *f, const scene *sc, const char *scene_name, const p
         fprintf(f, "    count %d\n", ref ? 300 : 100);
         fprintf(f, "    error_bound %s\n", ref ? "0.3" : "0.5");
         fprintf(f, "    nearest_count %d\n", ref ? 8 : 5);
-        fprintf(f, "    recursion_limit 20\n");
+        fprintf(f, "    recursion_limit %u\n", o->bounces);
         fprintf(f, "    low_error_factor 0.5\n");
         fprintf(f, "    gray_threshold 0\n");
         fprintf(f, "    minimum_reuse 0.015\n");
@@ -224,11 +229,11 @@ static void put_photon_block(FILE *f, material_kind k)
  * depths [lo, hi] x thickness behind that face: (0, 1) for the surface, a
  * range strictly inside for a shadow proxy. Writes "box {" and the shape and
  * leaves the object open. */
-static void put_rect(FILE *f, const scene *sc, const shape *s, double lo, double hi)
+static void put_rect(FILE *f, const scene *sc, const shape *s, double lo, double hi, double thickness)
 {
-    assert(0.0 <= lo && lo < hi && hi <= 1.0);
+    assert(0.0 <= lo && lo < hi && hi <= 1.0 && thickness > 0.0);
     double side = vec_dot(s->normal, vec_sub(sc->light.position, s->corner));
-    double thick = (side > 0.0 ? -1.0 : 1.0) * POV_RECT_THICKNESS * sc->scale;
+    double thick = (side > 0.0 ? -1.0 : 1.0) * thickness * sc->scale;
     vec3 depth = vec_scale(s->normal, thick * (hi - lo));
     vec3 corner = vec_madd(s->corner, s->normal, thick * lo);
     fprintf(f, "box {\n  ");
@@ -256,7 +261,7 @@ static void put_rect(FILE *f, const scene *sc, const shape *s, double lo, double
 
 /* Writes "sphere {" or "box {" and the geometry of s, leaving it open; a
  * proxy is the same shape shrunk strictly inside it. */
-static void put_geometry(FILE *f, const scene *sc, const shape *s, int proxy)
+static void put_geometry(FILE *f, const scene *sc, const shape *s, int proxy, double thickness)
 {
     if (s->kind == SHAPE_SPHERE) {
         fprintf(f, "sphere {\n  ");
@@ -265,9 +270,9 @@ static void put_geometry(FILE *f, const scene *sc, const shape *s, int proxy)
         put_num(f, proxy ? s->radius * (1.0 - POV_PROXY_SHRINK) : s->radius);
         fprintf(f, "\n");
     } else if (proxy) {
-        put_rect(f, sc, s, 0.25, 0.75);
+        put_rect(f, sc, s, 0.25, 0.75, thickness);
     } else {
-        put_rect(f, sc, s, 0.0, 1.0);
+        put_rect(f, sc, s, 0.0, 1.0, thickness);
     }
 }
 
@@ -277,7 +282,7 @@ static void put_shapes(FILE *f, const scene *sc, const povray_options *o)
         const shape *s = &sc->shapes[i];
         assert(s->material >= 0 && (size_t)s->material < sc->nmaterials);
         const material *m = &sc->materials[s->material];
-        put_geometry(f, sc, s, 0);
+        put_geometry(f, sc, s, 0, o->rect_thickness);
         fprintf(f, "  material { PM_Mat%d }  // %s\n", s->material, m->name);
         put_photon_block(f, m->kind);
         fprintf(f, "}\n");
@@ -288,7 +293,7 @@ static void put_shapes(FILE *f, const scene *sc, const povray_options *o)
              * camera, refracted, reflected and radiosity rays, casts the
              * shadow the renderer's shadow rays see. */
             fprintf(f, "// shadow-only proxy of the glass above (photons off)\n");
-            put_geometry(f, sc, s, 1);
+            put_geometry(f, sc, s, 1, o->rect_thickness);
             fprintf(f, "  pigment { rgb 0 } finish { diffuse 0 ambient 0 }\n");
             fprintf(f, "  no_image no_reflection no_radiosity\n}\n");
         }
@@ -298,6 +303,8 @@ static void put_shapes(FILE *f, const scene *sc, const povray_options *o)
 int povray_write(FILE *f, const scene *sc, const char *scene_name, const povray_options *o)
 {
     assert(f && sc && scene_name && o && o->width > 0 && o->height > 0);
+    assert(o->rect_thickness >= POVRAY_RECT_THICKNESS_MIN && o->rect_thickness <= POVRAY_RECT_THICKNESS_MAX);
+    assert(o->bounces >= 1 && o->bounces <= POVRAY_BOUNCES_MAX);
     put_header(f, sc, scene_name, o);
     put_camera(f, sc, o);
     put_light(f, sc, o);

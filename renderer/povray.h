@@ -15,9 +15,24 @@ typedef struct {
     povray_quality quality;    /* radiosity and photon settings: fast or reference */
     int radiosity;          /* 0: no indirect diffuse light */
     int photons;            /* 0: no caustics (glass still shadows direct light) */
+    double rect_thickness;  /* a rectangle's box, as a fraction of the scene's diagonal */
+    uint32_t bounces;       /* radiosity recursion_limit: indirect diffuse bounces */
 } povray_options;
 
-/* 1024x768, fast, radiosity and photons on; never fails. */
+/* The default rect_thickness: 1e-3 of the diagonal (4.5 mm in the paper's
+ * room); thin geometry (scenes/slabs.scene) needs thinner boxes. */
+#define POVRAY_RECT_THICKNESS 1e-3
+#define POVRAY_RECT_THICKNESS_MIN 1e-9
+#define POVRAY_RECT_THICKNESS_MAX 1e-2
+/* The default number of indirect bounces (radiosity recursion_limit), and
+ * POV-Ray's largest. Measured: POV-Ray adds no light beyond about 8 bounces
+ * (reference/README.md); `render --photon-depth B+1` is the same light path
+ * length as `export-pov --bounces B`. */
+#define POVRAY_BOUNCES 20
+#define POVRAY_BOUNCES_MAX 20
+
+/* 1024x768, fast, radiosity (20 bounces) and photons on, rectangles 1e-3
+ * thick; never fails. */
 povray_options povray_defaults(void);
 /* "fast" or "reference". */
 const char *povray_quality_name(povray_quality q);

@@ -329,10 +329,15 @@ static int parse_camera(parser *p)
      * decided from the photon map, render.c check_precision) */
     if (dir.x == 0.0 && dir.y == 0.0 && dir.z == 0.0)
         return perr(p, f[CAM_LOOK_AT].col, "camera look_at equals its position (after rounding to double precision)");
+    /* so short that its squared length underflows: no direction to normalize
+     * (fuzz_scene finding: position z 2.41e-300, look_at z 0) */
+    if (!(vec_len(dir) > 0.0))
+        return perr(p, f[CAM_LOOK_AT].col, "camera look_at is too close to its position (%g apart)",
+                    vec_maxc(vec_make(fabs(dir.x), fabs(dir.y), fabs(dir.z))));
     if (vec_len(f[CAM_UP].v) == 0.0)
-        return perr(p, f[CAM_UP].col, "camera up vector is zero");
+        return perr(p, f[CAM_UP].col, "camera up vector is zero (or too short to normalize)");
     vec3 side = vec_cross(vec_norm(dir), vec_norm(f[CAM_UP].v));
-    if (vec_len(side) < 1e-6)
+    if (!(vec_len(side) >= 1e-6))
         return perr(p, f[CAM_UP].col, "camera up vector is parallel to the view direction");
     p->sc->camera.position = f[CAM_POSITION].v;
     p->sc->camera.look_at = f[CAM_LOOK_AT].v;
@@ -568,6 +573,11 @@ int scene_parse_buffer(const char *name, const char *text, size_t len, scene **o
         scene_free(p.sc);
         return SCENE_ERR_INPUT;
     }
+    if (scene_set_accel(p.sc, SCENE_ACCEL_AUTO)) {
+        snprintf(err, errlen, "%s: out of memory building the BVH of %zu shapes", name, p.sc->nshapes);
+        scene_free(p.sc);
+        return SCENE_ERR_RUNTIME;
+    }
     *out = p.sc;
     return SCENE_OK;
 }
@@ -624,19 +634,42 @@ void scene_free(scene *s)
 {
     if (!s)
         return;
+    bvh_free(s->accel);
     free(s->materials);
     free(s->shapes);
     free(s);
 }
 
+int scene_set_accel(scene *s, scene_accel mode)
+{
+    assert(s && s->nshapes > 0);
+    assert(mode == SCENE_ACCEL_AUTO || mode == SCENE_ACCEL_BVH || mode == SCENE_ACCEL_LINEAR);
+    int want = mode == SCENE_ACCEL_BVH || (mode == SCENE_ACCEL_AUTO && s->nshapes >= SCENE_BVH_MIN_SHAPES);
+    if (!want) {
+        bvh_free(s->accel);
+        s->accel = NULL;
+        return 0;
+    }
+    if (s->accel) /* the shapes never change after parsing */
+        return 0;
+    /* every ray starts at the camera, the light or a point on a shape */
+    double reach = vec_max2(vec_max_abs(s->camera.position), vec_max2(vec_max_abs(s->bounds_lo), vec_max_abs(s->bounds_hi)));
+    s->accel = bvh_build(s->shapes, s->nshapes, reach);
+    return s->accel ? 0 : -1;
+}
+
 int scene_intersect(const scene *s, const shape_ray *r, double tmax, scene_hit *h)
 {
     int best = -1;
-    double tt;
-    for (size_t i = 0; i < s->nshapes; i++) {
-        if (shape_intersect(&s->shapes[i], r, 0.0, tmax, &tt)) {
-            tmax = tt;
-            best = (int)i;
+    if (s->accel) {
+        best = bvh_intersect(s->accel, s->shapes, r, tmax, &tmax);
+    } else {
+        double tt;
+        for (size_t i = 0; i < s->nshapes; i++) {
+            if (shape_intersect(&s->shapes[i], r, 0.0, tmax, &tt)) {
+                tmax = tt;
+                best = (int)i;
+            }
         }
     }
     if (best < 0)
@@ -659,6 +692,8 @@ int scene_intersect(const scene *s, const shape_ray *r, double tmax, scene_hit *
 
 int scene_occluded(const scene *s, const shape_ray *r, double tmax)
 {
+    if (s->accel)
+        return bvh_occluded(s->accel, s->shapes, r, tmax);
     double t;
     for (size_t i = 0; i < s->nshapes; i++)
         if (shape_intersect(&s->shapes[i], r, 0.0, tmax, &t))

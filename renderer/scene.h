@@ -6,6 +6,7 @@
 
 #include <stddef.h>
 
+#include "bvh.h"
 #include "material.h"
 #include "shapes.h"
 #include "vec.h"
@@ -29,7 +30,17 @@ typedef struct {
     size_t nshapes;
     vec3 bounds_lo, bounds_hi; /* of all shapes and the light */
     double scale;              /* bounding-box diagonal: the unit for epsilons and radii */
+    bvh *accel;                /* the shapes' BVH, or NULL: rays test every shape (scene_set_accel) */
 } scene;
+
+/* How rays find the shapes: a BVH when the scene has at least
+ * SCENE_BVH_MIN_SHAPES shapes (auto), always, or never (a linear loop over
+ * the shapes). Every mode gives bit-identical results (bvh.h). */
+typedef enum { SCENE_ACCEL_AUTO = 0, SCENE_ACCEL_BVH = 1, SCENE_ACCEL_LINEAR = 2 } scene_accel;
+/* Below this many shapes the linear loop is faster than the BVH (measured:
+ * README.md, "Ray casting"). The text form is for the usage line. */
+#define SCENE_BVH_MIN_SHAPES 24
+#define SCENE_BVH_MIN_SHAPES_TEXT "24"
 
 /* Result codes of the parser: SCENE_OK, a user input error (exit 2), or a
  * runtime failure such as I/O or memory (exit 1). */
@@ -43,6 +54,10 @@ int scene_parse_buffer(const char *name, const char *text, size_t len, scene **o
 /* Reads and parses a file; same contract as scene_parse_buffer (an unreadable
  * file is SCENE_ERR_RUNTIME with "path: reason"). */
 int scene_load(const char *path, scene **out, char *err, size_t errlen);
+/* Builds (or drops) the scene's BVH for `mode`; the parser has already
+ * applied SCENE_ACCEL_AUTO. Returns 0, or -1 when memory runs out (the scene
+ * then has no BVH and still works, by the linear loop). */
+int scene_set_accel(scene *s, scene_accel mode);
 /* Frees a scene; NULL is fine. */
 void scene_free(scene *s);
 

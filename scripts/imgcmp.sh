@@ -10,7 +10,8 @@
 #       Box-downsamples both to BW x BH blocks (default 32x24); per block and
 #       channel e = |t-r| / (r + 0.01*mean(r)); prints the 99th percentile,
 #       the channel-mean ratios t/r and the sRGB 8-bit RMS/PSNR; fails when
-#       the percentile exceeds THRESHOLD (default 0.15).
+#       the percentile exceeds THRESHOLD (default 0.15), or, when
+#       IMGCMP_MEAN_TOL=T is set, when a channel-mean ratio is outside 1 +- T.
 #   imgcmp.sh stats TEST REF [MASK]
 #       Prints relMSE = mean (t-r)^2/(r^2+0.01), RMSE and PSNR (peak = max r)
 #       over all pixels, or over the pixels where MASK's first channel > 0.5.
@@ -73,7 +74,7 @@ pixel)
 block)
   bw=${1:-32} bh=${2:-24} thr=${3:-0.15}
   paste -d' ' <(dump "$test_img" --resize:filter=box "${bw}x${bh}") <(dump "$ref_img" --resize:filter=box "${bw}x${bh}") |
-    awk -v thr="$thr" '
+    awk -v thr="$thr" -v mtol="${IMGCMP_MEAN_TOL:-}" '
     { n++; for (c = 0; c < 3; c++) { t[n, c] = $(3 + c); r[n, c] = $(8 + c); st[c] += $(3 + c); sr[c] += $(8 + c) } }
     function srgb(x) { if (x <= 0) return 0; if (x >= 1) return 255; x = (x <= 0.0031308) ? 12.92 * x : 1.055 * x ^ (1 / 2.4) - 0.055; return int(x * 255 + 0.5) }
     END {
@@ -88,9 +89,11 @@ block)
       for (i = 2; i <= m; i++) { v = e[i]; j = i - 1; while (j > 0 && e[j] > v) { e[j + 1] = e[j]; j-- } e[j + 1] = v }
       k = int(0.99 * m + 0.999999); if (k < 1) k = 1; if (k > m) k = m
       p99 = e[k]; rms = sqrt(se / m); psnr = rms > 0 ? 20 * log(255 / rms) / log(10) : 99
-      printf "block: p99 %.4f (threshold %g) over %d blocks; channel means t/r %.4f %.4f %.4f; sRGB8 RMS %.2f PSNR %.1f dB\n",
-        p99, thr, n, st[0] / sr[0], st[1] / sr[1], st[2] / sr[2], rms, psnr
-      exit p99 > thr ? 1 : 0
+      printf "block: p99 %.4f (threshold %g) over %d blocks; channel means t/r %.4f %.4f %.4f%s; sRGB8 RMS %.2f PSNR %.1f dB\n",
+        p99, thr, n, st[0] / sr[0], st[1] / sr[1], st[2] / sr[2], mtol != "" ? sprintf(" (tolerance %g)", mtol) : "", rms, psnr
+      bad = p99 > thr
+      if (mtol != "") for (c = 0; c < 3; c++) { q = st[c] / sr[c] - 1; if (q < 0) q = -q; if (q > mtol + 0) bad = 1 }
+      exit bad ? 1 : 0
     }'
   ;;
 stats)

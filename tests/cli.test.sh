@@ -104,6 +104,16 @@ check "--width 99999: exit 2" expect_exit 2 "--width: expected an integer in \[1
 check "unknown flag: exit 2" expect_exit 2 "unknown option '--fast'" $PM render scenes/cornell.scene --fast
 check "flag without value: exit 2" expect_exit 2 "--nn needs a value" $PM render scenes/cornell.scene --nn
 check "bad method: exit 2" expect_exit 2 "--method: expected conventional or precomputed" $PM render scenes/cornell.scene --method fast
+check "bad --accel: exit 2" expect_exit 2 "--accel: expected auto, bvh or linear" $PM render scenes/cornell.scene --accel kd
+accel_identical() { # the BVH and the loop over every shape give the same image
+  $PM render scenes/cornell.scene "${SMALL[@]}" --accel bvh -o "$TMP/bvh.exr" &&
+  $PM render scenes/cornell.scene "${SMALL[@]}" --accel linear -o "$TMP/lin.exr" &&
+  cmp "$TMP/bvh.exr" "$TMP/lin.exr"
+}
+check "exr bit-identical with --accel bvh and linear" accel_identical
+check "export-pov: --rect-thickness out of range: exit 2" expect_exit 2 "--rect-thickness: expected a number in \[1e-09, 0.01\]" \
+  $PM export-pov scenes/cornell.scene --rect-thickness 0.1
+check "export-pov: --bounces 0: exit 2" expect_exit 2 "--bounces: expected an integer in \[1, 20\]" $PM export-pov scenes/cornell.scene --bounces 0
 check "missing scene file: exit 1 naming it" expect_exit 1 "nope.scene: cannot open" $PM render nope.scene
 
 bad_scene() {

@@ -22,7 +22,7 @@ DIRECT_MAXBAD=0.002 # share of pixels allowed beyond it (measured 0.04%: glass s
 FULL=(--photons 500000 --nn 100 --width 128 --height 96 --threads 2 --quiet)
 BLOCKS=(16 12)     # 8x8-pixel blocks at 128x96
 BLOCK_THR=0.15     # p99 of the per-block relative error (correct pairs <= 0.11, wrong >= 0.2)
-# the caustic scene (reference/caustic.scene: glass sphere lifted so that its
+# the caustic scene (scenes/caustic.scene: glass sphere lifted so that its
 # caustic is in view), compared in the caustic's window in 4x4-pixel blocks
 CAUSTIC_CUT=24x20+52+76
 CAUSTIC_BLOCKS=(6 5)
@@ -120,12 +120,12 @@ check "full control: mirror wall diffuse fails" fails full_cmp "$TMP/full-diffmi
 # --- the glass caustic -------------------------------------------------------
 # In cornell.scene the glass caustic lies under the sphere, out of view (POV-Ray
 # with and without it differ by 2.7% at p99, below the noise), so the caustic
-# is checked in reference/caustic.scene, in the window around it.
+# is checked in scenes/caustic.scene, in the window around it.
 caustic_cmp() {
   IMGCMP_CUT=$CAUSTIC_CUT "${CMP[@]}" block "$1" "$REF/caustic-fast-128x96.exr" "${CAUSTIC_BLOCKS[@]}" "$BLOCK_THR"
 }
-$PM render $REF/caustic.scene "${FULL[@]}" --direct photons -o "$TMP/caustic-photons.exr"
-$PM render $REF/caustic.scene "${FULL[@]}" --direct shadow-rays -o "$TMP/caustic-shadow.exr"
+$PM render scenes/caustic.scene "${FULL[@]}" --direct photons -o "$TMP/caustic-photons.exr"
+$PM render scenes/caustic.scene "${FULL[@]}" --direct shadow-rays -o "$TMP/caustic-shadow.exr"
 check "caustic (--direct photons) vs POV-Ray: block metric in its window" caustic_cmp "$TMP/caustic-photons.exr"
 check "caustic (--direct shadow-rays) vs POV-Ray: block metric in its window" caustic_cmp "$TMP/caustic-shadow.exr"
 check "caustic control: glass caustic missing (POV-Ray without it) fails" fails caustic_cmp "$REF/caustic-nocaustic-128x96.exr"

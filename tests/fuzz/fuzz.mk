@@ -11,7 +11,7 @@ FUZZ_SECONDS ?= 60
 FUZZ_JOBS ?= 1
 FUZZ_FLAGS := -std=c17 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Wpedantic -g -O1 -fno-omit-frame-pointer \
 	-fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Irenderer
-FUZZ_SRC := tests/fuzz/fuzz_scene.c renderer/scene.c renderer/shapes.c renderer/utf8.c
+FUZZ_SRC := tests/fuzz/fuzz_scene.c renderer/scene.c renderer/shapes.c renderer/bvh.c renderer/utf8.c
 
 .PHONY: fuzz-build
 fuzz-build: $(BUILD)/fuzz_scene

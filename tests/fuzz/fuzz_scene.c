@@ -67,6 +67,42 @@ static void check_scene(const scene *s)
     }
 }
 
+/* The BVH must answer every ray exactly as the loop over the shapes does,
+ * at any scale and position the parser accepts: rays from the camera and the
+ * light towards each shape's corner or centre and a little beside it. */
+static void check_bvh(scene *s)
+{
+    if (scene_set_accel(s, SCENE_ACCEL_BVH))
+        return; /* out of memory: the scene still works by the loop */
+    size_t n = s->nshapes < 32 ? s->nshapes : 32;
+    for (size_t i = 0; i < 2 * n; i++) {
+        const shape *sh = &s->shapes[i % n];
+        vec3 target = sh->kind == SHAPE_SPHERE ? sh->center : vec_madd(sh->corner, vec_add(sh->edge1, sh->edge2), 0.5);
+        if (i >= n) /* beside it: grazing the sphere, beyond the rectangle's edge */
+            target = sh->kind == SHAPE_SPHERE ? vec_add(target, vec_make(sh->radius, 0, 0)) : vec_add(sh->corner, sh->edge1);
+        vec3 from[2] = {s->camera.position, s->light.position};
+        for (int k = 0; k < 2; k++) {
+            vec3 d = vec_sub(target, from[k]);
+            double len = vec_len(d);
+            if (!(len > 0.0 && isfinite(len)))
+                continue;
+            shape_ray r = {from[k], vec_scale(d, 1.0 / len)};
+            if (!vec_finite(r.dir))
+                continue;
+            scene_hit hb, hl;
+            int ab = scene_intersect(s, &r, INFINITY, &hb);
+            int ob = scene_occluded(s, &r, len);
+            bvh *keep = s->accel;
+            s->accel = NULL; /* the loop, same scene */
+            int al = scene_intersect(s, &r, INFINITY, &hl);
+            int ol = scene_occluded(s, &r, len);
+            s->accel = keep;
+            if (ab != al || ob != ol || (al && (hb.shape != hl.shape || hb.t != hl.t)))
+                finding("the BVH and the loop over the shapes disagree");
+        }
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     char err[512];
@@ -74,6 +110,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     int rc = scene_parse_buffer("fuzz.scene", (const char *)data, size, &s, err, sizeof err);
     if (rc == SCENE_OK) {
         check_scene(s);
+        check_bvh(s);
         scene_free(s);
         return 0;
     }

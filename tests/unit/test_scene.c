@@ -65,6 +65,8 @@ void test_scene_errors(void)
         {HEAD "light point position 0 1 0 power -1 1 1\n", "test.scene:3:1:", "second light"},
         {"light point position 0 1 0 power -1 1 1\n", "test.scene:1:34:", "out of range"},
         {"camera position 0 1 2 look_at 0 1 2 up 0 1 0 fov 60\n", "test.scene:1:31:", "look_at equals"},
+        {"camera position 0 1 2.41e-300 look_at 0 1 0 up 0 1 0 fov 60\n", "test.scene:1:39:", "too close to its position"},
+        {"camera position 0 1 2 look_at 0 1 0 up 0 1e-300 0 fov 60\n", "test.scene:1:40:", "up vector is zero"},
         {"camera position 0 1 2 look_at 0 1 0 up 0 0 1 fov 60\n", "test.scene:1:40:", "parallel"},
         {"camera position 0 1 2 look_at 0 1 0 up 0 1 0 fov 180\n", "test.scene:1:50:", "out of range"},
         {HEAD "material w plastic rho 1 1 1\n", "test.scene:3:12:", "unknown material kind 'plastic'"},

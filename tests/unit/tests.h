@@ -41,7 +41,11 @@
     X(stability_camera_inside_glass)   \
     X(stability_tir_depth_limit)       \
     X(stability_exr_round_trip_of_renders) \
-    X(stability_parser_degenerate_sizes)
+    X(stability_parser_degenerate_sizes) \
+    X(bvh_matches_brute_force)         \
+    X(bvh_degenerate_sets)             \
+    X(bvh_scene_switch)                \
+    X(bvh_parser_stays_linear)
 
 #define TEST_DECLARE(name) void test_##name(void);
 TEST_LIST(TEST_DECLARE)
