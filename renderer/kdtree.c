@@ -1174,19 +1174,27 @@ uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred
         float rd = root_offsets(t, q, off);
         uint32_t node = 0;
         if (rd <= prune_bound(max_d2)) {
+            kd_qbase qv;
+            KD_QBASE_INIT(qv, q, best_d2);
             do {
                 uint32_t leaf = descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp);
                 uint32_t beg = t->leaf_start[leaf], end = t->leaf_start[leaf + 1];
                 for (uint32_t c = beg; c < end; c += KD_CHUNK) {
-                    float dd[KD_CHUNK];
-                    chunk_d2(t, c, q[0], q[1], q[2], dd);
-                    uint32_t m = end - c < KD_CHUNK ? end - c : KD_CHUNK;
-                    for (uint32_t j = 0; j < m; j++) {
-                        float d = dd[j];
+                    /* only the lanes within the best distance so far */
+                    uint32_t bits[KD_CHUNK];
+                    uint32_t m = chunk_mask(t->x, t->y, t->z, c, &qv, bits);
+                    if (end - c < KD_CHUNK)
+                        m &= (1u << (end - c)) - 1u;
+                    while (m) {
+                        uint32_t j = (uint32_t)__builtin_ctz(m);
+                        m &= m - 1u;
+                        float d;
+                        memcpy(&d, &bits[j], sizeof d);
                         if (d <= best_d2 && (best == KD_NONE || d < best_d2 || c + j < best) &&
                             (!pred || pred(c + j, ctx))) {
                             best = c + j;
                             best_d2 = d;
+                            KD_QBASE_SETR2(qv, best_d2);
                         }
                     }
                 }

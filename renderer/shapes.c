@@ -12,6 +12,15 @@ static double bounds_magnitude(const shape *s)
     return fmax(fmax(fmax(fabs(lo.x), fabs(lo.y)), fmax(fabs(lo.z), fabs(hi.x))), fmax(fabs(hi.y), fabs(hi.z)));
 }
 
+/* The axis of v's only non-zero component, or -1. */
+static int single_axis(vec3 v)
+{
+    int nonzero = (v.x != 0.0) + (v.y != 0.0) + (v.z != 0.0);
+    if (nonzero != 1)
+        return -1;
+    return v.x != 0.0 ? 0 : v.y != 0.0 ? 1 : 2;
+}
+
 shape shape_sphere(vec3 center, double radius, int material)
 {
     assert(radius > 0.0 && isfinite(radius));
@@ -21,6 +30,7 @@ shape shape_sphere(vec3 center, double radius, int material)
     s.center = center;
     s.radius = radius;
     s.magnitude = bounds_magnitude(&s);
+    s.axis[0] = s.axis[1] = s.axis[2] = -1;
     return s;
 }
 
@@ -38,6 +48,11 @@ shape shape_rect(vec3 corner, vec3 edge1, vec3 edge2, int material)
     s.inv_len2_1 = 1.0 / l1;
     s.inv_len2_2 = 1.0 / l2;
     s.magnitude = bounds_magnitude(&s);
+    vec3 v[3] = {s.normal, edge1, edge2};
+    for (int i = 0; i < 3; i++)
+        s.axis[i] = single_axis(v[i]);
+    if (s.axis[0] < 0 || s.axis[1] < 0 || s.axis[2] < 0)
+        s.axis[0] = s.axis[1] = s.axis[2] = -1;
     return s;
 }
 

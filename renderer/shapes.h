@@ -20,6 +20,8 @@ typedef struct {
     double inv_len2_1;   /* 1/|edge1|^2 */
     double inv_len2_2;   /* 1/|edge2|^2 */
     double magnitude;    /* largest |coordinate| of the shape's bounds: the scale of its rounding errors */
+    int axis[3];         /* rectangle: the one axis of its normal, edge1, edge2 when each has only one
+                            non-zero component (an axis-aligned rectangle), else -1 */
 } shape;
 
 typedef struct {
@@ -52,12 +54,17 @@ static inline int shape_sphere_intersect_(const shape *s, const shape_ray *r, do
 {
     vec3 oc = vec_sub(r->origin, s->center);
     double b = vec_dot(oc, r->dir);
-    vec3 f = vec_madd(oc, r->dir, -b);          /* oc minus its projection on dir */
     double r2 = s->radius * s->radius;
+    double c = vec_len2(oc) - r2;
+    /* outside (c > 0) and moving away (b > 0): both roots are negative (their
+     * product is c, their sum -2b); the full computation below would find the
+     * same, only later */
+    if (c > 0.0 && b > 0.0)
+        return 0;
+    vec3 f = vec_madd(oc, r->dir, -b);          /* oc minus its projection on dir */
     double disc = r2 - vec_len2(f);
     if (disc < 0.0)
         return 0;
-    double c = vec_len2(oc) - r2;
     double q = -b - copysign(sqrt(disc), b);
     double t0, t1;
     if (q == 0.0) { /* ray through the centre's tangent point: one double root */
@@ -82,12 +89,55 @@ static inline int shape_sphere_intersect_(const shape *s, const shape_ray *r, do
     return 0;
 }
 
+/* Component i of v. */
+static inline double shape_comp_(vec3 v, int i)
+{
+    return i == 0 ? v.x : i == 1 ? v.y : v.z;
+}
+
+/* An axis-aligned rectangle: each dot product with its normal or an edge is
+ * one product, exactly what the general code computes (the other terms are
+ * products with exact zeros, which add nothing but the sign of a zero, and
+ * no test below tells +0 from -0), so the result is the same to the bit. */
+static inline int shape_rect_aligned_intersect_(const shape *s, const shape_ray *r, double tmin, double tmax,
+                                                double *t)
+{
+    int a = s->axis[0], a1 = s->axis[1], a2 = s->axis[2];
+    double na = shape_comp_(s->normal, a);
+    double denom = shape_comp_(r->dir, a) * na;
+    if (denom == 0.0)
+        return 0;
+    double num = (shape_comp_(s->corner, a) - shape_comp_(r->origin, a)) * na;
+    if (tmin >= 0.0 && !(num > 0.0 ? denom > 0.0 : num < 0.0 && denom < 0.0))
+        return 0;
+    double th = num / denom;
+    if (!(th > tmin && th < tmax))
+        return 0;
+    double d1 = shape_comp_(r->origin, a1) + shape_comp_(r->dir, a1) * th - shape_comp_(s->corner, a1);
+    double u = d1 * shape_comp_(s->edge1, a1) * s->inv_len2_1;
+    if (u < 0.0 || u > 1.0)
+        return 0;
+    double d2 = shape_comp_(r->origin, a2) + shape_comp_(r->dir, a2) * th - shape_comp_(s->corner, a2);
+    double v = d2 * shape_comp_(s->edge2, a2) * s->inv_len2_2;
+    if (v < 0.0 || v > 1.0)
+        return 0;
+    *t = th;
+    return 1;
+}
+
 static inline int shape_rect_intersect_(const shape *s, const shape_ray *r, double tmin, double tmax, double *t)
 {
+    if (s->axis[0] >= 0)
+        return shape_rect_aligned_intersect_(s, r, tmin, tmax, t);
     double denom = vec_dot(r->dir, s->normal);
     if (denom == 0.0)
         return 0;
-    double th = vec_dot(vec_sub(s->corner, r->origin), s->normal) / denom;
+    double num = vec_dot(vec_sub(s->corner, r->origin), s->normal);
+    /* th = num / denom <= 0 unless both have the same sign: no division
+     * (only valid while tmin >= 0, as every caller passes) */
+    if (tmin >= 0.0 && !(num > 0.0 ? denom > 0.0 : num < 0.0 && denom < 0.0))
+        return 0;
+    double th = num / denom;
     if (!(th > tmin && th < tmax))
         return 0;
     vec3 d = vec_sub(vec_madd(r->origin, r->dir, th), s->corner);

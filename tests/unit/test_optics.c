@@ -141,3 +141,53 @@ void test_rng_streams(void)
     }
     CHECK_NEAR(mean / 100000, 0.5, 0.005);
 }
+
+void test_rect_aligned_path_is_exact(void)
+{
+    /* every axis-aligned rectangle of cornell.scene's kind, and some of other
+     * sizes: the aligned path and the general one (the same shape with the
+     * axes cleared) agree on every ray, hit or miss and t to the bit */
+    const vec3 corners[3] = {{-1, 0, -1}, {0.25, -3, 7}, {-1e3, 2e3, -5e2}};
+    const vec3 e[6][2] = {{{0, 0, 3.5}, {0, 2, 0}}, {{0, 2, 0}, {0, 0, 3.5}}, {{2, 0, 0}, {0, 2, 0}},
+                          {{0, 0, 3.5}, {2, 0, 0}}, {{-0.5, 0, 0}, {0, 0, 1e-3}}, {{0, 7, 0}, {-3, 0, 0}}};
+    rng_stream s = rng_make(5, 0);
+    uint32_t rays = 0, hits = 0, differ = 0;
+    for (int c = 0; c < 3; c++) {
+        for (int k = 0; k < 6; k++) {
+            shape fast = shape_rect(corners[c], e[k][0], e[k][1], 0);
+            CHECK(fast.axis[0] >= 0 && fast.axis[1] >= 0 && fast.axis[2] >= 0);
+            shape slow = fast;
+            slow.axis[0] = slow.axis[1] = slow.axis[2] = -1;
+            for (int i = 0; i < 20000; i++) {
+                /* origins around the rectangle, directions uniform, some exactly along an axis */
+                vec3 o = vec_add(corners[c], vec_make(8 * rng_next_double(&s) - 4, 8 * rng_next_double(&s) - 4,
+                                                      8 * rng_next_double(&s) - 4));
+                vec3 d = vec_norm(vec_make(rng_next_double(&s) - 0.5, rng_next_double(&s) - 0.5,
+                                           rng_next_double(&s) - 0.5));
+                if (i % 7 == 0)
+                    d = vec_make(0, i % 2 ? 1 : -1, 0);
+                if (i % 3 == 0) { /* aimed at the border: u or v exactly 0 or 1 there */
+                    double a = rng_next_double(&s), b = (double)(rng_next_u64(&s) & 1);
+                    if (rng_next_u64(&s) & 1) {
+                        double tmp = a;
+                        a = b, b = tmp;
+                    }
+                    vec3 target = vec_add(corners[c], vec_add(vec_scale(e[k][0], a), vec_scale(e[k][1], b)));
+                    d = vec_norm(vec_sub(target, o));
+                }
+                shape_ray r = {o, d};
+                double ta = -1, tb = -1;
+                int ha = shape_intersect(&fast, &r, 0.0, INFINITY, &ta);
+                int hb = shape_intersect(&slow, &r, 0.0, INFINITY, &tb);
+                rays++;
+                hits += (uint32_t)ha;
+                differ += ha != hb || (ha && ta != tb);
+            }
+        }
+    }
+    CHECK_MSG(differ == 0, "%u of %u rays differ", differ, rays);
+    CHECK_MSG(hits > rays / 50, "only %u hits in %u rays: the test sees too few", hits, rays);
+    /* a rectangle that is not axis-aligned takes the general path */
+    shape tilted = shape_rect(vec_make(0, 0, 0), vec_make(1, 1, 0), vec_make(0, 0, 1), 0);
+    CHECK(tilted.axis[0] == -1);
+}

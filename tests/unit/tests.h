@@ -13,6 +13,7 @@
     X(kdtree_query_state)              \
     X(sphere_hits)                     \
     X(rect_hits)                       \
+    X(rect_aligned_path_is_exact)      \
     X(fresnel_energy_and_tir)          \
     X(refract_snell)                   \
     X(cosine_sampling_mean)            \
