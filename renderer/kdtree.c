@@ -103,31 +103,34 @@ static float select_float(float *v, uint32_t n, uint32_t k)
     return v[lo];
 }
 
+/* Moves the items of p[lo..hi) whose `axis` coordinate is below v (strict)
+ * or at most v (!strict) to the front, the rest after them; returns where
+ * the rest begins. Branch-free (Lomuto's scheme with an unconditional swap):
+ * the comparison only decides how far the front grows, so the loop runs at
+ * the same speed whatever the data (a branch per item mispredicts half the
+ * time on unordered points). */
+static uint32_t partition2(kd_item *p, uint32_t lo, uint32_t hi, int axis, float v, int strict)
+{
+    uint32_t front = lo;
+    for (uint32_t i = lo; i < hi; i++) {
+        kd_item x = p[i];
+        float c = x.p[axis];
+        p[i] = p[front];
+        p[front] = x;
+        front += strict ? c < v : c <= v;
+    }
+    return front;
+}
+
 /* Three-way partition of it[lo..hi) by `axis`: below p1 | from p1 to p2 |
- * above p2. Sets *lt and *gt to the bounds of the middle part. */
+ * above p2, as two branch-free passes. Sets *lt and *gt to the bounds of
+ * the middle part. */
 static void partition3(kd_item *p, uint32_t lo, uint32_t hi, int axis, float p1, float p2, uint32_t *lt_out,
                        uint32_t *gt_out)
 {
-    uint32_t lt = lo, i = lo, gt = hi;
-    while (i < gt) {
-        float v = p[i].p[axis];
-        if (v < p1) {
-            kd_item tmp = p[lt];
-            p[lt] = p[i];
-            p[i] = tmp;
-            lt++;
-            i++;
-        } else if (v > p2) {
-            gt--;
-            kd_item tmp = p[gt];
-            p[gt] = p[i];
-            p[i] = tmp;
-        } else {
-            i++;
-        }
-    }
+    uint32_t lt = partition2(p, lo, hi, axis, p1, 1);
     *lt_out = lt;
-    *gt_out = gt;
+    *gt_out = partition2(p, lt, hi, axis, p2, 0);
 }
 
 /* Reorders it[lo..hi) so that the element at position k is the one a full
