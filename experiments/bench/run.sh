@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# experiments/bench/run.sh (behind `make bench`): runs build/bench/bench for
-# the throughput tables, the same under callgrind for instructions per query,
-# a perf profile of the eye pass, and the heaviest cells of the paper at full
-# resolution under /usr/bin/time -v; writes results/bench.md.
-# BENCH_REPS (5) runs per throughput cell, BENCH_HEAVY_REPS (3) per heavy cell.
+# experiments/bench/run.sh (behind `make bench`): times the paper's whole grid
+# once (experiments/bench/grid.sh: the "grid:" line), runs build/bench/bench
+# for the throughput tables, the same under callgrind for instructions per
+# query (beside those of the kd-tree before, icount-before.csv), a perf
+# profile of the renders, and the heaviest cells of the paper at full
+# resolution under /usr/bin/time -v; writes results/bench.md (tables from
+# files by report.py). BENCH_REPS (5) runs per throughput cell,
+# BENCH_HEAVY_REPS (3) per heavy cell.
 set -eu
 cd "$(dirname "$0")/../.."
 REPS=${BENCH_REPS:-5}
@@ -14,71 +17,75 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p results
 
-median() { sort -g | awk '{v[NR]=$1} END {if (NR%2) print v[(NR+1)/2]; else print (v[NR/2]+v[NR/2+1])/2}'; }
+PYTHON=${PYTHON:-/usr/bin/python3}
 
 cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')
+echo "bench: the paper's grid, 24 renders at 1024x768, one thread" >&2
+load_grid=$(cut -d' ' -f1-3 /proc/loadavg)
+bash experiments/bench/grid.sh build/photonmap > "$tmp/grid.txt"
+grid_line=$(tail -n 1 "$tmp/grid.txt")
+echo "bench: $grid_line" >&2
 echo "bench: throughput tables ($REPS runs per cell)" >&2
 "$BIN" --reps "$REPS" > "$tmp/main.md"
 
 echo "bench: instructions per query (callgrind)" >&2
-icount_md() {
-  valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$tmp/cg.out" "$BIN" --icount \
-    > /dev/null 2> "$tmp/cg.log"
-  for f in "$tmp"/cg.out.*; do
-    desc=$(sed -n 's/^desc: Trigger: Client Request: //p' "$f")
-    tot=$(sed -n 's/^totals: *//p; s/^summary: *//p' "$f" | head -n 1 | awk '{print $1}')
-    [ -n "$desc" ] && echo "$desc $tot"
-  done | awk '{key=$2" "$3" "$4; ir[$1" "key]=$6/$5; keys[key]=1; n[key]=$2; k[key]=$3; o[key]=$4}
-    END {for (key in keys) printf "%d %d %s %.0f %.0f\n", n[key], k[key], o[key], ir["ours "key], ir["nano "key]}' \
-    | sort -k1,1n -k2,2n -k3,3r \
-    | awk 'BEGIN {print "| P_e | k | order | ours (instr/query) | nanoflann (instr/query) | ratio |";
-                  print "|---:|---:|---|---:|---:|---:|"}
-           {printf "| %d | %d | %s | %d | %d | %.2f |\n", $1, $2, $3, $4, $5, $5/$4}'
-}
-icount_md > "$tmp/icount.md"
+valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$tmp/cg.out" "$BIN" --icount > /dev/null 2> "$tmp/cg.log"
+"$PYTHON" experiments/bench/report.py icount "$tmp/cg.out" experiments/bench/icount-before.csv > "$tmp/icount.md"
 
-echo "bench: eye-pass profile (perf)" >&2
-prof_args=(render scenes/cornell.scene --photons 500000 --nn 100 --width 512 --height 384 --threads 1 --quiet -o "$tmp/p.exr")
-profile() { # method
-  if perf record -q -e cpu-clock -o "$tmp/perf.data" build/photonmap "${prof_args[@]}" --method "$1" \
-      > /dev/null 2>&1; then
+echo "bench: profiles (perf)" >&2
+profile() { # method nn: a whole render at 1024x768, P_e = 500k, one thread
+  if perf record -q -e cpu-clock -o "$tmp/perf.data" build/photonmap render scenes/cornell.scene --photons 500000 \
+      --nn "$2" --threads 1 --quiet --method "$1" > /dev/null 2>&1; then
     perf report -i "$tmp/perf.data" --stdio --no-children --sort symbol 2> /dev/null \
       | grep -E '^ +[0-9.]+%' | head -n 12 | sed 's/^ */    /'
   else
     echo "    (perf record unavailable)"
   fi
 }
-profile conventional > "$tmp/prof_conv.txt"
-profile precomputed > "$tmp/prof_pre.txt"
+profile conventional 100 > "$tmp/prof_conv.txt"
+profile precomputed 100 > "$tmp/prof_pre.txt"
+profile precomputed 10 > "$tmp/prof_pre10.txt"
 
 echo "bench: heavy cells ($HREPS runs each)" >&2
-heavy() { # method
-  : > "$tmp/h_$1.txt"
+heavy() { # method: one line per run, "method render precompute total rss"
   for r in $(seq "$HREPS"); do
     /usr/bin/time -v build/photonmap render scenes/cornell.scene --method "$1" --photons 500000 --nn 100 \
       --threads 1 --quiet --stats "$tmp/h.json" -o "$tmp/h.exr" 2> "$tmp/h.time" > /dev/null
     rss=$(sed -n 's/.*Maximum resident set size (kbytes): //p' "$tmp/h.time")
-    python3 -c 'import json,sys; t=json.load(open(sys.argv[1]))["time_s"]; print(t["render"], t["total"], t["precompute"], sys.argv[2])' \
-      "$tmp/h.json" "$rss" >> "$tmp/h_$1.txt"
+    "$PYTHON" -c 'import json, sys; t = json.load(open(sys.argv[1]))["time_s"]; print(sys.argv[2], t["render"], t["precompute"], t["total"], sys.argv[3])' \
+      "$tmp/h.json" "$1" "$rss"
   done
-  printf '| %s | %s | %s | %s | %s |\n' "$1" \
-    "$(cut -d' ' -f1 "$tmp/h_$1.txt" | median)" "$(cut -d' ' -f3 "$tmp/h_$1.txt" | median)" \
-    "$(cut -d' ' -f2 "$tmp/h_$1.txt" | median)" "$(cut -d' ' -f4 "$tmp/h_$1.txt" | sort -n | tail -n 1)"
 }
-heavy conventional > "$tmp/heavy.md"
-heavy precomputed >> "$tmp/heavy.md"
+{ heavy conventional; heavy precomputed; } > "$tmp/heavy.txt"
+"$PYTHON" experiments/bench/report.py heavy "$tmp/heavy.txt" > "$tmp/heavy.md"
 
 {
-  echo "# Benchmark: photon map kNN, representative lookup, eye pass (issue 7)"
+  echo "# Benchmark: the paper's grid, photon map kNN, representative lookup, eye pass"
   echo
   echo "Generated by \`make bench\` (experiments/bench/run.sh) on $(date -u +%Y-%m-%d), commit"
   echo "$(git rev-parse --short HEAD 2> /dev/null || echo '?')$(git diff --quiet HEAD -- renderer/kdtree.c renderer/kdtree.h renderer/render.c experiments/bench 2> /dev/null || echo ' + uncommitted kd-tree/bench changes'); CPU: $cpu, $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg) when written. On a shared"
   echo "machine wall times move by +-30%: compare the columns of one row (same process, interleaved)"
   echo "and the instruction counts. Build: gcc -O2 (project default) for both trees."
   echo
+  echo "## The paper's whole grid, one thread, one run each"
+  echo
+  echo "24 renders: P_e 50k/100k/500k x n 10/20/50/100 x both methods, 1024x768, 2x2 samples, the paper's estimate,"
+  echo "seed 1, no image written (experiments/bench/grid.sh; load average $load_grid before it ran). Per render: method,"
+  echo "P_e, n, the renderer's wall-clock total, CPU seconds of the process, then trace, build, precompute and eye-pass"
+  echo "seconds:"
+  echo
+  echo '```'
+  head -n -1 "$tmp/grid.txt"
+  echo '```'
+  echo
+  echo "**$grid_line**"
+  echo
   cat "$tmp/main.md"
   echo
   echo "## Instructions per kNN query (callgrind, every 9th query of each order, about 8500 per cell)"
+  echo
+  echo "\"before\": the kd-tree of commit eb9e0ea on the same queries (experiments/bench/icount-before.csv);"
+  echo "\"ours now\": \`kd_query_knn\` with the state carried from query to query, as the eye pass does."
   echo
   cat "$tmp/icount.md"
   echo
@@ -90,14 +97,18 @@ heavy precomputed >> "$tmp/heavy.md"
   echo "|---|---:|---:|---:|---:|"
   cat "$tmp/heavy.md"
   echo
-  echo "## Where the eye-pass time goes (perf, cpu-clock, whole run of build/photonmap at 512x384, S=2, P_e=500k, n=100, 1 thread)"
+  echo "## Where the time goes (perf, cpu-clock, a whole run of build/photonmap at 1024x768, S=2, P_e=500k, 1 thread)"
   echo
-  echo "Conventional:"
+  echo "Conventional, n = 100:"
   echo
   cat "$tmp/prof_conv.txt"
   echo
-  echo "Precomputed:"
+  echo "Precomputed, n = 100:"
   echo
   cat "$tmp/prof_pre.txt"
+  echo
+  echo "Precomputed, n = 10:"
+  echo
+  cat "$tmp/prof_pre10.txt"
 } > "$OUT"
 echo "bench: wrote $OUT" >&2
