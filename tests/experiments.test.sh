@@ -200,4 +200,13 @@ make -s resolution "${ARGS[@]}" PM="$PM" SEEDS=2 RES_SIZES="16x12 32x24" RES_REF
 check "resolution: table with one row per target and a column per size" \
   bash -c "grep -q '^| 1 | [a-z]*\./paper, P_e=[24]k, n=[0-9]*: .* | [a-z]*\./paper, P_e=[24]k' $R/resolution.md &&
            grep -q '^| 1.00e-06 | none in grid | none in grid |$' $R/resolution.md && [ -s $R/resolution/table-16x12.csv ]"
+# the cross-scene study on two scenes, tiny
+make -s scenes RESULTS="$TMP/sc" SCENES="scenes/cornell.scene scenes/slabs.scene" SCENES_SIZE=32x24 PHOTONS=2000 \
+  NNS="10 20" SCENES_SEEDS=2 RES_REF_PHOTONS=20000 RES_REF_NN=20 SCENES_CELL=p2000-n20 > "$TMP/sc.log" 2>&1
+scenes_ok() {
+  [ -s "$TMP/sc/figures/scenes.png" ] && grep -q '^| cornell | ' "$TMP/sc/scenes.md" && grep -q '^| slabs | ' "$TMP/sc/scenes.md" &&
+  [ -s "$TMP/sc/scenes/table-slabs.csv" ] && [ -s "$TMP/sc/scenes/equal-error-cornell.csv" ] &&
+  "${PYTHON:-/usr/bin/python3}" -c 'import pandas as pd, sys; d = pd.read_csv(sys.argv[1]); assert list(d.scene) == ["cornell", "slabs"], d; assert (d.diff_seeds == 2).all(), d' "$TMP/sc/scenes.csv"
+}
+check "scenes: one row per scene, its tables, the difference figure" scenes_ok
 finish
