@@ -384,6 +384,16 @@ def peak_ratio_known():
     assert pr < 0.7
 
 
+def rank_known():
+    """stats.rank: disjoint intervals rank, touching or overlapping ones do
+    not, a nan end is unknown."""
+    assert stats.rank((1, 2), (3, 4)) == "lower"
+    assert stats.rank((3, 4), (1, 2)) == "higher"
+    assert stats.rank((1, 3), (3, 4)) == "overlap"  # closed intervals: touching is overlapping
+    assert stats.rank((1, 5), (2, 3)) == "overlap"
+    assert stats.rank((math.nan, 2), (3, 4)) == "unknown"
+
+
 def main():
     """Run every check; exit 1 when one fails."""
     checks = [(f.__name__.replace("_", " "), f) for f in (
@@ -392,7 +402,7 @@ def main():
         relmse_known, bias_variance_recovers_truth, bias_variance_identity_and_definition,
         bias_variance_counts_are_repeats, relmse_matches_imgmetrics, read_exr_missing_file,
         equal_error_recovers_speedup, equal_error_no_common_range, linear_fit_known, linear_fit_coverage,
-        fieller_known, window_scaling, peak_ratio_known)]
+        fieller_known, window_scaling, peak_ratio_known, rank_known)]
     passed, failed = run_checks(checks)
     print(f"{passed} passed, {failed} failed")
     sys.exit(1 if failed else 0)

@@ -134,7 +134,7 @@ def markdown(summary, args, per_run):
                  q["win_relmse_ref_mean"].iloc[0] + q["win_relmse_ref_ci95"].iloc[0])
             b = (c["win_relmse_ref_mean"].iloc[0] - c["win_relmse_ref_ci95"].iloc[0],
                  c["win_relmse_ref_mean"].iloc[0] + c["win_relmse_ref_ci95"].iloc[0])
-            (overlap if stats.intervals_overlap(a, b) else worse if a[0] > b[1] else better).append(lab)
+            {"overlap": overlap, "unknown": overlap, "higher": worse, "lower": better}[stats.rank(a, b)].append(lab)
             pa = (q["win_peak_ratio_mean"].iloc[0] - q["win_peak_ratio_ci95"].iloc[0],
                   q["win_peak_ratio_mean"].iloc[0] + q["win_peak_ratio_ci95"].iloc[0])
             pb = (c["win_peak_ratio_mean"].iloc[0] - c["win_peak_ratio_ci95"].iloc[0],

@@ -51,6 +51,17 @@ def intervals_overlap(a, b):
     return a[0] <= b[1] and b[0] <= a[1]
 
 
+def rank(a, b):
+    """How interval A = (lo, hi) stands against B: "lower" or "higher" when
+    they are disjoint, "overlap" when not (no ranking), "unknown" when
+    either has a nan end. The one rule every sentence that ranks follows."""
+    if any(math.isnan(x) for x in (*a, *b)):
+        return "unknown"
+    if intervals_overlap(a, b):
+        return "overlap"
+    return "higher" if a[0] > b[1] else "lower"
+
+
 def resample_indices(rng, n, replicates):
     """A (replicates, n) array of indices drawn with replacement from 0..n-1:
     one bootstrap resample of n seeds per row."""

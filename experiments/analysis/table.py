@@ -165,18 +165,10 @@ def rank_sentences(table, estimates):
                      + "; ".join(parts) + ".")
     for est in estimates:
         sfx = suffix(est)
-        higher, lower, overlap, na = [], [], [], []
+        by = {"higher": [], "lower": [], "overlap": [], "unknown": []}
         for p in prec:
-            a, b = interval(p, "relmse_ref", sfx), interval(p, "conv_relmse_ref", sfx)
-            label = cell_label(p)
-            if math.isnan(a[0]) or math.isnan(b[0]):
-                na.append(label)
-            elif stats.intervals_overlap(a, b):
-                overlap.append(label)
-            elif a[0] > b[1]:
-                higher.append(label)
-            else:
-                lower.append(label)
+            by[stats.rank(interval(p, "relmse_ref", sfx), interval(p, "conv_relmse_ref", sfx))].append(cell_label(p))
+        higher, lower, overlap, na = by["higher"], by["lower"], by["overlap"], by["unknown"]
         if higher or lower or overlap:
             s = (f"- **Error against the reference, {est} estimate** (relMSE, 95% t-intervals over seeds), "
                  "precomputed vs conventional: ")
@@ -192,17 +184,10 @@ def rank_sentences(table, estimates):
         for est in [e for e in estimates if e != "paper"]:
             sfx = suffix(est)
             for method in ("conventional", "precomputed"):
-                better, worse, overlap = [], [], []
+                by = {"higher": [], "lower": [], "overlap": [], "unknown": []}
                 for _, r in table[table["method"] == method].iterrows():
-                    a, b = interval(r, "relmse_ref", sfx), interval(r, "relmse_ref")
-                    if math.isnan(a[0]) or math.isnan(b[0]):
-                        continue
-                    if stats.intervals_overlap(a, b):
-                        overlap.append(cell_label(r))
-                    elif a[1] < b[0]:
-                        better.append(cell_label(r))
-                    else:
-                        worse.append(cell_label(r))
+                    by[stats.rank(interval(r, "relmse_ref", sfx), interval(r, "relmse_ref"))].append(cell_label(r))
+                better, worse, overlap = by["lower"], by["higher"], by["overlap"]
                 if better or worse or overlap:
                     parts = []
                     if better:
