@@ -786,6 +786,22 @@ typedef struct {
      (v).r2 = _mm256_set1_ps(rr), (v).r2s = (rr))
 #define KD_QAVX2_SETR2(v, rr) ((v).r2s = (rr), (v).r2 = _mm256_set1_ps((v).r2s))
 
+/* The squared distances of the chunk's points from the query (in *d) and
+ * the mask of those within the current radius, lanes past `end` cleared. */
+__attribute__((target("avx2"))) static inline uint32_t chunk_mask_avx2(const float *x, const float *y,
+                                                                       const float *z, uint32_t c, uint32_t end,
+                                                                       const kd_qavx2 *qv, __m256 *d)
+{
+    __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(x + c), qv->x);
+    __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(y + c), qv->y);
+    __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(z + c), qv->z);
+    *d = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)), _mm256_mul_ps(dz, dz));
+    uint32_t m = (uint32_t)_mm256_movemask_ps(_mm256_cmp_ps(*d, qv->r2, _CMP_LE_OQ));
+    if (end - c < KD_CHUNK)
+        m &= (1u << (end - c)) - 1u;
+    return m;
+}
+
 /* The AVX2 leaf scan appends the chunk's keys itself: the distances' bits
  * and indices are interleaved into two vectors of four 64-bit keys (lanes
  * 0,1,4,5 and 2,3,6,7), and each is left-packed by a permutation looked up
@@ -803,13 +819,8 @@ __attribute__((target("avx2"))) static inline uint32_t chunk_avx2(const float *x
                                                                   uint64_t *buf, uint32_t n, uint32_t k)
 {
     (void)k;
-    __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(x + c), qv->x);
-    __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(y + c), qv->y);
-    __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(z + c), qv->z);
-    __m256 d = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)), _mm256_mul_ps(dz, dz));
-    uint32_t m = (uint32_t)_mm256_movemask_ps(_mm256_cmp_ps(d, qv->r2, _CMP_LE_OQ));
-    if (end - c < KD_CHUNK)
-        m &= (1u << (end - c)) - 1u;
+    __m256 d;
+    uint32_t m = chunk_mask_avx2(x, y, z, c, end, qv, &d);
     if (!m)
         return n;
     __m256i ids = _mm256_add_epi32(_mm256_set1_epi32((int)c), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
@@ -829,13 +840,8 @@ __attribute__((target("avx2"))) static inline uint32_t chunk_small_avx2(const fl
                                                                         kd_qavx2 *qv, uint64_t *buf, uint32_t n,
                                                                         uint32_t k)
 {
-    __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(x + c), qv->x);
-    __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(y + c), qv->y);
-    __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(z + c), qv->z);
-    __m256 d = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)), _mm256_mul_ps(dz, dz));
-    uint32_t m = (uint32_t)_mm256_movemask_ps(_mm256_cmp_ps(d, qv->r2, _CMP_LE_OQ));
-    if (end - c < KD_CHUNK)
-        m &= (1u << (end - c)) - 1u;
+    __m256 d;
+    uint32_t m = chunk_mask_avx2(x, y, z, c, end, qv, &d);
     if (!m)
         return n;
     uint32_t bits[KD_CHUNK];
