@@ -75,8 +75,12 @@ RES_REF_PHOTONS ?= 2000000
 RES_REF_NN ?= 200
 RES_SEEDS ?= $(SEEDS)
 RES_REF ?= ours
+# the reference's --seed: one no grid uses (photon i of seed s is the same
+# path whatever P_e, so a reference rendered with a grid seed would share its
+# first photons with that seed's renders and flatter their error)
+RES_REF_SEED ?= 1000000
 # where our high-photon reference renders go, one <WxH>.exr per size
-RES_REF_DIR = $(RESULTS)/runs/$(SCENE_NAME)-refhigh-p$(RES_REF_PHOTONS)-n$(RES_REF_NN)-s$(SUBPIXELS)
+RES_REF_DIR = $(RESULTS)/runs/$(SCENE_NAME)-refhigh-p$(RES_REF_PHOTONS)-n$(RES_REF_NN)-s$(SUBPIXELS)-seed$(RES_REF_SEED)
 
 # make scenes: every scene's grid at a smaller size, against our own
 # converged render of it (RES_REF_PHOTONS, RES_REF_NN); SCENES_CELL is the
@@ -121,7 +125,9 @@ FIG2_DIR = $(RESULTS)/runs/fig2-$(SCENE_NAME)-$(WIDTH)x$(HEIGHT)-s$(SUBPIXELS)-p
 # outputs REP_STUDY.md, .csv, -cells.csv and FIGURES/rep-study.png.
 # count1100000: the fixed count that fits the paper's slopes (rep-study.md)
 REP_RULES ?= every1 every2 every8 every16 shared count1100000
-REP_SEEDS ?= $(SEEDS)
+# 3 seeds per rule (the slopes are fitted over every seed's render, and a
+# rule's cost varies little from seed to seed): about 10 minutes
+REP_SEEDS ?= 3
 REP_STUDY ?= $(RESULTS)/rep-study
 
 # make caustic (experiments/caustic.mk): the Figure 3 cells' photon counts
@@ -145,7 +151,7 @@ CAUSTIC ?= $(RESULTS)/caustic
 # make estimator-bias: the analytic scene, every n, method and estimate
 BIAS_SCENE ?= scenes/furnace.scene
 BIAS_NNS ?= 2 3 5 10 20 50 100 200
-BIAS_SEEDS ?= 20
+BIAS_SEEDS ?= 60
 BIAS_PHOTONS ?= 50000
 BIAS_SIZE ?= 48x36
 BIAS_DIR ?= $(RESULTS)/runs/estimator-bias

@@ -23,7 +23,7 @@ for s in $RES_SIZES; do
     $MAKE --no-print-directory "$ref"
     why="RES_REF=ours: one kind of reference at every size"
     [ "${RES_REF:-ours}" = pov ] && why="no POV-Ray reference of this size in reference/"
-    desc="ours: conventional, P_e=$RES_REF_PHOTONS, n=$RES_REF_NN, seed 1, same scene and settings, \`$ref\` ($why)"
+    desc="ours: conventional, P_e=$RES_REF_PHOTONS, n=$RES_REF_NN, seed $RES_REF_SEED (no grid render uses it), same scene and settings, \`$ref\` ($why)"
   fi
   $MAKE --no-print-directory reproduce-table SIZE="$s" SEEDS="$RES_SEEDS" REF="$ref" REF_FAST="$fast" \
     TABLE="$out/table-$s" RUNS_CSV="$out/runs-$s.csv" CELLS_CSV="$out/cells-$s.csv" EQUAL_ERROR="$out/equal-error-$s" \

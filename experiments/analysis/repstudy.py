@@ -477,9 +477,12 @@ def figure(res, args, caption):
             ax.plot(grid, ys, "-", lw=2, color="#c8341c" if fam["parameter"] == "f" else "#3c8d2f",
                     label=f"best {fam['family']}: {fam['parameter']} = {fmt(fam['best'], 2)} "
                           f"(chi^2 {fmt(fam['chi2'], 2)}, p {fmt(fam['p_value'], 2)})")
+        last = model["stored"].max()
         for _, m in model.iterrows():
+            right = m["stored"] == last  # the rightmost label goes left of its star, inside the axes
             ax.annotate(f"P_e={plotting.kilo(m['photons'])}", (m["stored"], max(m["needed_reps"], bottom)),
-                        textcoords="offset points", xytext=(8, -4), fontsize=8.5, weight="bold")
+                        textcoords="offset points", xytext=(-8 if right else 8, -4), fontsize=8.5, weight="bold",
+                        ha="right" if right else "left")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_ylim(bottom, st.max() * 6)
