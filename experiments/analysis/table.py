@@ -141,6 +141,12 @@ def cell_list(labels):
     return "cell (P_e, n) = " + labels[0] if len(labels) == 1 else "cells (P_e, n) = " + ", ".join(labels)
 
 
+def ranked_clauses(pairs):
+    """'TEXT in CELLS' for each (text, cell labels) pair with any labels,
+    joined by '; '."""
+    return "; ".join(f"{text} in {cell_list(labels)}" for text, labels in pairs if labels)
+
+
 def rank_sentences(table, estimates):
     """Markdown lines that rank numbers only where the 95% intervals are
     disjoint, and name the cells where they overlap."""
@@ -156,13 +162,11 @@ def rank_sentences(table, estimates):
                 above.append(cell_label(p))
             else:
                 other.append(cell_label(p))
-        parts = [f"lies below 100% (precomputed faster) in {len(below)} of {len(prec)} cells"]
-        if above:
-            parts.append(f"above 100% (precomputed slower) in {cell_list(above)}")
-        if other:
-            parts.append(f"contains 100% or is unknown (no ranking) in {cell_list(other)}")
+        parts = [f"lies below 100% (precomputed faster) in {len(below)} of {len(prec)} cells",
+                 ranked_clauses([("above 100% (precomputed slower)", above),
+                                 ("contains 100% or is unknown (no ranking)", other)])]
         lines.append("- **Time** (paper estimate, CPU seconds): the precomputed/conventional ratio's 95% interval "
-                     + "; ".join(parts) + ".")
+                     + "; ".join(p for p in parts if p) + ".")
     for est in estimates:
         sfx = suffix(est)
         by = {"higher": [], "lower": [], "overlap": [], "unknown": []}
@@ -172,14 +176,9 @@ def rank_sentences(table, estimates):
         if higher or lower or overlap:
             s = (f"- **Error against the reference, {est} estimate** (relMSE, 95% t-intervals over seeds), "
                  "precomputed vs conventional: ")
-            parts = []
-            if higher:
-                parts.append(f"precomputed higher in {cell_list(higher)}")
-            if lower:
-                parts.append(f"precomputed lower in {cell_list(lower)}")
-            if overlap:
-                parts.append(f"intervals overlap (no ranking) in {cell_list(overlap)}")
-            lines.append(s + "; ".join(parts) + "." + (f" No interval in {cell_list(na)}." if na else ""))
+            parts = ranked_clauses([("precomputed higher", higher), ("precomputed lower", lower),
+                                    ("intervals overlap (no ranking)", overlap)])
+            lines.append(s + parts + "." + (f" No interval in {cell_list(na)}." if na else ""))
     if "paper" in estimates and len(estimates) > 1:
         for est in [e for e in estimates if e != "paper"]:
             sfx = suffix(est)
@@ -189,15 +188,10 @@ def rank_sentences(table, estimates):
                     by[stats.rank(interval(r, "relmse_ref", sfx), interval(r, "relmse_ref"))].append(cell_label(r))
                 better, worse, overlap = by["lower"], by["higher"], by["overlap"]
                 if better or worse or overlap:
-                    parts = []
-                    if better:
-                        parts.append(f"{est} lower in {cell_list(better)}")
-                    if worse:
-                        parts.append(f"{est} higher in {cell_list(worse)}")
-                    if overlap:
-                        parts.append(f"intervals overlap (no ranking) in {cell_list(overlap)}")
+                    parts = ranked_clauses([(f"{est} lower", better), (f"{est} higher", worse),
+                                            ("intervals overlap (no ranking)", overlap)])
                     lines.append(f"- **{est} vs paper estimate, {method}** (relMSE against the reference, 95% "
-                                 "t-intervals): " + "; ".join(parts) + ".")
+                                 "t-intervals): " + parts + ".")
     floor = table["relmse_ref_floor"].iloc[0] if len(table) else math.nan
     if isnum(floor):
         for est in estimates:
