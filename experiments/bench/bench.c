@@ -6,7 +6,11 @@
  * Markdown on stdout.
  *
  *   bench [--scene F] [--reps R] [--qw W --qh H] [--icount] [--sizes a,b,c]
+ *         [--ks a,b,c] [--knn-only]
  *
+ * --ks: the k of the kNN tables (default 1,10,20,50,100); --knn-only: the
+ * kNN tables alone (no build, lookup or eye-pass timings), for a quick
+ * side-by-side reading of one cell.
  * --icount: few queries per cell, each cell's loop bracketed by callgrind
  * client requests (run under valgrind --tool=callgrind --instr-atstart=no);
  * run.sh turns the dumps into instructions per query. */
@@ -182,7 +186,9 @@ static uint64_t lookup_batch(const est_reps *r, const photons_map *m, const qset
 int main(int argc, char **argv)
 {
     const char *scene_path = "scenes/cornell.scene";
-    int reps = 5, icount = 0;
+    int reps = 5, icount = 0, knn_only = 0;
+    uint32_t ks[8] = {1, 10, 20, 50, 100};
+    int nks = 5;
     uint32_t qw = 320, qh = 240;
     uint32_t sizes[8] = {50000, 100000, 500000};
     int nsizes = 3;
@@ -197,6 +203,18 @@ int main(int argc, char **argv)
             qh = (uint32_t)atoi(argv[++i]);
         else if (!strcmp(argv[i], "--icount"))
             icount = 1;
+        else if (!strcmp(argv[i], "--knn-only"))
+            knn_only = 1;
+        else if (!strcmp(argv[i], "--ks") && i + 1 < argc) {
+            nks = 0;
+            for (char *s = strtok(argv[++i], ","); s && nks < 8; s = strtok(NULL, ","))
+                ks[nks++] = (uint32_t)atoi(s);
+            for (int j = 0; j < nks; j++)
+                if (ks[j] < 1 || ks[j] > MAXK) {
+                    fprintf(stderr, "bench: --ks: each k must be in 1..%u\n", MAXK);
+                    return 2;
+                }
+        }
         else if (!strcmp(argv[i], "--sizes") && i + 1 < argc) {
             nsizes = 0;
             for (char *s = strtok(argv[++i], ","); s && nsizes < 8; s = strtok(NULL, ","))
@@ -228,7 +246,6 @@ int main(int argc, char **argv)
     const qset *orders[2] = {&tiles, &shuf};
     const char *order_name[2] = {"tiles", "shuffled"};
     uint32_t nq = tiles.n;
-    const uint32_t ks[] = {1, 10, 20, 50, 100};
     uint32_t idx[MAXK];
     float d2[MAXK];
 
@@ -279,7 +296,7 @@ int main(int argc, char **argv)
         void *nano = nano_build(pos, stored, KD_DEFAULT_LEAF);
         if (icount)
             CALLGRIND_START_INSTRUMENTATION;
-        for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ki++) {
+        for (int ki = 0; ki < nks; ki++) {
             uint32_t k = ks[ki];
             for (int o = 0; o < 2; o++) {
                 const float *q = mq[o].p;
@@ -318,7 +335,7 @@ int main(int argc, char **argv)
         if (icount)
             CALLGRIND_STOP_INSTRUMENTATION;
         nano_free(nano);
-        if (!icount) {
+        if (!icount && !knn_only) {
             /* the trees' build over the same points, interleaved */
             double tb[64], tn[64];
             for (int r = 0; r < reps && r < 64; r++) {
@@ -345,7 +362,7 @@ int main(int argc, char **argv)
         free(mq[0].p);
         free(mq[1].p);
 
-        if (!icount) {
+        if (!icount && !knn_only) {
             /* representatives: precompute with the defaults, then the lookup */
             est_reps rp;
             if (est_precompute(&map, &gather, EST_REPS_SEPARATE, 1, NULL, &rp)) {
@@ -378,7 +395,7 @@ int main(int argc, char **argv)
         photons_map_free(&map);
     }
 
-    if (!icount) {
+    if (!icount && !knn_only) {
         uint32_t ew = 256, eh = 192;
         double load[3] = {0, 0, 0};
         FILE *lf = fopen("/proc/loadavg", "r");
