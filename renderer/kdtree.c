@@ -811,7 +811,9 @@ __attribute__((target("avx2"))) static inline uint32_t chunk_mask_avx2(const flo
  * and indices are interleaved into two vectors of four 64-bit keys (lanes
  * 0,1,4,5 and 2,3,6,7), and each is left-packed by a permutation looked up
  * from its 4-bit lane mask, so a chunk costs the same however many points
- * it keeps. Returns the new count. */
+ * it keeps, none included: there is no branch on the mask, and the two
+ * stores always write buf[n .. n+8), which the gathering traversal keeps
+ * free (it selects before n passes cap - KD_CHUNK). Returns the new count. */
 static const uint32_t kd_pack4[16][8] = {
     {0, 1, 2, 3, 4, 5, 6, 7}, {0, 1, 2, 3, 4, 5, 6, 7}, {2, 3, 0, 1, 4, 5, 6, 7}, {0, 1, 2, 3, 4, 5, 6, 7},
     {4, 5, 0, 1, 2, 3, 6, 7}, {0, 1, 4, 5, 2, 3, 6, 7}, {2, 3, 4, 5, 0, 1, 6, 7}, {0, 1, 2, 3, 4, 5, 6, 7},
