@@ -3,6 +3,8 @@
 
 #include <stddef.h>
 
+#include "reps.h"
+
 config_render config_defaults(void)
 {
     config_render c;
@@ -22,7 +24,7 @@ config_render config_defaults(void)
     c.max_radius_frac = CONFIG_DEFAULT_MAX_RADIUS_FRAC;
     c.photon_depth = CONFIG_DEFAULT_PHOTON_DEPTH;
     c.eye_depth = CONFIG_DEFAULT_EYE_DEPTH;
-    c.reps_shared = 0;
+    c.rep_tree = CONFIG_REP_TREE_SEPARATE;
     c.allow_nonfinite = 0;
     c.bias_correction = 0;
     c.dump_reps = NULL;
@@ -33,23 +35,7 @@ const char *config_check(const config_render *c)
 {
     if (c->nn < CONFIG_MIN_NN)
         return "--nn 1: the estimate has no finite mean (1/r^2 of the nearest photon diverges); use --nn 2 or more";
-    if (c->dump_reps && c->method != CONFIG_METHOD_PRECOMPUTED)
-        return "--dump-reps writes the representatives of the precomputed method: use it with --method precomputed";
-    if (c->rep_count > 0 && c->rep_every != CONFIG_DEFAULT_REP_EVERY)
-        return "--rep-count and --rep-every are two rules for choosing the representatives: give one";
-    if (c->method != CONFIG_METHOD_PRECOMPUTED)
-        return NULL;
-    if (!c->bias_correction && c->nn < 3)
-        return "--method precomputed with --nn 2: a representative is its own nearest photon, so r is the "
-               "distance to one other photon and the estimate has no finite mean (it follows n/(n-2)); use --nn 3 "
-               "or more, or --bias-correction";
-    if (c->bias_correction && c->rep_every < 2)
-        return "--bias-correction with --method precomputed estimates at representatives from the photons that "
-               "are not representatives; --rep-every 1 leaves none: use --rep-every 2 or more";
-    if (c->bias_correction && c->reps_shared)
-        return "--bias-correction with --method precomputed keeps the representatives out of the photon tree; "
-               "--rep-tree shared finds them there: use --rep-tree separate";
-    return NULL;
+    return reps_check(c);
 }
 
 const char *config_method_name(config_method m)

@@ -8,6 +8,8 @@
 
 typedef enum { CONFIG_METHOD_CONVENTIONAL = 0, CONFIG_METHOD_PRECOMPUTED = 1 } config_method;
 typedef enum { CONFIG_DIRECT_PHOTONS = 0, CONFIG_DIRECT_SHADOW_RAYS = 1 } config_direct;
+/* --rep-tree: where the precomputed method finds its representatives (reps.h) */
+typedef enum { CONFIG_REP_TREE_SEPARATE = 0, CONFIG_REP_TREE_SHARED = 1 } config_rep_tree;
 
 typedef struct {
     config_method method;     /* radiance estimate: eq. 1 or eq. 2 of the paper */
@@ -26,8 +28,8 @@ typedef struct {
     double max_radius_frac;   /* the derived cap: this fraction of the photons' bounding-box diagonal */
     uint32_t photon_depth;    /* maximum bounces of a photon path */
     uint32_t eye_depth;       /* maximum specular bounces of an eye path */
-    int reps_shared;          /* precomputed: 1 = find representatives in the photon tree by flag,
-                                 0 = in their own kd-tree (faster, see README) */
+    config_rep_tree rep_tree; /* precomputed: the representatives in their own kd-tree (faster, see README)
+                                 or found in the photon tree by flag */
     int allow_nonfinite;      /* 1: a pixel out of the float range is reported but does not fail the run */
     int bias_correction;      /* 1: the unbiased estimate (README): photons strictly inside r; for the
                                  precomputed method, from the photons that are not representatives */
@@ -70,7 +72,8 @@ typedef struct {
 /* The defaults above as a struct; never fails. */
 config_render config_defaults(void);
 /* NULL when the settings of c go together, else why they do not (a user
- * error: degenerate estimates are refused rather than computed). */
+ * error: degenerate estimates are refused rather than computed). The
+ * representatives' settings are checked by reps_check (reps.h). */
 const char *config_check(const config_render *c);
 /* "conventional"/"precomputed", "photons"/"shadow-rays". */
 const char *config_method_name(config_method m);

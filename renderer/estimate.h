@@ -1,10 +1,10 @@
-/* estimate: the two radiance estimates of the paper. Both give the
- * irradiance E at a diffuse point; the caller multiplies by rho/pi.
+/* estimate: equation 1 of the paper and the gather conventions that both
+ * estimates share. It gives the irradiance E at a diffuse point; the caller
+ * multiplies by rho/pi.
  *  - conventional (eq. 1): E = sum of front-side photon powers among the n
  *    nearest, over pi r^2;
- *  - precomputed (eq. 2, Christensen 2000): E was computed the same way at
- *    representative photons before the eye pass; a lookup returns the E of
- *    the single nearest representative whose normal agrees with the point's.
+ *  - precomputed (eq. 2): E computed the same way at the representatives
+ *    before the eye pass (reps.h owns them, their precompute and lookup).
  *
  * Conventions (documented in README): r^2 is the squared distance to the
  * farthest of the n photons found; when fewer than n photons lie within the
@@ -16,11 +16,9 @@
 #define PM_ESTIMATE_H
 
 #include <stdint.h>
-#include <stdio.h>
 
 #include "kdtree.h"
 #include "photons.h"
-#include "progress.h"
 #include "vec.h"
 
 #define EST_MIN_RADIUS_FRAC 1e-3
@@ -42,21 +40,6 @@ typedef struct {
 /* The gather of nn photons within max_radius scene units on map m. */
 est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius, int corrected);
 
-typedef struct {
-    float irradiance[3]; /* relative to photons_map.unit / scale^2 */
-    float normal[3];     /* unit */
-} est_rep;
-
-typedef enum { EST_REPS_SEPARATE = 0, EST_REPS_SHARED = 1 } est_rep_layout;
-
-typedef struct {
-    est_rep_layout layout;
-    uint32_t count;
-    kd_tree tree;     /* separate: the representatives' own tree */
-    est_rep *rep;     /* separate: in that tree's leaf order; shared: by rep_of */
-    uint32_t *rep_of; /* shared: photon tree index -> rep index or KD_NONE */
-} est_reps;
-
 /* One thread's buffers for kNN queries of up to nn photons, and its query
  * state (the last query's radius starts the next search: cheaper, never a
  * different result). */
@@ -65,7 +48,7 @@ typedef struct {
     uint32_t *idx;
     float *d2;
     kd_query query;
-    uint32_t last_rep; /* the last lookup's answer (a tree index), tried first by the next one */
+    uint32_t last_rep; /* reps_lookup's last answer (a tree index), tried first by its next one */
     char pad[64];      /* threads' scratch structs share no cache line */
 } est_scratch;
 
@@ -79,30 +62,12 @@ void est_scratch_delete(est_scratch *s, unsigned threads);
  * unit normal n (facing the side seen). *found receives how many photons
  * were gathered (front side or not). */
 vec3 est_irradiance(const photons_map *m, vec3 x, vec3 n, const est_gather *g, est_scratch *s, uint32_t *found);
+/* The same at map-frame point q, relative to m->unit / m->scale^2 (the
+ * precompute's form, reps.h). */
+vec3 est_irradiance_at(const photons_map *m, const float q[3], vec3 n, const est_gather *g, est_scratch *s,
+                       uint32_t *found);
+/* The factor from irradiance in map units to W per scene unit^2. */
+vec3 est_world_factor(const photons_map *m);
 
-/* Precomputes irradiance at every representative of m (m->reps of them)
- * from its g->nn nearest photons of the map, on `threads` threads,
- * deterministically. The shared layout needs the representatives in the
- * photon tree (asserted). Returns 0, or -1 when memory runs out (out is
- * then empty). */
-int est_precompute(const photons_map *m, const est_gather *g, est_rep_layout layout, unsigned threads,
-                   progress *prog, est_reps *out);
-/* Irradiance (W per unit^2) of the nearest representative within the
- * gather's radius cap of world point x whose normal has cosine > cos_min
- * with n (of equally near ones, the first in tree order, so the answer does
- * not depend on s, whose last answer only starts the search). Returns 0 and
- * sets *found = 0 when none qualifies. */
-vec3 est_lookup(const est_reps *r, const photons_map *m, vec3 x, vec3 n, double cos_min, const est_gather *g,
-                est_scratch *s, int *found);
-/* Writes the representatives as CSV to f: the header
- * "x,y,z,nx,ny,nz,e_r,e_g,e_b", then one line per representative: its
- * position in scene units, its unit normal and its precomputed irradiance
- * in W per scene unit^2 (what est_lookup returns for it). Returns 0, or -1
- * on a write error. */
-int est_reps_write_csv(const est_reps *r, const photons_map *m, FILE *f);
-/* Bytes the representatives hold. */
-size_t est_reps_bytes(const est_reps *r, const photons_map *m);
-/* Frees the representatives; a zeroed struct is fine. */
-void est_reps_free(est_reps *r);
 
 #endif

@@ -44,6 +44,7 @@ static const char *const accel_names[] = {"auto", "bvh", "linear", NULL};
 /* the table writes these choices as ints into enum fields */
 _Static_assert(sizeof(config_method) == sizeof(int), "config_method is int-sized");
 _Static_assert(sizeof(config_direct) == sizeof(int), "config_direct is int-sized");
+_Static_assert(sizeof(config_rep_tree) == sizeof(int), "config_rep_tree is int-sized");
 _Static_assert(SCENE_ACCEL_AUTO == 0 && SCENE_ACCEL_BVH == 1 && SCENE_ACCEL_LINEAR == 2, "accel_names order");
 
 #define RO(field) offsetof(render_args, field)
@@ -75,7 +76,7 @@ static const cli_option render_options[] = {
      "over the trace order (every stored photon when fewer are stored); 0: the --rep-every rule", NULL},
     {"--normal-cos", CLI_REAL, "C", RC(normal_cos), 0, 0, -1.0, 1.0, NULL, 0,
      "precomputed: a representative's normal must agree above this cosine", NULL},
-    {"--rep-tree", CLI_CHOICE, NULL, RC(reps_shared), 0, 0, 0, 0, rep_tree_names, 0,
+    {"--rep-tree", CLI_CHOICE, NULL, RC(rep_tree), 0, 0, 0, 0, rep_tree_names, 0,
      "precomputed: the representatives' own kd-tree, or the photon tree by flag", NULL},
     {"--max-radius", CLI_REAL, "R", RC(max_radius), 0, 0, 1e-30, 1e30, NULL, 0,
      "search radius cap in scene units", CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT " x the diagonal of the photons' bounding box"},
@@ -126,7 +127,7 @@ static uint64_t physical_memory(void)
  * pilot of the photon pass. Returns 0 or an exit code. */
 static int check_memory(const scene *sc, const config_render *cfg)
 {
-    photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS, 0, 0};
+    photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS};
     double per_emitted = photons_stored_per_emitted(sc, &pp);
     if (per_emitted < 0.0) {
         fprintf(stderr, "photonmap: out of memory in the pilot photon pass\n");

@@ -181,18 +181,6 @@ int photons_trace(const scene *sc, const photons_params *p, unsigned threads, pr
     }
     out->count = total;
     out->unit = p->photons ? vec_scale(sc->light.power, 1.0 / (double)p->photons) : vec_make(0, 0, 0);
-    if (p->rep_count > 0) {
-        /* a fixed count, spread evenly over the trace order: photon
-         * floor(j * total / count) = j * q + floor(j * r / count), which
-         * cannot overflow (j * r < count^2 and count < 2^32) */
-        uint64_t count = p->rep_count < total ? p->rep_count : total;
-        uint64_t q = total / count, r = total % count;
-        for (uint64_t j = 0; j < count; j++)
-            out->ph[j * q + j * r / count].flags |= PHOTONS_FLAG_REP;
-    } else if (p->rep_every > 0) {
-        for (uint64_t i = 0; i < total; i += p->rep_every)
-            out->ph[i].flags |= PHOTONS_FLAG_REP;
-    }
     return 0;
 }
 
@@ -243,9 +231,12 @@ void photons_map_point(const photons_map *m, vec3 x, float q[3])
     q[2] = (float)((x.z - m->centre.z) * inv);
 }
 
-int photons_build_map(photons_list *l, int leave_out_reps, photons_map *m)
+int photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, photons_list *left)
 {
+    assert(left || leave_out == 0);
     memset(m, 0, sizeof *m);
+    if (left)
+        memset(left, 0, sizeof *left);
     if (l->count > UINT32_MAX - 1) {
         photons_list_free(l);
         return -1;
@@ -253,62 +244,52 @@ int photons_build_map(photons_list *l, int leave_out_reps, photons_map *m)
     m->unit = l->unit;
     m->stored = l->count;
     map_frame(l, &m->centre, &m->scale, &m->extent);
-    uint32_t nreps = 0;
+    uint32_t nout = 0;
     for (uint64_t i = 0; i < l->count; i++)
-        nreps += (l->ph[i].flags & PHOTONS_FLAG_REP) != 0;
-    uint32_t n = (uint32_t)l->count - (leave_out_reps ? nreps : 0);
+        nout += (l->ph[i].flags & leave_out) != 0;
+    uint32_t n = (uint32_t)l->count - nout;
     float *pts = malloc(sizeof(float) * 3 * (n ? n : 1));
     uint32_t *src = malloc(sizeof(uint32_t) * (n ? n : 1)); /* tree input index -> list index */
     uint32_t *perm = malloc(sizeof(uint32_t) * (n ? n : 1));
     m->ph = malloc(sizeof(photons_record) * (n ? n : 1));
-    m->rep = malloc(sizeof(photons_rep) * (nreps ? nreps : 1));
-    int rc = (!pts || !src || !perm || !m->ph || !m->rep) ? -1 : 0;
+    int rc = (!pts || !src || !perm || !m->ph) ? -1 : 0;
+    if (rc == 0 && left) {
+        left->pos = malloc(sizeof(double) * 3 * (nout ? nout : 1));
+        left->ph = malloc(sizeof(photons_record) * (nout ? nout : 1));
+        left->unit = l->unit;
+        rc = (!left->pos || !left->ph) ? -1 : 0;
+    }
     if (rc == 0) {
         uint32_t j = 0, r = 0;
         for (uint32_t i = 0; i < (uint32_t)l->count; i++) {
-            int is_rep = (l->ph[i].flags & PHOTONS_FLAG_REP) != 0;
-            vec3 x = vec_make(l->pos[3 * (size_t)i], l->pos[3 * (size_t)i + 1], l->pos[3 * (size_t)i + 2]);
-            float q[3];
-            photons_map_point(m, x, q);
-            if (is_rep && leave_out_reps) {
-                photons_rep *rp = &m->rep[r++];
-                memcpy(rp->pos, q, sizeof q);
-                memcpy(rp->normal, l->ph[i].normal, 3);
-                rp->pad = 0;
-                rp->tree_index = KD_NONE;
+            if (l->ph[i].flags & leave_out) {
+                memcpy(left->pos + 3 * (size_t)r, l->pos + 3 * (size_t)i, 3 * sizeof(double));
+                left->ph[r++] = l->ph[i];
                 continue;
             }
-            memcpy(pts + 3 * (size_t)j, q, sizeof q);
+            vec3 x = vec_make(l->pos[3 * (size_t)i], l->pos[3 * (size_t)i + 1], l->pos[3 * (size_t)i + 2]);
+            photons_map_point(m, x, pts + 3 * (size_t)j);
             src[j++] = i;
         }
-        assert(j == n && (!leave_out_reps || r == nreps));
+        assert(j == n && r == nout);
+        if (left)
+            left->count = nout;
         rc = kd_build(&m->tree, pts, n, KD_DEFAULT_LEAF, perm);
     }
     if (rc == 0) {
-        uint32_t r = 0;
-        for (uint32_t i = 0; i < n; i++) {
-            const photons_record *p = &l->ph[src[perm[i]]];
-            m->ph[i] = *p;
-            if (!leave_out_reps && (p->flags & PHOTONS_FLAG_REP)) {
-                photons_rep *rp = &m->rep[r++];
-                rp->pos[0] = m->tree.x[i];
-                rp->pos[1] = m->tree.y[i];
-                rp->pos[2] = m->tree.z[i];
-                memcpy(rp->normal, p->normal, 3);
-                rp->pad = 0;
-                rp->tree_index = i;
-            }
-        }
-        assert(leave_out_reps || r == nreps);
+        for (uint32_t i = 0; i < n; i++)
+            m->ph[i] = l->ph[src[perm[i]]];
         m->count = n;
-        m->reps = nreps;
     }
     free(pts);
     free(src);
     free(perm);
     photons_list_free(l);
-    if (rc != 0)
+    if (rc != 0) {
         photons_map_free(m);
+        if (left)
+            photons_list_free(left);
+    }
     return rc;
 }
 
@@ -316,13 +297,12 @@ void photons_map_free(photons_map *m)
 {
     kd_free(&m->tree);
     free(m->ph);
-    free(m->rep);
     memset(m, 0, sizeof *m);
 }
 
 size_t photons_map_bytes(const photons_map *m)
 {
-    return kd_bytes(&m->tree) + (size_t)m->count * sizeof(photons_record) + (size_t)m->reps * sizeof(photons_rep);
+    return kd_bytes(&m->tree) + (size_t)m->count * sizeof(photons_record);
 }
 
 double photons_peak_bytes(double stored)

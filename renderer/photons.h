@@ -1,8 +1,8 @@
 /* photons: the photon pass (emitting photons from the point light, tracing
- * them through mirror and glass, storing one at every diffuse hit, flagging
- * representatives by the rule it is given) and the built photon map: a
- * kd-tree over the stored positions in the map's own frame, the payload in
- * the tree's leaf order, and the representatives.
+ * them through mirror and glass, storing one at every diffuse hit) and the
+ * built photon map: a kd-tree over the stored positions in the map's own
+ * frame and the payload in the tree's leaf order. Photons a caller flags
+ * (the representatives, reps.h) can be kept out of the tree.
  *
  * The map's frame: positions are stored as 32-bit floats relative to the
  * centre of the photons' bounding box and divided by a power of two near its
@@ -21,7 +21,7 @@
 #include "scene.h"
 #include "vec.h"
 
-#define PHOTONS_FLAG_REP 1u    /* a representative (precomputed method) */
+#define PHOTONS_FLAG_REP 1u    /* a representative of the precomputed method (set by reps_choose) */
 #define PHOTONS_FLAG_DIRECT 2u /* arrived straight from the light, no bounce before */
 
 /* A stored photon's payload; its position lives in the kd-tree. 20 bytes:
@@ -42,9 +42,6 @@ typedef struct {
     uint64_t seed;         /* photon i draws from random stream (seed, i) */
     uint32_t max_depth;    /* bounces before a path is cut */
     int store_first_hits;  /* 0: direct light comes from shadow rays, store bounced light only */
-    uint32_t rep_every;    /* the representative rule: every K-th stored photon (trace order); 0: none */
-    uint64_t rep_count;    /* the fixed-count rule instead, when > 0: stored photon floor(j * stored /
-                              rep_count) for j = 0 .. rep_count-1 (every stored photon when fewer) */
 } photons_params;
 
 /* The photon pass's output: positions in world coordinates (double), in
@@ -57,22 +54,11 @@ typedef struct {
     uint64_t truncated, escaped;
 } photons_list;
 
-/* A representative: its position in the map frame, its surface normal, and
- * where it sits in the photon tree (KD_NONE when the map leaves it out). */
-typedef struct {
-    float pos[3];
-    int8_t normal[3];
-    uint8_t pad;
-    uint32_t tree_index;
-} photons_rep;
-
 typedef struct {
     kd_tree tree;           /* positions in the map frame */
     photons_record *ph;     /* payload, tree leaf order */
     uint32_t count;         /* photons in the tree */
     uint64_t stored;        /* photons stored by the pass (count + those left out) */
-    photons_rep *rep;       /* representatives: tree leaf order, then those left out in trace order */
-    uint32_t reps;
     vec3 unit;              /* watts of power 1.0 in a record */
     vec3 centre;            /* world = centre + scale * map */
     double scale;           /* a power of two; 1 when the map is empty */
@@ -92,17 +78,18 @@ vec3 photons_unpack_dir(const int8_t d[3]);
 int photons_trace(const scene *sc, const photons_params *p, unsigned threads, progress *prog, photons_list *out);
 /* Frees a list; a zeroed list is fine. */
 void photons_list_free(photons_list *l);
-/* Builds the map from a list, which it consumes and frees. With
- * leave_out_reps the tree holds only the photons that are not
- * representatives (the representatives are still listed in m->rep). Returns
- * 0, or -1 when memory runs out or the list exceeds 2^32-1 photons (m is
+/* Builds the map from a list, which it consumes and frees. The photons
+ * whose flags meet the mask `leave_out` stay out of the tree (they still
+ * count in m->stored and in the map's frame); they are moved, in trace
+ * order, into *left (which may be NULL when the mask is 0). Returns 0, or -1
+ * when memory runs out or the list exceeds 2^32-1 photons (m and *left are
  * then empty). */
-int photons_build_map(photons_list *l, int leave_out_reps, photons_map *m);
+int photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, photons_list *left);
 /* Frees a map; a zeroed map is fine. */
 void photons_map_free(photons_map *m);
 /* x (world) in the map frame, as the tree's floats. */
 void photons_map_point(const photons_map *m, vec3 x, float q[3]);
-/* Bytes the map holds (tree, payload and representatives). */
+/* Bytes the map holds (tree and payload). */
 size_t photons_map_bytes(const photons_map *m);
 
 /* Peak bytes of a photon pass and map build that store `stored` photons

@@ -15,6 +15,7 @@
 #include "parallel.h"
 #include "photons.h"
 #include "progress.h"
+#include "reps.h"
 
 #define RENDER_TILE 16u
 
@@ -27,7 +28,7 @@ typedef struct {
     const scene *sc;
     const config_render *cfg;
     const photons_map *map;
-    const est_reps *reps;
+    const reps_set *reps;
     est_gather gather;    /* conventional: nn and the radius cap (map frame) */
     render_camera camera;
     vec3 light_intensity; /* power / 4pi, for shadow rays */
@@ -101,7 +102,7 @@ static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t de
         vec3 e;
         if (c->cfg->method == CONFIG_METHOD_PRECOMPUTED) {
             int found;
-            e = est_lookup(c->reps, c->map, h.p, h.n, c->cfg->normal_cos, &c->gather, &c->scratch[thread], &found);
+            e = reps_lookup(c->reps, c->map, h.p, h.n, c->cfg->normal_cos, &c->gather, &c->scratch[thread], &found);
             c->counts[thread].empty += !found;
         } else {
             uint32_t found;
@@ -183,9 +184,10 @@ typedef struct {
     unsigned threads;
     int show_progress;
     stats_run *st;
+    reps_params rp;
     photons_list list;
     photons_map map;
-    est_reps reps;
+    reps_set reps;
     double max_radius; /* the radius cap, scene units */
 } render_state;
 
@@ -199,14 +201,13 @@ static double seconds_since(int64_t t0)
 static int step_trace(render_state *rs)
 {
     const config_render *cfg = rs->cfg;
-    int pre = cfg->method == CONFIG_METHOD_PRECOMPUTED;
-    photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS,
-                         pre ? cfg->rep_every : 0, pre ? cfg->rep_count : 0};
+    photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS};
     progress prog;
     progress_begin(&prog, "photons", cfg->photons, rs->show_progress);
     int64_t t0 = stats_now_ns();
     if (photons_trace(rs->sc, &pp, rs->threads, &prog, &rs->list))
         return -1;
+    reps_choose(&rs->rp, &rs->list);
     progress_end(&prog);
     rs->st->trace = seconds_since(t0);
     rs->st->photons_emitted = cfg->photons;
@@ -216,34 +217,21 @@ static int step_trace(render_state *rs)
     return 0;
 }
 
-/* Refuses a fixed count of representatives that takes every stored photon
- * when the corrected precomputed estimate needs the others (config_check
- * refuses --rep-every 1 up front; the count is known only now). Returns
- * RENDER_OK, or RENDER_ERR_INPUT with the reason in err. */
-static int check_rep_count(const render_state *rs, char *err, size_t errlen)
-{
-    const config_render *cfg = rs->cfg;
-    if (!(cfg->method == CONFIG_METHOD_PRECOMPUTED && cfg->bias_correction && cfg->rep_count > 0 &&
-          rs->list.count > 0 && cfg->rep_count >= rs->list.count))
-        return RENDER_OK;
-    snprintf(err, errlen,
-             "--rep-count %llu flags every one of the %llu stored photons, and --bias-correction estimates at "
-             "representatives from the photons that are not: use a count below the stored photons",
-             (unsigned long long)cfg->rep_count, (unsigned long long)rs->list.count);
-    return RENDER_ERR_INPUT;
-}
-
-/* Step 2: build the photon map (kd-tree). Returns 0, or -1 out of memory. */
+/* Step 2: build the photon map (kd-tree) and find the representatives'
+ * sites in it. Returns 0, or -1 out of memory. */
 static int step_build(render_state *rs)
 {
     int64_t t0 = stats_now_ns();
-    /* the corrected precomputed estimate gathers at representatives from the
-     * other photons only: the map leaves the representatives out */
-    int leave_out = rs->cfg->bias_correction && rs->cfg->method == CONFIG_METHOD_PRECOMPUTED;
-    if (photons_build_map(&rs->list, leave_out, &rs->map))
+    photons_list left;
+    if (photons_build_map(&rs->list, reps_leave_out_mask(&rs->rp), &rs->map, &left))
+        return -1;
+    int rc = reps_collect(&rs->rp, &rs->map, &left, &rs->reps);
+    photons_list_free(&left);
+    if (rc)
         return -1;
     rs->st->build = seconds_since(t0);
-    rs->st->bytes_photon_map = photons_map_bytes(&rs->map);
+    /* the representatives' sites count with the map, whose build finds them */
+    rs->st->bytes_photon_map = photons_map_bytes(&rs->map) + reps_sites_bytes(&rs->reps);
     rs->max_radius = render_max_radius(rs->sc, rs->cfg, &rs->map);
     rs->st->max_radius = rs->max_radius;
     return 0;
@@ -281,26 +269,25 @@ static int step_precompute(render_state *rs)
     const config_render *cfg = rs->cfg;
     est_gather g = est_gather_make(&rs->map, cfg->nn, rs->max_radius, cfg->bias_correction);
     progress prog;
-    progress_begin(&prog, "precompute", rs->map.reps, rs->show_progress);
+    progress_begin(&prog, "precompute", rs->reps.count, rs->show_progress);
     int64_t t0 = stats_now_ns();
-    if (est_precompute(&rs->map, &g, cfg->reps_shared ? EST_REPS_SHARED : EST_REPS_SEPARATE, rs->threads, &prog,
-                       &rs->reps))
+    if (reps_evaluate(&rs->reps, &rs->map, &g, rs->threads, &prog))
         return -1;
     progress_end(&prog);
     rs->st->precompute = seconds_since(t0);
     rs->st->representatives = rs->reps.count;
-    rs->st->bytes_representatives = est_reps_bytes(&rs->reps, &rs->map);
+    rs->st->bytes_representatives = reps_bytes(&rs->reps, &rs->map);
     return 0;
 }
 
-/* --dump-reps: the representatives as CSV (est_reps_write_csv), through a
+/* --dump-reps: the representatives as CSV (reps_write_csv), through a
  * temporary file. Returns 0, or -1 with the reason in err. */
 static int dump_reps(const render_state *rs, char *err, size_t errlen)
 {
     outfile f;
     if (outfile_begin(&f, rs->cfg->dump_reps, 1, err, errlen))
         return -1;
-    if (est_reps_write_csv(&rs->reps, &rs->map, f.f)) {
+    if (reps_write_csv(&rs->reps, &rs->map, f.f)) {
         snprintf(err, errlen, "%s: write error", rs->cfg->dump_reps);
         outfile_abort(&f);
         return -1;
@@ -362,8 +349,11 @@ int render_run(const scene *sc, const config_render *cfg, unsigned threads, int 
     rs.threads = threads;
     rs.show_progress = show_progress;
     rs.st = st;
+    rs.rp = reps_params_of(cfg);
     int64_t t_start = stats_now_ns();
-    int rc = step_trace(&rs) ? RENDER_ERR_MEMORY : check_rep_count(&rs, err, errlen);
+    int rc = step_trace(&rs) ? RENDER_ERR_MEMORY : RENDER_OK;
+    if (rc == RENDER_OK && reps_check_stored(cfg, rs.list.count, err, errlen))
+        rc = RENDER_ERR_INPUT;
     if (rc == RENDER_OK && step_build(&rs))
         rc = RENDER_ERR_MEMORY;
     if (rc == RENDER_OK)
@@ -379,7 +369,7 @@ int render_run(const scene *sc, const config_render *cfg, unsigned threads, int 
             rc = RENDER_ERR_IO;
         t_start += stats_now_ns() - t_dump;
     }
-    est_reps_free(&rs.reps);
+    reps_free(&rs.reps);
     photons_map_free(&rs.map);
     photons_list_free(&rs.list);
     if (rc == RENDER_ERR_MEMORY)

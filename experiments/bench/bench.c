@@ -29,6 +29,7 @@
 #include "parallel.h"
 #include "photons.h"
 #include "render.h"
+#include "reps.h"
 #include "rng.h"
 #include "scene.h"
 #include "stats.h"
@@ -163,7 +164,7 @@ static uint64_t ours_knn_batch(const kd_tree *t, const float *q, uint32_t nq, ui
     return total;
 }
 
-static uint64_t lookup_batch(const est_reps *r, const photons_map *m, const qset *q, uint32_t nq, double cos_min,
+static uint64_t lookup_batch(const reps_set *r, const photons_map *m, const qset *q, uint32_t nq, double cos_min,
                              const est_gather *g, double *esum)
 {
     uint64_t found = 0;
@@ -174,7 +175,7 @@ static uint64_t lookup_batch(const est_reps *r, const photons_map *m, const qset
     for (uint32_t i = 0; i < nq; i++) {
         const float *p = q->p + 3 * (size_t)i, *n = q->nr + 3 * (size_t)i;
         int f;
-        vec3 e = est_lookup(r, m, vec_make(p[0], p[1], p[2]), vec_make(n[0], n[1], n[2]), cos_min, g, scratch, &f);
+        vec3 e = reps_lookup(r, m, vec_make(p[0], p[1], p[2]), vec_make(n[0], n[1], n[2]), cos_min, g, scratch, &f);
         found += (uint64_t)f;
         s += e.x;
     }
@@ -260,15 +261,17 @@ int main(int argc, char **argv)
         printf("|---:|---:|---:|---|---:|---:|---:|---:|\n");
     }
     for (int si = 0; si < nsizes; si++) {
-        photons_params pp = {sizes[si], cfg.seed, cfg.photon_depth, 1, cfg.rep_every, 0};
+        photons_params pp = {sizes[si], cfg.seed, cfg.photon_depth, 1};
+        reps_params rps = {cfg.rep_every, 0, CONFIG_REP_TREE_SEPARATE, 0};
         photons_list list;
         photons_map map;
         if (photons_trace(sc, &pp, 1, NULL, &list)) {
             fprintf(stderr, "bench: out of memory\n");
             return 1;
         }
+        reps_choose(&rps, &list);
         uint32_t stored = (uint32_t)list.count;
-        if (photons_build_map(&list, 0, &map)) {
+        if (photons_build_map(&list, 0, &map, NULL)) {
             fprintf(stderr, "bench: out of memory\n");
             return 1;
         }
@@ -364,13 +367,13 @@ int main(int argc, char **argv)
 
         if (!icount && !knn_only) {
             /* representatives: precompute with the defaults, then the lookup */
-            est_reps rp;
-            if (est_precompute(&map, &gather, EST_REPS_SEPARATE, 1, NULL, &rp)) {
+            reps_set rp;
+            if (reps_collect(&rps, &map, NULL, &rp) || reps_evaluate(&rp, &map, &gather, 1, NULL)) {
                 fprintf(stderr, "bench: out of memory\n");
                 return 1;
             }
             printf("\n### Representative lookup at P_e = %u (nearest representative with normal cosine > %.2f, "
-                   "est_lookup, own tree), one thread\n\n",
+                   "reps_lookup, own tree), one thread\n\n",
                    sizes[si], cfg.normal_cos);
             printf("| P_e | representatives | order | lookups/s (M) | found | bytes/photon (map) | "
                    "bytes/representative |\n|---:|---:|---|---:|---:|---:|---:|\n");
@@ -385,9 +388,9 @@ int main(int argc, char **argv)
                 printf("| %u | %u | %s | %.3f | %.3f | %.2f | %.2f |\n", sizes[si], rp.count, order_name[o],
                        nq / median(t, reps) * 1e-6, (double)f / nq,
                        (double)(kd_bytes(&map.tree) + (size_t)map.count * sizeof(photons_record)) / map.count,
-                       (double)est_reps_bytes(&rp, &map) / rp.count);
+                       (double)reps_bytes(&rp, &map) / rp.count);
             }
-            est_reps_free(&rp);
+            reps_free(&rp);
             if (si + 1 < nsizes)
                 printf("\n| P_e | stored | k | order | ours (Mq/s) | nanoflann (Mq/s) | ratio | found |\n"
                        "|---:|---:|---:|---|---:|---:|---:|---:|\n");

@@ -3,7 +3,10 @@
 #define PM_TEST_HELPERS_H
 
 #include "config.h"
+#include "estimate.h"
 #include "image.h"
+#include "photons.h"
+#include "reps.h"
 #include "scene.h"
 #include "stats.h"
 
@@ -12,5 +15,10 @@ scene *helper_scene(const char *text);
 /* render_run without progress; prints render_run's message when it fails.
  * Returns render_run's result (RENDER_OK = 0). */
 int helper_render(const scene *sc, const config_render *cfg, unsigned threads, image *out, stats_run *st);
+
+/* The representatives of map m (its flagged photons, all in the tree) in
+ * layout `tree`, evaluated with gather g on `threads` threads. Returns 0, or
+ * -1 when memory runs out (out is then empty). */
+int helper_reps(const photons_map *m, const est_gather *g, config_rep_tree tree, unsigned threads, reps_set *out);
 
 #endif

@@ -49,11 +49,11 @@ void test_precomputed_equals_conventional_on_uniform_plane(void)
     add_square(&l, 200000, vec_make(-1, 0, -1), vec_make(2, 0, 0), vec_make(0, 0, 2), vec_make(0, 1, 0), 1e-5f, 1);
     flag_every(&l, 1);
     photons_map m;
-    CHECK(photons_build_map(&l, 0, &m) == 0);
-    est_reps reps;
+    CHECK(photons_build_map(&l, 0, &m, NULL) == 0);
+    reps_set reps;
     const uint32_t nn = 100;
     est_gather g = est_gather_make(&m, nn, 0.2, 0);
-    CHECK(est_precompute(&m, &g, EST_REPS_SEPARATE, 2, NULL, &reps) == 0);
+    CHECK(helper_reps(&m, &g, CONFIG_REP_TREE_SEPARATE, 2, &reps) == 0);
     CHECK(reps.count == 200000);
     est_scratch *s = est_scratch_new(1, nn);
     CHECK(s != NULL);
@@ -65,7 +65,7 @@ void test_precomputed_equals_conventional_on_uniform_plane(void)
         uint32_t found;
         int ok;
         vec3 ec = est_irradiance(&m, x, vec_make(0, 1, 0), &g, s, &found);
-        vec3 ep = est_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &ok);
+        vec3 ep = reps_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &ok);
         CHECK(found == nn && ok);
         sum_c += ec.y;
         sum_p += ep.y;
@@ -77,20 +77,20 @@ void test_precomputed_equals_conventional_on_uniform_plane(void)
     /* per point they differ by estimator noise only: rms below ~2 x 10% */
     CHECK_MSG(sqrt(sum_d2 / N) < 0.5 * 0.2, "rms difference %.4f", sqrt(sum_d2 / N));
     /* the same with representatives found in the photon tree by flag */
-    est_reps shared;
-    CHECK(est_precompute(&m, &g, EST_REPS_SHARED, 1, NULL, &shared) == 0);
+    reps_set shared;
+    CHECK(helper_reps(&m, &g, CONFIG_REP_TREE_SHARED, 1, &shared) == 0);
     est_scratch *s2 = est_scratch_new(1, nn); /* the two layouts' indices differ: a scratch each */
     for (int i = 0; i < 50; i++) {
         vec3 x = vec_make(rng_next_double(&q) - 0.5, 0, rng_next_double(&q) - 0.5);
         int a, b;
-        vec3 e1 = est_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &a);
-        vec3 e2 = est_lookup(&shared, &m, x, vec_make(0, 1, 0), 0.9, &g, s2, &b);
+        vec3 e1 = reps_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &a);
+        vec3 e2 = reps_lookup(&shared, &m, x, vec_make(0, 1, 0), 0.9, &g, s2, &b);
         CHECK(a && b && e1.y == e2.y);
     }
-    est_reps_free(&shared);
+    reps_free(&shared);
     est_scratch_delete(s2, 1);
     est_scratch_delete(s, 1);
-    est_reps_free(&reps);
+    reps_free(&reps);
     photons_map_free(&m);
 }
 
@@ -154,10 +154,10 @@ void test_precomputed_normal_test_at_corner(void)
     add_square(&l, 4000, vec_make(-1, 0, 0), vec_make(2, 0, 0), vec_make(0, 2, 0), vec_make(0, 0, 1), 1e-2f, 4);
     flag_every(&l, 3);
     photons_map m;
-    CHECK(photons_build_map(&l, 0, &m) == 0);
-    est_reps reps;
+    CHECK(photons_build_map(&l, 0, &m, NULL) == 0);
+    reps_set reps;
     est_gather g = est_gather_make(&m, 50, 0.3, 0);
-    CHECK(est_precompute(&m, &g, EST_REPS_SEPARATE, 1, NULL, &reps) == 0);
+    CHECK(helper_reps(&m, &g, CONFIG_REP_TREE_SEPARATE, 1, &reps) == 0);
     est_scratch *s = est_scratch_new(1, 1);
     /* floor E ~ 40000*1e-5/4 = 0.1; wall E ~ 4000*1e-2/4 = 10 */
     rng_stream q = rng_make(9, 0);
@@ -165,8 +165,8 @@ void test_precomputed_normal_test_at_corner(void)
     for (int i = 0; i < 500; i++) {
         double t = rng_next_double(&q) * 0.01, u = rng_next_double(&q) - 0.5;
         int f1, f2;
-        vec3 on_floor = est_lookup(&reps, &m, vec_make(u, 0, t), vec_make(0, 1, 0), 0.9, &g, s, &f1);
-        vec3 on_wall = est_lookup(&reps, &m, vec_make(u, t, 0), vec_make(0, 0, 1), 0.9, &g, s, &f2);
+        vec3 on_floor = reps_lookup(&reps, &m, vec_make(u, 0, t), vec_make(0, 1, 0), 0.9, &g, s, &f1);
+        vec3 on_wall = reps_lookup(&reps, &m, vec_make(u, t, 0), vec_make(0, 0, 1), 0.9, &g, s, &f2);
         floor_ok &= f1 && on_floor.y < 1.0;
         wall_ok &= f2 && on_wall.y > 1.0;
     }
@@ -174,9 +174,9 @@ void test_precomputed_normal_test_at_corner(void)
     CHECK(wall_ok);
     /* a tilted normal that agrees with neither (cos 0.707 < 0.9): defined zero */
     int f;
-    vec3 e = est_lookup(&reps, &m, vec_make(0, 0.001, 0.001), vec_norm(vec_make(0, 1, 1)), 0.9, &g, s, &f);
+    vec3 e = reps_lookup(&reps, &m, vec_make(0, 0.001, 0.001), vec_norm(vec_make(0, 1, 1)), 0.9, &g, s, &f);
     CHECK(!f && e.x == 0.0 && e.y == 0.0 && e.z == 0.0);
-    est_reps_free(&reps);
+    reps_free(&reps);
     est_scratch_delete(s, 1);
     photons_map_free(&m);
 }
@@ -233,9 +233,11 @@ void test_precomputed_rep_count(void)
         return;
     const uint64_t counts[4] = {1, 777, 5000, 1000000};
     for (int c = 0; c < 4; c++) {
-        photons_params pp = {20000, 3, 64, 1, 4, counts[c]};
+        photons_params pp = {20000, 3, 64, 1};
+        reps_params rp = {4, counts[c], CONFIG_REP_TREE_SEPARATE, 0};
         photons_list l;
         CHECK(photons_trace(sc, &pp, 2, NULL, &l) == 0);
+        reps_choose(&rp, &l);
         uint64_t want = counts[c] < l.count ? counts[c] : l.count, got = 0, last = 0, gap_lo = UINT64_MAX, gap_hi = 0;
         for (uint64_t i = 0; i < l.count; i++) {
             if (!(l.ph[i].flags & PHOTONS_FLAG_REP))
@@ -259,7 +261,7 @@ void test_precomputed_rep_count(void)
     scene_free(sc);
 }
 
-/* est_reps_write_csv (--dump-reps): one line per representative with its
+/* reps_write_csv (--dump-reps): one line per representative with its
  * position, normal and precomputed irradiance, in scene units; a lookup at
  * a dumped position returns the dumped irradiance (the representative is
  * its own nearest), in both layouts, on a plane far from the origin. */
@@ -269,16 +271,16 @@ void test_precomputed_dump_reps(void)
     add_square(&l, 20000, vec_make(99, 5, -1), vec_make(2, 0, 0), vec_make(0, 0, 2), vec_make(0, 1, 0), 1e-5f, 5);
     flag_every(&l, 8);
     photons_map m;
-    CHECK(photons_build_map(&l, 0, &m) == 0);
+    CHECK(photons_build_map(&l, 0, &m, NULL) == 0);
     est_gather g = est_gather_make(&m, 50, 0.3, 0);
     for (int layout = 0; layout < 2; layout++) {
-        est_reps reps;
-        CHECK(est_precompute(&m, &g, layout ? EST_REPS_SHARED : EST_REPS_SEPARATE, 2, NULL, &reps) == 0);
+        reps_set reps;
+        CHECK(helper_reps(&m, &g, layout ? CONFIG_REP_TREE_SHARED : CONFIG_REP_TREE_SEPARATE, 2, &reps) == 0);
         FILE *f = tmpfile();
         CHECK(f != NULL);
         if (!f)
             break;
-        CHECK(est_reps_write_csv(&reps, &m, f) == 0);
+        CHECK(reps_write_csv(&reps, &m, f) == 0);
         rewind(f);
         char line[512];
         CHECK(fgets(line, sizeof line, f) && !strcmp(line, "x,y,z,nx,ny,nz,e_r,e_g,e_b\n"));
@@ -295,7 +297,7 @@ void test_precomputed_dump_reps(void)
             if (rows % 97 == 0) {
                 int found;
                 est_scratch *ls = est_scratch_new(1, 1);
-                vec3 e = est_lookup(&reps, &m, vec_make(v[0], v[1], v[2]), vec_make(0, 1, 0), 0.9, &g, ls, &found);
+                vec3 e = reps_lookup(&reps, &m, vec_make(v[0], v[1], v[2]), vec_make(0, 1, 0), 0.9, &g, ls, &found);
                 est_scratch_delete(ls, 1);
                 lookups_equal += found && fabs(e.y - v[7]) <= 1e-6 * v[7];
             }
@@ -306,7 +308,7 @@ void test_precomputed_dump_reps(void)
         CHECK_MSG(lookups_equal == rows / 97, "%u of %u lookups at a dumped position gave its irradiance",
                   lookups_equal, rows / 97);
         fclose(f);
-        est_reps_free(&reps);
+        reps_free(&reps);
     }
     photons_map_free(&m);
 }

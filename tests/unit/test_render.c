@@ -24,7 +24,7 @@ static const char *closed_box =
 void test_photon_power_closed_box(void)
 {
     scene *sc = helper_scene(closed_box);
-    photons_params pp = {100003, 1, 64, 1, 0, 0}; /* P_e not a multiple of the chunk size */
+    photons_params pp = {100003, 1, 64, 1}; /* P_e not a multiple of the chunk size */
     photons_list l;
     CHECK(photons_trace(sc, &pp, 2, NULL, &l) == 0);
     double sum[3] = {0, 0, 0};

@@ -106,7 +106,7 @@ static void make_map(photons_map *m, const float (*pos)[3], uint32_t count, vec3
         l.ph[i].flags = (uint8_t)flags;
     }
     l.unit = vec_make(1, 1, 1);
-    CHECK(photons_build_map(&l, 0, m) == 0);
+    CHECK(photons_build_map(&l, 0, m, NULL) == 0);
 }
 
 /* est_irradiance with a gather of nn photons within max_r scene units. */
@@ -217,23 +217,23 @@ void test_stability_no_agreeing_representative(void)
     photons_map m;
     make_map(&m, (const float(*)[3])pos, 16, down, up_n, 1.0f, PHOTONS_FLAG_REP);
     for (int layout = 0; layout < 2; layout++) {
-        est_reps r;
+        reps_set r;
         est_gather g = est_gather_make(&m, 4, 0.1, 0);
         est_scratch *ls = est_scratch_new(1, 4);
-        CHECK(est_precompute(&m, &g, layout ? EST_REPS_SHARED : EST_REPS_SEPARATE, 2, NULL, &r) == 0);
+        CHECK(helper_reps(&m, &g, layout ? CONFIG_REP_TREE_SHARED : CONFIG_REP_TREE_SEPARATE, 2, &r) == 0);
         CHECK(r.count == 16);
         int found = -1;
-        vec3 e = est_lookup(&r, &m, vec_make(0.01, 0, 0.01), down, 0.9, &g, ls, &found);
+        vec3 e = reps_lookup(&r, &m, vec_make(0.01, 0, 0.01), down, 0.9, &g, ls, &found);
         CHECK(found == 0 && e.x == 0.0 && e.y == 0.0 && e.z == 0.0);
-        e = est_lookup(&r, &m, vec_make(0.01, 0, 0.01), vec_make(1, 0, 0), 0.9, &g, ls, &found);
+        e = reps_lookup(&r, &m, vec_make(0.01, 0, 0.01), vec_make(1, 0, 0), 0.9, &g, ls, &found);
         CHECK(found == 0 && e.x == 0.0);
         /* the agreeing side finds one, finite and positive */
-        e = est_lookup(&r, &m, vec_make(0.01, 0, 0.01), up_n, 0.9, &g, ls, &found);
+        e = reps_lookup(&r, &m, vec_make(0.01, 0, 0.01), up_n, 0.9, &g, ls, &found);
         CHECK(found == 1 && isfinite(e.x) && e.x > 0.0);
         /* none in range */
-        e = est_lookup(&r, &m, vec_make(5, 0, 5), up_n, 0.9, &g, ls, &found);
+        e = reps_lookup(&r, &m, vec_make(5, 0, 5), up_n, 0.9, &g, ls, &found);
         CHECK(found == 0 && e.x == 0.0);
-        est_reps_free(&r);
+        reps_free(&r);
         est_scratch_delete(ls, 1);
     }
     photons_map_free(&m);

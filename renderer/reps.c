@@ -1,0 +1,304 @@
+/* reps: the representatives' rule, leave-out mask, sites, layouts,
+ * precompute, lookup and CSV form (reps.h). */
+#include "reps.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "parallel.h"
+
+#define REPS_CHUNK 1024u
+
+reps_params reps_params_of(const config_render *cfg)
+{
+    int pre = cfg->method == CONFIG_METHOD_PRECOMPUTED;
+    reps_params p;
+    p.every = pre ? cfg->rep_every : 0;
+    p.count = pre ? cfg->rep_count : 0;
+    p.tree = cfg->rep_tree;
+    p.leave_out = pre && cfg->bias_correction;
+    return p;
+}
+
+const char *reps_check(const config_render *c)
+{
+    if (c->dump_reps && c->method != CONFIG_METHOD_PRECOMPUTED)
+        return "--dump-reps writes the representatives of the precomputed method: use it with --method precomputed";
+    if (c->rep_count > 0 && c->rep_every != CONFIG_DEFAULT_REP_EVERY)
+        return "--rep-count and --rep-every are two rules for choosing the representatives: give one";
+    if (c->method != CONFIG_METHOD_PRECOMPUTED)
+        return NULL;
+    if (!c->bias_correction && c->nn < 3)
+        return "--method precomputed with --nn 2: a representative is its own nearest photon, so r is the "
+               "distance to one other photon and the estimate has no finite mean (it follows n/(n-2)); use --nn 3 "
+               "or more, or --bias-correction";
+    if (c->bias_correction && c->rep_every < 2)
+        return "--bias-correction with --method precomputed estimates at representatives from the photons that "
+               "are not representatives; --rep-every 1 leaves none: use --rep-every 2 or more";
+    if (c->bias_correction && c->rep_tree == CONFIG_REP_TREE_SHARED)
+        return "--bias-correction with --method precomputed keeps the representatives out of the photon tree; "
+               "--rep-tree shared finds them there: use --rep-tree separate";
+    return NULL;
+}
+
+int reps_check_stored(const config_render *cfg, uint64_t stored, char *err, size_t errlen)
+{
+    /* reps_check refuses --rep-every 1 up front; the count's share of the
+     * stored photons is known only after the photon pass */
+    if (!(cfg->method == CONFIG_METHOD_PRECOMPUTED && cfg->bias_correction && cfg->rep_count > 0 && stored > 0 &&
+          cfg->rep_count >= stored))
+        return 0;
+    snprintf(err, errlen,
+             "--rep-count %llu flags every one of the %llu stored photons, and --bias-correction estimates at "
+             "representatives from the photons that are not: use a count below the stored photons",
+             (unsigned long long)cfg->rep_count, (unsigned long long)stored);
+    return -1;
+}
+
+void reps_choose(const reps_params *p, photons_list *l)
+{
+    uint64_t total = l->count;
+    if (p->count > 0 && total > 0) {
+        /* a fixed count, spread evenly over the trace order: photon
+         * floor(j * total / count) = j * q + floor(j * r / count), which
+         * cannot overflow (j * r < count^2 and count < 2^32) */
+        uint64_t count = p->count < total ? p->count : total;
+        uint64_t q = total / count, r = total % count;
+        for (uint64_t j = 0; j < count; j++)
+            l->ph[j * q + j * r / count].flags |= PHOTONS_FLAG_REP;
+    } else if (p->count == 0 && p->every > 0) {
+        for (uint64_t i = 0; i < total; i += p->every)
+            l->ph[i].flags |= PHOTONS_FLAG_REP;
+    }
+}
+
+uint8_t reps_leave_out_mask(const reps_params *p)
+{
+    return p->leave_out ? PHOTONS_FLAG_REP : 0;
+}
+
+int reps_collect(const reps_params *p, const photons_map *m, const photons_list *left, reps_set *out)
+{
+    memset(out, 0, sizeof *out);
+    out->tree = p->tree;
+    uint32_t nin = 0, nleft = left ? (uint32_t)left->count : 0;
+    for (uint32_t i = 0; i < m->count; i++)
+        nin += (m->ph[i].flags & PHOTONS_FLAG_REP) != 0;
+    out->site = malloc(sizeof(reps_site) * (nin + nleft ? nin + nleft : 1));
+    if (!out->site)
+        return -1;
+    uint32_t r = 0;
+    /* those in the tree, in its leaf order */
+    for (uint32_t i = 0; i < m->count; i++) {
+        const photons_record *rec = &m->ph[i];
+        if (rec->flags & PHOTONS_FLAG_REP) {
+            reps_site *rp = &out->site[r++];
+            rp->pos[0] = m->tree.x[i];
+            rp->pos[1] = m->tree.y[i];
+            rp->pos[2] = m->tree.z[i];
+            memcpy(rp->normal, rec->normal, 3);
+            rp->pad = 0;
+            rp->tree_index = i;
+        }
+    }
+    /* those the map left out (reps_leave_out_mask), in trace order */
+    for (uint32_t i = 0; i < nleft; i++) {
+        assert(left->ph[i].flags & PHOTONS_FLAG_REP);
+        reps_site *rp = &out->site[r++];
+        vec3 x = vec_make(left->pos[3 * (size_t)i], left->pos[3 * (size_t)i + 1], left->pos[3 * (size_t)i + 2]);
+        photons_map_point(m, x, rp->pos);
+        memcpy(rp->normal, left->ph[i].normal, 3);
+        rp->pad = 0;
+        rp->tree_index = KD_NONE;
+    }
+    out->count = r;
+    return 0;
+}
+
+size_t reps_sites_bytes(const reps_set *r)
+{
+    return (size_t)r->count * sizeof(reps_site);
+}
+
+typedef struct {
+    const photons_map *m;
+    const est_gather *g;
+    const reps_site *site;
+    const uint32_t *order; /* value index i -> site index (separate layout), or NULL: the same */
+    reps_value *value;     /* by value index */
+    uint32_t count;
+    est_scratch *scratch;  /* one per thread */
+    progress *prog;
+} evaluate_ctx;
+
+static void evaluate_chunk(uint64_t chunk, unsigned thread, void *arg)
+{
+    evaluate_ctx *c = arg;
+    uint32_t lo = (uint32_t)chunk * REPS_CHUNK;
+    uint32_t hi = lo + REPS_CHUNK < c->count ? lo + REPS_CHUNK : c->count;
+    for (uint32_t i = lo; i < hi; i++) {
+        const reps_site *rp = &c->site[c->order ? c->order[i] : i];
+        vec3 n = vec_norm(photons_unpack_dir(rp->normal));
+        uint32_t found;
+        vec3 e = est_irradiance_at(c->m, rp->pos, n, c->g, &c->scratch[thread], &found);
+        reps_value *r = &c->value[i];
+        r->irradiance[0] = (float)e.x;
+        r->irradiance[1] = (float)e.y;
+        r->irradiance[2] = (float)e.z;
+        r->normal[0] = (float)n.x;
+        r->normal[1] = (float)n.y;
+        r->normal[2] = (float)n.z;
+    }
+    progress_add(c->prog, hi - lo);
+}
+
+/* Frees r's lookup layout and values, keeping its sites. */
+static void free_values(reps_set *r)
+{
+    kd_free(&r->own);
+    free(r->value);
+    free(r->rep_of);
+    r->value = NULL;
+    r->rep_of = NULL;
+}
+
+int reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, unsigned threads, progress *prog)
+{
+    unsigned nt = threads ? threads : 1;
+    uint32_t count = r->count;
+    uint32_t *order = NULL;
+    r->value = malloc(sizeof(reps_value) * (count ? count : 1));
+    est_scratch *scratch = est_scratch_new(nt, g->nn);
+    int rc = (!r->value || !scratch) ? -1 : 0;
+    if (rc == 0 && r->tree == CONFIG_REP_TREE_SEPARATE) {
+        /* the representatives' own tree first: the precompute then runs in
+         * its leaf order (nearby queries in a row) and stores in that order */
+        float *pos = malloc(sizeof(float) * 3 * (count ? count : 1));
+        order = malloc(sizeof(uint32_t) * (count ? count : 1));
+        rc = (!pos || !order) ? -1 : 0;
+        if (rc == 0) {
+            for (uint32_t i = 0; i < count; i++)
+                memcpy(pos + 3 * (size_t)i, r->site[i].pos, 3 * sizeof(float));
+            rc = kd_build(&r->own, pos, count, KD_DEFAULT_LEAF, order);
+        }
+        free(pos);
+    } else if (rc == 0) {
+        r->rep_of = malloc(sizeof(uint32_t) * (m->count ? m->count : 1));
+        rc = r->rep_of ? 0 : -1;
+        if (rc == 0) {
+            for (uint32_t i = 0; i < m->count; i++)
+                r->rep_of[i] = KD_NONE;
+            for (uint32_t i = 0; i < count; i++) {
+                assert(r->site[i].tree_index != KD_NONE);
+                r->rep_of[r->site[i].tree_index] = i;
+            }
+        }
+    }
+    if (rc == 0) {
+        /* Evaluation: every representative's irradiance, now, before the eye
+         * pass (the paper's eager precompute). An evaluation on first use
+         * would allocate the values here and fill them from reps_lookup. */
+        evaluate_ctx c = {m, g, r->site, order, r->value, count, scratch, prog};
+        parallel_for(threads, (count + REPS_CHUNK - 1) / REPS_CHUNK, evaluate_chunk, &c);
+    }
+    free(order);
+    est_scratch_delete(scratch, nt);
+    if (rc != 0)
+        free_values(r);
+    return rc;
+}
+
+typedef struct {
+    const reps_set *r;
+    vec3 n;
+    double cos_min;
+} lookup_ctx;
+
+static int agrees(const reps_value *v, const lookup_ctx *c)
+{
+    return v->normal[0] * c->n.x + v->normal[1] * c->n.y + v->normal[2] * c->n.z > c->cos_min;
+}
+
+static int pred_separate(uint32_t i, const void *arg)
+{
+    const lookup_ctx *c = arg;
+    return agrees(&c->r->value[i], c);
+}
+
+static int pred_shared(uint32_t i, const void *arg)
+{
+    const lookup_ctx *c = arg;
+    uint32_t j = c->r->rep_of[i];
+    return j != KD_NONE && agrees(&c->r->value[j], c);
+}
+
+vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, double cos_min, const est_gather *g,
+                 est_scratch *s, int *found)
+{
+    float max_r2 = (float)g->max_r2;
+    float q[3], d2;
+    photons_map_point(m, x, q);
+    lookup_ctx c = {r, n, cos_min};
+    const reps_value *v = NULL;
+    /* Acceptance: the nearest representative whose normal agrees (the
+     * paper's lookup), found by the layout's tree. Another acceptance rule
+     * (a tangent-plane gate, say) would switch here, on a setting of r,
+     * with its own predicate and fallback. */
+    if (r->tree == CONFIG_REP_TREE_SEPARATE) {
+        uint32_t i = kd_nearest_if(&r->own, q, max_r2, pred_separate, &c, s->last_rep, &d2);
+        if (i != KD_NONE)
+            v = &r->value[i];
+        s->last_rep = i;
+    } else {
+        uint32_t i = kd_nearest_if(&m->tree, q, max_r2, pred_shared, &c, s->last_rep, &d2);
+        if (i != KD_NONE)
+            v = &r->value[r->rep_of[i]];
+        s->last_rep = i;
+    }
+    *found = v != NULL;
+    if (!v)
+        return vec_make(0, 0, 0);
+    return vec_mul(vec_make(v->irradiance[0], v->irradiance[1], v->irradiance[2]), est_world_factor(m));
+}
+
+int reps_write_csv(const reps_set *r, const photons_map *m, FILE *f)
+{
+    vec3 wf = est_world_factor(m);
+    fputs("x,y,z,nx,ny,nz,e_r,e_g,e_b\n", f);
+    for (uint32_t i = 0; i < r->count; i++) {
+        /* where representative i sits in the map frame: its own tree's leaf
+         * i (separate layout) or site i (shared) */
+        float q[3];
+        if (r->tree == CONFIG_REP_TREE_SEPARATE) {
+            q[0] = r->own.x[i];
+            q[1] = r->own.y[i];
+            q[2] = r->own.z[i];
+        } else {
+            memcpy(q, r->site[i].pos, sizeof q);
+        }
+        const reps_value *e = &r->value[i];
+        fprintf(f, "%.9g,%.9g,%.9g,%.6f,%.6f,%.6f,%.9g,%.9g,%.9g\n", m->centre.x + m->scale * q[0],
+                m->centre.y + m->scale * q[1], m->centre.z + m->scale * q[2], e->normal[0], e->normal[1],
+                e->normal[2], e->irradiance[0] * wf.x, e->irradiance[1] * wf.y, e->irradiance[2] * wf.z);
+    }
+    return ferror(f) ? -1 : 0;
+}
+
+size_t reps_bytes(const reps_set *r, const photons_map *m)
+{
+    size_t b = (size_t)r->count * sizeof(reps_value);
+    if (r->tree == CONFIG_REP_TREE_SEPARATE)
+        b += kd_bytes(&r->own);
+    else
+        b += (size_t)m->count * sizeof(uint32_t);
+    return b;
+}
+
+void reps_free(reps_set *r)
+{
+    free_values(r);
+    free(r->site);
+    memset(r, 0, sizeof *r);
+}

@@ -1,0 +1,126 @@
+/* reps: the representatives of the precomputed method (eq. 2 of the paper,
+ * after Christensen 2000), everything about them in one place:
+ *  - the rule that chooses them among the stored photons (every K-th in
+ *    trace order, or a fixed count spread evenly), and its checks;
+ *  - the leave-out mask: the corrected estimate keeps them out of the photon
+ *    tree, so that their irradiance comes from the other photons;
+ *  - their sites (position in the map frame, normal, place in the tree);
+ *  - both layouts of the lookup: their own kd-tree (separate) or the photon
+ *    tree, found by flag (shared);
+ *  - the precompute (equation 1 at every representative, estimate.h) and
+ *    the lookup (the nearest representative whose normal agrees);
+ *  - their CSV form (--dump-reps).
+ *
+ * Two extension points are marked in reps.c: how the irradiance at the
+ * representatives is evaluated (today eagerly, all before the eye pass:
+ * reps_evaluate) and how a lookup accepts a representative (today the
+ * nearest with an agreeing normal: reps_lookup). Their settings would be
+ * config_render fields beside rep_tree, checked in reps_check. */
+#ifndef PM_REPS_H
+#define PM_REPS_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "config.h"
+#include "estimate.h"
+#include "kdtree.h"
+#include "photons.h"
+#include "progress.h"
+#include "vec.h"
+
+/* Which photons are representatives and where they live, as the pipeline
+ * needs it (reps_params_of derives it from a config_render). */
+typedef struct {
+    uint32_t every;       /* every K-th stored photon (trace order); 0 (and count 0): none */
+    uint64_t count;       /* the fixed-count rule instead, when > 0: stored photon floor(j * stored /
+                             count) for j = 0 .. count-1 (every stored photon when fewer) */
+    config_rep_tree tree; /* the lookup's layout */
+    int leave_out;        /* 1: the photon tree holds only the photons that are not representatives */
+} reps_params;
+
+/* The rule and layout of cfg: none for the conventional method; the
+ * representatives are left out of the photon tree for the corrected
+ * precomputed estimate (--bias-correction), which gathers at them from the
+ * other photons only. Never fails. */
+reps_params reps_params_of(const config_render *cfg);
+
+/* NULL when cfg's representative settings go together, else why they do
+ * not (a user error, found before any work). */
+const char *reps_check(const config_render *cfg);
+/* The check that needs the stored count (known after the photon pass): a
+ * fixed count that takes every stored photon leaves the corrected estimate
+ * none to gather from. Returns 0, or -1 with the reason in err (a user
+ * error). */
+int reps_check_stored(const config_render *cfg, uint64_t stored, char *err, size_t errlen);
+
+/* Flags the representatives of list l by p's rule (PHOTONS_FLAG_REP).
+ * Never fails. */
+void reps_choose(const reps_params *p, photons_list *l);
+/* The flags of the photons that photons_build_map must keep out of the
+ * tree: PHOTONS_FLAG_REP when p->leave_out, else 0. */
+uint8_t reps_leave_out_mask(const reps_params *p);
+
+/* A representative's site: its position in the map frame, its surface
+ * normal, and where it sits in the photon tree (KD_NONE when the map leaves
+ * it out). */
+typedef struct {
+    float pos[3];
+    int8_t normal[3];
+    uint8_t pad;
+    uint32_t tree_index;
+} reps_site;
+
+/* A representative's precomputed value. */
+typedef struct {
+    float irradiance[3]; /* relative to photons_map.unit / scale^2 */
+    float normal[3];     /* unit */
+} reps_value;
+
+typedef struct {
+    config_rep_tree tree;
+    uint32_t count;
+    reps_site *site;    /* the map's representatives in the photon tree, in its leaf order, then those
+                           left out, in trace order */
+    kd_tree own;        /* separate: the representatives' own tree */
+    reps_value *value;  /* separate: in that tree's leaf order; shared: by site (see rep_of) */
+    uint32_t *rep_of;   /* shared: photon tree index -> site index or KD_NONE */
+} reps_set;
+
+/* The sites of the representatives into out (no values yet, p's layout):
+ * the flagged photons of m's tree, then those photons_build_map left out
+ * into `left` (NULL: none). Returns 0, or -1 when memory runs out (out is
+ * then empty). */
+int reps_collect(const reps_params *p, const photons_map *m, const photons_list *left, reps_set *out);
+/* Bytes the sites hold. */
+size_t reps_sites_bytes(const reps_set *r);
+
+/* Builds r's lookup layout and computes the irradiance at every
+ * representative from its g->nn nearest photons of m (equation 1,
+ * est_irradiance_at), on `threads` threads, deterministically. The shared
+ * layout needs the representatives in the photon tree (asserted). Returns
+ * 0, or -1 when memory runs out (r's lookup and values are then freed, its
+ * sites kept). */
+int reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, unsigned threads, progress *prog);
+
+/* Irradiance (W per unit^2) of the nearest representative within the
+ * gather's radius cap of world point x whose normal has cosine > cos_min
+ * with n (of equally near ones, the first in tree order, so the answer does
+ * not depend on s, whose last answer only starts the search). Returns 0 and
+ * sets *found = 0 when none qualifies. */
+vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, double cos_min, const est_gather *g,
+                 est_scratch *s, int *found);
+
+/* Writes the representatives as CSV to f: the header
+ * "x,y,z,nx,ny,nz,e_r,e_g,e_b", then one line per representative: its
+ * position in scene units, its unit normal and its precomputed irradiance
+ * in W per scene unit^2 (what reps_lookup returns for it). Returns 0, or -1
+ * on a write error. */
+int reps_write_csv(const reps_set *r, const photons_map *m, FILE *f);
+/* Bytes the values and the lookup layout hold (not the sites). */
+size_t reps_bytes(const reps_set *r, const photons_map *m);
+/* Frees the representatives; a zeroed struct is fine. */
+void reps_free(reps_set *r);
+
+#endif
