@@ -27,6 +27,7 @@ config_render config_defaults(void)
     c.rep_tree = CONFIG_REP_TREE_SEPARATE;
     c.allow_nonfinite = 0;
     c.bias_correction = 0;
+    c.accel = SCENE_ACCEL_AUTO;
     c.dump_reps = NULL;
     return c;
 }

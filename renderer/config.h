@@ -6,6 +6,8 @@
 
 #include <stdint.h>
 
+#include "scene.h"
+
 typedef enum { CONFIG_METHOD_CONVENTIONAL = 0, CONFIG_METHOD_PRECOMPUTED = 1 } config_method;
 typedef enum { CONFIG_DIRECT_PHOTONS = 0, CONFIG_DIRECT_SHADOW_RAYS = 1 } config_direct;
 /* --rep-tree: where the precomputed method finds its representatives (reps.h) */
@@ -33,6 +35,8 @@ typedef struct {
     int allow_nonfinite;      /* 1: a pixel out of the float range is reported but does not fail the run */
     int bias_correction;      /* 1: the unbiased estimate (README): photons strictly inside r; for the
                                  precomputed method, from the photons that are not representatives */
+    scene_accel accel;        /* ray casting: a BVH from SCENE_BVH_MIN_SHAPES shapes on, always, or never
+                                 (the image does not depend on it) */
     const char *dump_reps;    /* precomputed: write the representatives (position, normal, precomputed
                                  irradiance) to this CSV file; NULL: none */
 } config_render;

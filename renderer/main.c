@@ -19,7 +19,6 @@
 #include "image.h"
 #include "outfile.h"
 #include "parallel.h"
-#include "photons.h"
 #include "povray.h"
 #include "render.h"
 #include "scene.h"
@@ -33,7 +32,6 @@ typedef struct {
     const char *exr, *png, *stats;
     double exposure;
     int quiet;
-    int accel; /* scene_accel */
 } render_args;
 
 static const char *const method_names[] = {"conventional", "precomputed", NULL};
@@ -45,6 +43,7 @@ static const char *const accel_names[] = {"auto", "bvh", "linear", NULL};
 _Static_assert(sizeof(config_method) == sizeof(int), "config_method is int-sized");
 _Static_assert(sizeof(config_direct) == sizeof(int), "config_direct is int-sized");
 _Static_assert(sizeof(config_rep_tree) == sizeof(int), "config_rep_tree is int-sized");
+_Static_assert(sizeof(scene_accel) == sizeof(int), "scene_accel is int-sized");
 _Static_assert(SCENE_ACCEL_AUTO == 0 && SCENE_ACCEL_BVH == 1 && SCENE_ACCEL_LINEAR == 2, "accel_names order");
 
 #define RO(field) offsetof(render_args, field)
@@ -86,7 +85,7 @@ static const cli_option render_options[] = {
      "maximum bounces of a photon path", NULL},
     {"--eye-depth", CLI_U32, "D", RC(eye_depth), 0, CONFIG_MAX_DEPTH, 0, 0, NULL, 0,
      "maximum specular bounces of an eye path", NULL},
-    {"--accel", CLI_CHOICE, NULL, RO(accel), 0, 0, 0, 0, accel_names, 0,
+    {"--accel", CLI_CHOICE, NULL, RC(accel), 0, 0, 0, 0, accel_names, 0,
      "ray casting: a BVH over the shapes from " SCENE_BVH_MIN_SHAPES_TEXT " shapes on (auto), always, or a loop over "
      "every shape; the image does not depend on it", NULL},
     {"-o", CLI_STRING, "FILE.exr", RO(exr), 0, 0, 0, 0, NULL, 0, "linear float RGB OpenEXR", NULL},
@@ -121,37 +120,6 @@ static uint64_t physical_memory(void)
 {
     long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
     return pages > 0 && size > 0 ? (uint64_t)pages * (uint64_t)size : 0;
-}
-
-/* Refuses up front a photon count whose map would not fit in memory, from a
- * pilot of the photon pass. Returns 0 or an exit code. */
-static int check_memory(const scene *sc, const config_render *cfg)
-{
-    photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS};
-    double per_emitted = photons_stored_per_emitted(sc, &pp);
-    if (per_emitted < 0.0) {
-        fprintf(stderr, "photonmap: out of memory in the pilot photon pass\n");
-        return CLI_EXIT_RUNTIME;
-    }
-    if (per_emitted == 0.0)
-        return 0;
-    double stored = per_emitted * (double)cfg->photons * 1.1 + 4096.0;
-    double bytes = photons_peak_bytes(stored);
-    uint64_t mem = physical_memory();
-    if (stored > (double)UINT32_MAX - 1.0) {
-        fprintf(stderr, "photonmap: --photons %" PRIu64 " would store about %.3g photons; the map holds at most 2^32-1\n",
-                cfg->photons, stored);
-        return CLI_EXIT_USAGE;
-    }
-    if (mem > 0 && bytes > CONFIG_MEMORY_HEADROOM * (double)mem) {
-        fprintf(stderr,
-                "photonmap: --photons %" PRIu64 " needs about %.1f GiB (%.2f stored per emitted photon, %.0f bytes each "
-                "at the peak), more than %.0f%% of this machine's %.1f GiB; use fewer photons\n",
-                cfg->photons, bytes / 1073741824.0, per_emitted, bytes / stored, CONFIG_MEMORY_HEADROOM * 100.0,
-                (double)mem / 1073741824.0);
-        return CLI_EXIT_USAGE;
-    }
-    return 0;
 }
 
 /* Claims every output path now, so that an unwritable one fails before the
@@ -190,11 +158,32 @@ static int load_scene(const char *path, scene **sc)
     return rc == SCENE_ERR_INPUT ? CLI_EXIT_USAGE : CLI_EXIT_RUNTIME;
 }
 
+/* --dump-reps: the representatives as CSV, through a temporary file.
+ * Returns 0 or an exit code. */
+static int write_reps(const char *path, const render_result *r)
+{
+    char err[1024];
+    outfile f;
+    if (outfile_begin(&f, path, 1, err, sizeof err) == 0) {
+        if (render_write_reps(r, f.f) == 0) {
+            if (outfile_commit(&f, err, sizeof err) == 0)
+                return 0;
+        } else {
+            snprintf(err, sizeof err, "%s: write error", path);
+            outfile_abort(&f);
+        }
+    }
+    fprintf(stderr, "photonmap: %s\n", err);
+    return CLI_EXIT_RUNTIME;
+}
+
 /* Writes what a finished render produced. Returns 0 or an exit code. */
-static int write_outputs(const render_args *a, unsigned threads, const image *img, const stats_run *st)
+static int write_outputs(const render_args *a, unsigned threads, const render_result *r)
 {
     char err[1024];
     int exit_code = 0;
+    const image *img = &r->img;
+    const stats_run *st = &r->st;
     if (a->stats) {
         outfile f;
         if (outfile_begin(&f, a->stats, 1, err, sizeof err) ||
@@ -247,23 +236,27 @@ static int cmd_render(int argc, char **argv)
     scene *sc = NULL;
     if ((rc = load_scene(a.scene, &sc)))
         return rc;
-    if (scene_set_accel(sc, (scene_accel)a.accel)) {
-        fprintf(stderr, "photonmap: %s: out of memory building the BVH of %zu shapes\n", a.scene, sc->nshapes);
+    char err[1024];
+    const char *paths[4] = {a.exr, a.png, a.stats, cfg->dump_reps};
+    const char *names[4] = {"-o", "--png", "--stats", "--dump-reps"};
+    if ((rc = render_prepare(sc, cfg, err, sizeof err))) {
+        fprintf(stderr, "photonmap: %s: %s\n", a.scene, err);
         scene_free(sc);
         return CLI_EXIT_RUNTIME;
     }
-    const char *paths[4] = {a.exr, a.png, a.stats, cfg->dump_reps};
-    const char *names[4] = {"-o", "--png", "--stats", "--dump-reps"};
-    if ((rc = check_memory(sc, cfg)) || (rc = claim_outputs(&render_command, paths, names, 4))) {
+    if ((rc = render_check_memory(sc, cfg, physical_memory(), err, sizeof err))) {
+        fprintf(stderr, "photonmap: %s\n", err);
+        scene_free(sc);
+        return rc == RENDER_ERR_INPUT ? CLI_EXIT_USAGE : CLI_EXIT_RUNTIME;
+    }
+    if ((rc = claim_outputs(&render_command, paths, names, 4))) {
         scene_free(sc);
         return rc;
     }
     unsigned threads = cfg->threads ? cfg->threads : parallel_cores();
     int show = !a.quiet && isatty(STDERR_FILENO);
-    image img;
-    stats_run st;
-    char err[1024];
-    if ((rc = render_run(sc, cfg, threads, show, &img, &st, err, sizeof err)) != RENDER_OK) {
+    render_result res;
+    if ((rc = render_run(sc, cfg, threads, show, &res, err, sizeof err)) != RENDER_OK) {
         if (rc == RENDER_ERR_INPUT)
             fprintf(stderr, "%s: %s\n", a.scene, err);
         else
@@ -271,14 +264,21 @@ static int cmd_render(int argc, char **argv)
         scene_free(sc);
         return rc == RENDER_ERR_INPUT ? CLI_EXIT_USAGE : CLI_EXIT_RUNTIME;
     }
-    rc = write_outputs(&a, threads, &img, &st);
+    /* the representatives first: when they cannot be written, nothing else is */
+    if (cfg->dump_reps && (rc = write_reps(cfg->dump_reps, &res))) {
+        render_result_free(&res);
+        scene_free(sc);
+        return rc;
+    }
+    rc = write_outputs(&a, threads, &res);
+    const stats_run *st = &res.st;
     if (!a.quiet)
         fprintf(stderr,
                 "%s: %s, %" PRIu64 " photons emitted, %" PRIu64 " stored, n=%u, %ux%u, %u threads: "
                 "trace %.2fs build %.2fs precompute %.2fs render %.2fs total %.2fs\n",
-                a.scene, config_method_name(cfg->method), st.photons_emitted, st.photons_stored, cfg->nn, cfg->width,
-                cfg->height, threads, st.trace, st.build, st.precompute, st.render, st.total);
-    image_free(&img);
+                a.scene, config_method_name(cfg->method), st->photons_emitted, st->photons_stored, cfg->nn,
+                cfg->width, cfg->height, threads, st->trace, st->build, st->precompute, st->render, st->total);
+    render_result_free(&res);
     scene_free(sc);
     return rc;
 }

@@ -1,34 +1,21 @@
-/* render: the whole pipeline of one render (photon pass, photon map build,
- * precompute for the precomputed method, eye pass) and the eye pass itself:
- * pinhole camera rays on an SxS subpixel grid per pixel (box filter), mirror
- * and glass recursion, the radiance estimate at the first diffuse hit. No
- * randomness in the eye pass: each pixel depends only on its coordinates, so
- * images are identical for any thread count. */
+/* render: the pipeline of one render (Fig. 1 of the paper: trace photons,
+ * build the photon map, precompute irradiance at the representatives for
+ * the precomputed method, eye pass), the checks between its steps, and the
+ * up-front estimate of its memory. Each step lives in its own module
+ * (photons, reps, eye); render only runs them in order, times them and
+ * returns what they made. It writes no file: main writes every output. */
 #ifndef PM_RENDER_H
 #define PM_RENDER_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "config.h"
 #include "image.h"
 #include "photons.h"
+#include "reps.h"
 #include "scene.h"
 #include "stats.h"
-
-/* The pinhole camera's basis for one image aspect, computed once per render. */
-typedef struct {
-    vec3 origin;
-    vec3 fwd;   /* unit view direction */
-    vec3 right; /* tan(hfov/2) x the unit right vector */
-    vec3 up;    /* tan(hfov/2) x aspect x the unit up vector */
-} render_camera;
-
-/* The camera of sc for images of height/width = aspect_h_over_w. */
-render_camera render_camera_make(const scene *sc, double aspect_h_over_w);
-/* The ray through image-plane point (u, v) in [0,1]^2, v down. */
-shape_ray render_camera_at(const render_camera *cam, double u, double v);
-/* Both in one call (for tests and tools; the eye pass makes the camera once). */
-shape_ray render_camera_ray(const scene *sc, double aspect_h_over_w, double u, double v);
 
 /* The search radius cap in scene units: cfg->max_radius if set, else
  * cfg->max_radius_frac of the photon map's extent (of the scene's
@@ -41,17 +28,42 @@ double render_max_radius(const scene *sc, const config_render *cfg, const photon
  * about 16,000 doubles across the span; measured in results/stability.md). */
 #define RENDER_MIN_RELATIVE_EXTENT 0x1p-38
 
-/* Results of render_run: done, out of memory, a scene or setting the
- * renderer cannot render faithfully (a user input error), or a file it was
- * asked to write (cfg->dump_reps) could not be written. */
-enum { RENDER_OK = 0, RENDER_ERR_MEMORY = 1, RENDER_ERR_INPUT = 2, RENDER_ERR_IO = 3 };
+/* Results of the pipeline's functions: done, out of memory, a scene or
+ * setting the renderer cannot render faithfully (a user input error). */
+enum { RENDER_OK = 0, RENDER_ERR_MEMORY = 1, RENDER_ERR_INPUT = 2 };
 
-/* Renders sc with cfg into *out (allocated here; image_free it) and fills
- * *st; with cfg->dump_reps also writes the representatives there (after the
- * eye pass, outside the times in *st). `threads` workers (>= 1); progress bars on stderr if show_progress.
- * Returns RENDER_OK, or RENDER_ERR_MEMORY / RENDER_ERR_INPUT /
- * RENDER_ERR_IO with the reason in err (out is then empty). */
-int render_run(const scene *sc, const config_render *cfg, unsigned threads, int show_progress, image *out,
-               stats_run *st, char *err, size_t errlen);
+/* The pipeline's first step: builds (or drops) sc's ray-casting structure
+ * for cfg->accel (scene_set_accel). Returns RENDER_OK, or
+ * RENDER_ERR_MEMORY with the reason in err (sc then casts rays by the
+ * linear loop, which gives the same images). */
+int render_prepare(scene *sc, const config_render *cfg, char *err, size_t errlen);
+
+/* Refuses up front a render whose photon map would not fit in mem bytes
+ * of physical memory (0: unknown, no limit) or in the map's 2^32-1 photons,
+ * from a pilot of the photon pass. Returns RENDER_OK; RENDER_ERR_INPUT with
+ * the reason in err (too many photons); RENDER_ERR_MEMORY when the pilot
+ * runs out of memory. */
+int render_check_memory(const scene *sc, const config_render *cfg, uint64_t mem, char *err, size_t errlen);
+
+/* What render_run made. */
+typedef struct {
+    image img;
+    stats_run st;
+    /* with cfg->dump_reps: the representatives and the map whose frame
+     * places them (render_write_reps); otherwise empty */
+    photons_map map;
+    reps_set reps;
+} render_result;
+
+/* Renders sc with cfg into *out on `threads` workers (>= 1), progress bars
+ * on stderr if show_progress. Returns RENDER_OK, or RENDER_ERR_MEMORY /
+ * RENDER_ERR_INPUT with the reason in err (out is then empty). */
+int render_run(const scene *sc, const config_render *cfg, unsigned threads, int show_progress, render_result *out,
+               char *err, size_t errlen);
+/* Writes the representatives of r as CSV to f (reps_write_csv). Returns 0,
+ * or -1 on a write error. */
+int render_write_reps(const render_result *r, FILE *f);
+/* Frees what render_run made; a zeroed result is fine. */
+void render_result_free(render_result *r);
 
 #endif

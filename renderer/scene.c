@@ -573,11 +573,6 @@ int scene_parse_buffer(const char *name, const char *text, size_t len, scene **o
         scene_free(p.sc);
         return SCENE_ERR_INPUT;
     }
-    if (scene_set_accel(p.sc, SCENE_ACCEL_AUTO)) {
-        snprintf(err, errlen, "%s: out of memory building the BVH of %zu shapes", name, p.sc->nshapes);
-        scene_free(p.sc);
-        return SCENE_ERR_RUNTIME;
-    }
     *out = p.sc;
     return SCENE_OK;
 }

@@ -30,7 +30,8 @@ typedef struct {
     size_t nshapes;
     vec3 bounds_lo, bounds_hi; /* of all shapes and the light */
     double scale;              /* bounding-box diagonal: the unit for epsilons and radii */
-    bvh *accel;                /* the shapes' BVH, or NULL: rays test every shape (scene_set_accel) */
+    bvh *accel;                /* the shapes' BVH, or NULL: rays test every shape (scene_set_accel; the
+                                  parser builds none) */
 } scene;
 
 /* How rays find the shapes: a BVH when the scene has at least
@@ -54,8 +55,8 @@ int scene_parse_buffer(const char *name, const char *text, size_t len, scene **o
 /* Reads and parses a file; same contract as scene_parse_buffer (an unreadable
  * file is SCENE_ERR_RUNTIME with "path: reason"). */
 int scene_load(const char *path, scene **out, char *err, size_t errlen);
-/* Builds (or drops) the scene's BVH for `mode`; the parser has already
- * applied SCENE_ACCEL_AUTO. Returns 0, or -1 when memory runs out (the scene
+/* Builds (or drops) the scene's BVH for `mode` (the parser leaves a scene
+ * without one; the render pipeline calls this first). Returns 0, or -1 when memory runs out (the scene
  * then has no BVH and still works, by the linear loop). */
 int scene_set_accel(scene *s, scene_accel mode);
 /* Frees a scene; NULL is fine. */

@@ -22,6 +22,7 @@
 
 #include <valgrind/callgrind.h>
 
+#include "camera.h"
 #include "config.h"
 #include "estimate.h"
 #include "kdtree.h"
@@ -101,7 +102,7 @@ static qset eye_points(const scene *sc, uint32_t w, uint32_t h)
         for (uint32_t tx = 0; tx < (w + TILE - 1) / TILE; tx++)
             for (uint32_t y = ty * TILE; y < h && y < ty * TILE + TILE; y++)
                 for (uint32_t x = tx * TILE; x < w && x < tx * TILE + TILE; x++) {
-                    shape_ray r = render_camera_ray(sc, aspect, (x + 0.5) / w, (y + 0.5) / h);
+                    shape_ray r = camera_ray(sc, aspect, (x + 0.5) / w, (y + 0.5) / h);
                     for (int depth = 0; depth < 16; depth++) {
                         scene_hit hit;
                         if (!scene_intersect(sc, &r, INFINITY, &hit))
@@ -231,6 +232,10 @@ int main(int argc, char **argv)
     scene *sc;
     if (scene_load(scene_path, &sc, err, sizeof err) != SCENE_OK) {
         fprintf(stderr, "bench: %s\n", err);
+        return 1;
+    }
+    if (scene_set_accel(sc, SCENE_ACCEL_AUTO)) { /* as the render pipeline does first */
+        fprintf(stderr, "bench: out of memory\n");
         return 1;
     }
     config_render cfg = config_defaults();
@@ -431,20 +436,22 @@ int main(int argc, char **argv)
                 double t[64], cs[64];
                 uint64_t samples = 0;
                 for (int r = 0; r < reps && r < 64; r++) {
-                    image img;
+                    render_result res;
                     stats_run st, st0;
                     double c0 = cpu_s();
-                    if (render_run(sc, &tiny, th, 0, &img, &st0, err, sizeof err)) {
+                    if (render_run(sc, &tiny, th, 0, &res, err, sizeof err)) {
                         fprintf(stderr, "bench: out of memory\n");
                         return 1;
                     }
-                    image_free(&img);
+                    st0 = res.st;
+                    render_result_free(&res);
                     double c1 = cpu_s();
-                    if (render_run(sc, &c, th, 0, &img, &st, err, sizeof err)) {
+                    if (render_run(sc, &c, th, 0, &res, err, sizeof err)) {
                         fprintf(stderr, "bench: out of memory\n");
                         return 1;
                     }
-                    image_free(&img);
+                    st = res.st;
+                    render_result_free(&res);
                     double c2 = cpu_s();
                     t[r] = st.render;
                     samples = st.samples - st0.samples;

@@ -21,9 +21,14 @@ scene *helper_scene(const char *text)
 int helper_render(const scene *sc, const config_render *cfg, unsigned threads, image *out, stats_run *st)
 {
     char err[512];
-    int rc = render_run(sc, cfg, threads, 0, out, st, err, sizeof err);
+    render_result res;
+    int rc = render_run(sc, cfg, threads, 0, &res, err, sizeof err);
     if (rc != RENDER_OK)
         fprintf(stderr, "  render_run: %s\n", err);
+    *out = res.img;
+    *st = res.st;
+    reps_free(&res.reps);
+    photons_map_free(&res.map);
     return rc;
 }
 

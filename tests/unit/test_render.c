@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "camera.h"
 #include "check.h"
 #include "helpers.h"
 #include "photons.h"
@@ -119,7 +120,7 @@ void test_diffuse_plane_matches_analytic(void)
                 double want = 0;
                 for (int s = 0; s < 4; s++) {
                     double u = (x + (s % 2 + 0.5) / 2) / cfg.width, v = (y + (s / 2 + 0.5) / 2) / cfg.height;
-                    shape_ray r = render_camera_ray(sc, (double)cfg.height / cfg.width, u, v);
+                    shape_ray r = camera_ray(sc, (double)cfg.height / cfg.width, u, v);
                     double t = -r.origin.y / r.dir.y;
                     vec3 p = vec_madd(r.origin, r.dir, t);
                     vec3 to = vec_sub(sc->light.position, p);

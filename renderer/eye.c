@@ -1,0 +1,180 @@
+/* eye: the eye pass, tile by tile (eye.h). */
+#include "eye.h"
+
+#include <assert.h>
+#include <float.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "camera.h"
+#include "estimate.h"
+#include "material.h"
+#include "parallel.h"
+#include "progress.h"
+
+#define EYE_TILE 16u
+
+typedef struct {
+    uint64_t samples, depth_hits, empty, underflow;
+    char pad[128 - 4 * sizeof(uint64_t)]; /* one per thread: no two threads' counters share a cache line */
+} eye_counts;
+
+typedef struct {
+    const scene *sc;
+    const config_render *cfg;
+    const photons_map *map;
+    const reps_set *reps;
+    est_gather gather;    /* conventional: nn and the radius cap (map frame) */
+    camera camera;
+    vec3 light_intensity; /* power / 4pi, for shadow rays */
+    image *img;
+    uint32_t tiles_x;
+    est_scratch *scratch; /* per thread */
+    eye_counts *counts;   /* per thread */
+    progress *prog;
+} eye_ctx;
+
+/* Direct light at the hit h by one shadow ray. */
+static vec3 direct_light(const eye_ctx *c, const scene_hit *h)
+{
+    vec3 to = vec_sub(c->sc->light.position, h->p);
+    double d2 = vec_len2(to);
+    if (!(d2 > 0.0))
+        return vec_make(0, 0, 0);
+    double d = sqrt(d2);
+    vec3 w = vec_scale(to, 1.0 / d);
+    double cosv = vec_dot(w, h->n);
+    if (cosv <= 0.0)
+        return vec_make(0, 0, 0);
+    shape_ray sr = scene_spawn(h, w, 1);
+    if (scene_occluded(c->sc, &sr, d - h->eps))
+        return vec_make(0, 0, 0);
+    return vec_scale(c->light_intensity, cosv / d2);
+}
+
+static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t depth, double weight)
+{
+    const scene *sc = c->sc;
+    scene_hit h;
+    if (!scene_intersect(sc, &r, INFINITY, &h))
+        return vec_make(0, 0, 0);
+    const material *m = &sc->materials[sc->shapes[h.shape].material];
+    if (m->kind == MATERIAL_LAMBERT) {
+        vec3 e;
+        if (c->cfg->method == CONFIG_METHOD_PRECOMPUTED) {
+            int found;
+            e = reps_lookup(c->reps, c->map, h.p, h.n, c->cfg->normal_cos, &c->gather, &c->scratch[thread], &found);
+            c->counts[thread].empty += !found;
+        } else {
+            uint32_t found;
+            e = est_irradiance(c->map, h.p, h.n, &c->gather, &c->scratch[thread], &found);
+            c->counts[thread].empty += found == 0;
+        }
+        if (c->cfg->direct == CONFIG_DIRECT_SHADOW_RAYS)
+            e = vec_add(e, direct_light(c, &h));
+        return vec_mul(vec_scale(m->color, 1.0 / VEC_PI), e);
+    }
+    if (depth >= c->cfg->eye_depth) {
+        c->counts[thread].depth_hits++;
+        return vec_make(0, 0, 0);
+    }
+    if (m->kind == MATERIAL_MIRROR) {
+        double w = weight * vec_maxc(m->color);
+        if (w < CONFIG_EYE_MIN_THROUGHPUT)
+            return vec_make(0, 0, 0);
+        return vec_mul(m->color, radiance(c, thread, scene_spawn(&h, material_reflect(r.dir, h.n), 1), depth + 1, w));
+    }
+    /* glass: both branches, weighted by Fresnel */
+    double n1 = h.front ? 1.0 : m->ior, n2 = h.front ? m->ior : 1.0;
+    double fr = material_fresnel(-vec_dot(r.dir, h.n), n1, n2);
+    vec3 refr;
+    int can_refract = material_refract(r.dir, h.n, n1 / n2, &refr);
+    if (!can_refract)
+        fr = 1.0;
+    vec3 L = vec_make(0, 0, 0);
+    if (weight * fr >= CONFIG_EYE_MIN_THROUGHPUT) {
+        shape_ray rr = scene_spawn(&h, material_reflect(r.dir, h.n), 1);
+        L = vec_scale(radiance(c, thread, rr, depth + 1, weight * fr), fr);
+    }
+    if (can_refract && weight * (1.0 - fr) >= CONFIG_EYE_MIN_THROUGHPUT) {
+        shape_ray rt = scene_spawn(&h, refr, 0);
+        L = vec_madd(L, radiance(c, thread, rt, depth + 1, weight * (1.0 - fr)), 1.0 - fr);
+    }
+    return L;
+}
+
+static void eye_tile(uint64_t tile, unsigned thread, void *arg)
+{
+    eye_ctx *c = arg;
+    const config_render *cfg = c->cfg;
+    uint32_t tx = (uint32_t)(tile % c->tiles_x), ty = (uint32_t)(tile / c->tiles_x);
+    uint32_t x0 = tx * EYE_TILE, y0 = ty * EYE_TILE;
+    uint32_t x1 = x0 + EYE_TILE < cfg->width ? x0 + EYE_TILE : cfg->width;
+    uint32_t y1 = y0 + EYE_TILE < cfg->height ? y0 + EYE_TILE : cfg->height;
+    uint32_t S = cfg->subpixels;
+    double inv = 1.0 / ((double)S * S);
+    for (uint32_t y = y0; y < y1; y++) {
+        for (uint32_t x = x0; x < x1; x++) {
+            vec3 sum = vec_make(0, 0, 0);
+            for (uint32_t sy = 0; sy < S; sy++) {
+                for (uint32_t sx = 0; sx < S; sx++) {
+                    double u = (x + (sx + 0.5) / S) / cfg->width;
+                    double v = (y + (sy + 0.5) / S) / cfg->height;
+                    shape_ray r = camera_at(&c->camera, u, v);
+                    sum = vec_add(sum, radiance(c, thread, r, 0, 1.0));
+                }
+            }
+            float *px = c->img->rgb + ((size_t)y * cfg->width + x) * 3;
+            px[0] = (float)(sum.x * inv);
+            px[1] = (float)(sum.y * inv);
+            px[2] = (float)(sum.z * inv);
+            /* a radiance the float cannot hold but as 0 or a subnormal */
+            c->counts[thread].underflow += (sum.x > 0.0 && !(px[0] >= FLT_MIN)) ||
+                                           (sum.y > 0.0 && !(px[1] >= FLT_MIN)) ||
+                                           (sum.z > 0.0 && !(px[2] >= FLT_MIN));
+        }
+    }
+    c->counts[thread].samples += (uint64_t)(x1 - x0) * (y1 - y0) * S * S;
+    progress_add(c->prog, 1);
+}
+
+int eye_render(const eye_input *in, unsigned threads, int show_progress, image *out, stats_run *st)
+{
+    const config_render *cfg = in->cfg;
+    assert(threads >= 1 && (cfg->method != CONFIG_METHOD_PRECOMPUTED || in->reps));
+    eye_ctx c;
+    memset(&c, 0, sizeof c);
+    c.sc = in->sc;
+    c.cfg = cfg;
+    c.map = in->map;
+    c.reps = in->reps;
+    c.gather = est_gather_make(in->map, cfg->nn, in->max_radius, cfg->bias_correction);
+    c.camera = camera_make(in->sc, (double)cfg->height / (double)cfg->width);
+    c.light_intensity = vec_scale(in->sc->light.power, 1.0 / (4.0 * VEC_PI));
+    c.img = out;
+    c.tiles_x = (cfg->width + EYE_TILE - 1) / EYE_TILE;
+    uint64_t tiles = (uint64_t)c.tiles_x * ((cfg->height + EYE_TILE - 1) / EYE_TILE);
+    c.scratch = est_scratch_new(threads, cfg->nn);
+    c.counts = calloc(threads, sizeof(eye_counts));
+    int rc = (!c.scratch || !c.counts || image_init(out, cfg->width, cfg->height)) ? -1 : 0;
+    if (rc == 0) {
+        progress prog;
+        progress_begin(&prog, "render", tiles, show_progress);
+        c.prog = &prog;
+        int64_t t0 = stats_now_ns();
+        parallel_for(threads, tiles, eye_tile, &c);
+        st->render = (double)(stats_now_ns() - t0) * 1e-9;
+        progress_end(&prog);
+        for (unsigned t = 0; t < threads; t++) {
+            st->samples += c.counts[t].samples;
+            st->eye_depth_limit_hits += c.counts[t].depth_hits;
+            st->empty_estimates += c.counts[t].empty;
+            st->underflow_pixels += c.counts[t].underflow;
+        }
+        st->nonfinite_pixels = image_count_nonfinite(out);
+        image_mean(out, st->mean_radiance);
+    }
+    est_scratch_delete(c.scratch, threads);
+    free(c.counts);
+    return rc;
+}
