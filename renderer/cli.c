@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-int cli_error(const cli_command *cmd, const char *fmt, ...)
+pm_status cli_error(const cli_command *cmd, const char *fmt, ...)
 {
     va_list ap;
     fprintf(stderr, "photonmap: ");
@@ -18,7 +18,7 @@ int cli_error(const cli_command *cmd, const char *fmt, ...)
     vfprintf(stderr, fmt, ap);
     va_end(ap);
     fprintf(stderr, "\n(run 'photonmap %s --help' for usage)\n", cmd->name);
-    return CLI_EXIT_USAGE;
+    return PM_ERR_INPUT;
 }
 
 /* "a, b or c" (bar = 0) or "a|b|c" (bar = 1) for a NULL-terminated list,
@@ -37,8 +37,9 @@ static const char *choice_list(const char *const *choices, int bar, char *buf, s
     return buf;
 }
 
-/* Parses v as option o's value into args. Returns 0 or CLI_EXIT_USAGE. */
-static int parse_value(const cli_command *cmd, const cli_option *o, const char *v, void *args)
+/* Parses v as option o's value into args. Returns PM_OK, or PM_ERR_INPUT
+ * after printing why. */
+static pm_status parse_value(const cli_command *cmd, const cli_option *o, const char *v, void *args)
 {
     char *dst = (char *)args + o->offset;
     char buf[256];
@@ -61,7 +62,7 @@ static int parse_value(const cli_command *cmd, const cli_option *o, const char *
             uint64_t u = (uint64_t)x;
             memcpy(dst, &u, sizeof u);
         }
-        return 0;
+        return PM_OK;
     }
     case CLI_REAL: {
         char *end = NULL;
@@ -72,13 +73,13 @@ static int parse_value(const cli_command *cmd, const cli_option *o, const char *
         if (end == v || *end != '\0' || !decimal || !isfinite(x) || x < o->rlo || x > o->rhi)
             return cli_error(cmd, "%s: expected a number in [%g, %g], got '%s'", o->name, o->rlo, o->rhi, v);
         memcpy(dst, &x, sizeof x);
-        return 0;
+        return PM_OK;
     }
     case CLI_CHOICE:
         for (int i = 0; o->choices[i]; i++) {
             if (!strcmp(v, o->choices[i])) {
                 memcpy(dst, &i, sizeof i);
-                return 0;
+                return PM_OK;
             }
         }
         return cli_error(cmd, "%s: expected %s, got '%s'", o->name, choice_list(o->choices, 0, buf, sizeof buf), v);
@@ -86,22 +87,22 @@ static int parse_value(const cli_command *cmd, const cli_option *o, const char *
         if (v[0] == '\0')
             return cli_error(cmd, "%s: expected a non-empty value", o->name);
         memcpy(dst, &v, sizeof v);
-        return 0;
+        return PM_OK;
     case CLI_FLAG:
         break;
     }
     assert(!"parse_value: a flag has no value");
-    return CLI_EXIT_USAGE;
+    return PM_ERR_INPUT;
 }
 
-int cli_parse(const cli_command *cmd, int argc, char **argv, int first, void *args)
+pm_status cli_parse(const cli_command *cmd, int argc, char **argv, int first, void *args)
 {
     const char *positional = NULL;
     for (int i = first; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             cli_usage(stdout, cmd, args); /* args holds the defaults here */
-            return CLI_EXIT_OK;
+            return PM_DONE;
         }
     }
     for (int i = first; i < argc; i++) {
@@ -125,14 +126,14 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, int first, void *ar
         }
         if (i + 1 >= argc)
             return cli_error(cmd, "%s needs a value", a);
-        int rc = parse_value(cmd, o, argv[++i], args);
+        pm_status rc = parse_value(cmd, o, argv[++i], args);
         if (rc)
             return rc;
     }
     if (!positional)
         return cli_error(cmd, "%s needs a %s", cmd->name, cmd->positional_what);
     memcpy((char *)args + cmd->positional_offset, &positional, sizeof positional);
-    return CLI_PARSED;
+    return PM_OK;
 }
 
 /* The value of o in `defaults` as text, into buf. */

@@ -2,7 +2,7 @@
  * Each subcommand describes its options in a table (name, kind, range,
  * where the value goes in the subcommand's argument struct, help); the same
  * table parses argv, reports range errors and prints the usage text with
- * every default and range. The process exit codes are defined here. */
+ * every default and range. Results are pm_status codes (status.h). */
 #ifndef PM_CLI_H
 #define PM_CLI_H
 
@@ -10,9 +10,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-/* Exit codes of photonmap: success, runtime failure (I/O, memory, a
- * non-finite image), user input error (bad option or scene file). */
-enum { CLI_EXIT_OK = 0, CLI_EXIT_RUNTIME = 1, CLI_EXIT_USAGE = 2 };
+#include "status.h"
 
 typedef enum {
     CLI_FLAG,   /* no value: stores flag_value in an int */
@@ -46,20 +44,17 @@ typedef struct {
     size_t noptions;
 } cli_command;
 
-/* What cli_parse found: go on, or stop with an exit code. */
-enum { CLI_PARSED = -1 };
-
 /* Parses argv[first..argc) into *args, which holds the defaults on entry.
- * Returns CLI_PARSED when the command should run; CLI_EXIT_OK after printing
- * the usage on stdout for --help/-h; CLI_EXIT_USAGE after printing
+ * Returns PM_OK when the command should run; PM_DONE after printing the
+ * usage on stdout for --help/-h; PM_ERR_INPUT after printing
  * "photonmap: <what is wrong>" on stderr (unknown option, missing or
  * malformed value, value out of range, missing or second positional). */
-int cli_parse(const cli_command *cmd, int argc, char **argv, int first, void *args);
+pm_status cli_parse(const cli_command *cmd, int argc, char **argv, int first, void *args);
 /* Prints cmd's usage with every option's range and default (read from
  * `defaults`, an args struct holding the defaults) to f. */
 void cli_usage(FILE *f, const cli_command *cmd, const void *defaults);
 /* Prints "photonmap: <message>" and the hint to run --help on stderr;
- * returns CLI_EXIT_USAGE. */
-int cli_error(const cli_command *cmd, const char *fmt, ...);
+ * returns PM_ERR_INPUT. */
+pm_status cli_error(const cli_command *cmd, const char *fmt, ...);
 
 #endif

@@ -138,7 +138,7 @@ static void eye_tile(uint64_t tile, unsigned thread, void *arg)
     progress_add(c->prog, 1);
 }
 
-int eye_render(const eye_input *in, unsigned threads, int show_progress, image *out, stats_run *st)
+pm_status eye_render(const eye_input *in, unsigned threads, int show_progress, image *out, stats_run *st)
 {
     const config_render *cfg = in->cfg;
     assert(threads >= 1 && (cfg->method != CONFIG_METHOD_PRECOMPUTED || in->reps));
@@ -176,5 +176,5 @@ int eye_render(const eye_input *in, unsigned threads, int show_progress, image *
     }
     est_scratch_delete(c.scratch, threads);
     free(c.counts);
-    return rc;
+    return rc == 0 ? PM_OK : PM_ERR_NOMEM;
 }

@@ -14,6 +14,7 @@
 #include "reps.h"
 #include "scene.h"
 #include "stats.h"
+#include "status.h"
 
 /* What the eye pass reads. */
 typedef struct {
@@ -27,8 +28,9 @@ typedef struct {
 /* Renders in->cfg's image into *out (allocated here) on `threads` workers
  * (>= 1), a progress bar on stderr if show_progress, and sets st's eye-pass
  * fields (render time, samples, depth-limit hits, empty estimates,
- * underflow and non-finite pixels, mean radiance). Returns 0, or -1 when
- * memory runs out (out may then hold an image to image_free). */
-int eye_render(const eye_input *in, unsigned threads, int show_progress, image *out, stats_run *st);
+ * underflow and non-finite pixels, mean radiance). Returns PM_OK, or
+ * PM_ERR_NOMEM when memory runs out (out may then hold an image to
+ * image_free). */
+pm_status eye_render(const eye_input *in, unsigned threads, int show_progress, image *out, stats_run *st);
 
 #endif

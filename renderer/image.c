@@ -10,12 +10,12 @@
 
 #include "outfile.h"
 
-int image_init(image *im, uint32_t width, uint32_t height)
+pm_status image_init(image *im, uint32_t width, uint32_t height)
 {
     im->width = width;
     im->height = height;
     im->rgb = calloc((size_t)width * height * 3 + 1, sizeof(float));
-    return im->rgb ? 0 : -1;
+    return im->rgb ? PM_OK : PM_ERR_NOMEM;
 }
 
 void image_free(image *im)
@@ -175,19 +175,19 @@ done:
     return ok;
 }
 
-int image_write_exr(const image *im, const char *path, char *err, size_t errlen)
+pm_status image_write_exr(const image *im, const char *path, char *err, size_t errlen)
 {
     outfile o;
     if (outfile_begin(&o, path, 0, err, errlen))
-        return -1;
+        return PM_ERR_IO;
     if (exr_write_to(im, o.tmp, path, err, errlen)) {
         outfile_abort(&o);
-        return -1;
+        return PM_ERR_IO;
     }
     return outfile_commit(&o, err, errlen);
 }
 
-int image_read_exr(image *im, const char *path, char *err, size_t errlen)
+pm_status image_read_exr(image *im, const char *path, char *err, size_t errlen)
 {
     memset(im, 0, sizeof *im);
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
@@ -195,7 +195,7 @@ int image_read_exr(image *im, const char *path, char *err, size_t errlen)
     exr_context_t ctx = NULL;
     exr_result_t rc = exr_start_read(&ctx, path, &init);
     if (rc != EXR_ERR_SUCCESS)
-        return exr_fail(rc, path, "cannot read", err, errlen);
+        return exr_fail(rc, path, "cannot read", err, errlen) ? PM_ERR_IO : PM_OK;
     int ok = -1;
     exr_decode_pipeline_t dec;
     memset(&dec, 0, sizeof dec);
@@ -265,7 +265,7 @@ done:
     exr_finish(&ctx);
     if (ok != 0)
         image_free(im);
-    return ok;
+    return ok == 0 ? PM_OK : PM_ERR_IO;
 }
 
 /* ---- PNG ---- */
@@ -280,11 +280,11 @@ static unsigned char srgb8(double v)
     return (unsigned char)lrint(s * 255.0);
 }
 
-int image_write_png(const image *im, const char *path, double exposure, char *err, size_t errlen)
+pm_status image_write_png(const image *im, const char *path, double exposure, char *err, size_t errlen)
 {
     outfile o;
     if (outfile_begin(&o, path, 1, err, errlen))
-        return -1;
+        return PM_ERR_IO;
     unsigned char *row = malloc((size_t)im->width * 3 + 1);
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
     png_infop info = png ? png_create_info_struct(png) : NULL;
@@ -293,14 +293,14 @@ int image_write_png(const image *im, const char *path, double exposure, char *er
         png_destroy_write_struct(&png, &info);
         free(row);
         outfile_abort(&o);
-        return -1;
+        return PM_ERR_NOMEM;
     }
     if (setjmp(png_jmpbuf(png))) {
         snprintf(err, errlen, "%s: PNG write failed", path);
         png_destroy_write_struct(&png, &info);
         free(row);
         outfile_abort(&o);
-        return -1;
+        return PM_ERR_IO;
     }
     png_init_io(png, o.f);
     png_set_IHDR(png, info, im->width, im->height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,

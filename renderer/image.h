@@ -8,13 +8,16 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "status.h"
+
 typedef struct {
     uint32_t width, height;
     float *rgb; /* width*height*3, row 0 at the top */
 } image;
 
-/* Allocates a black image. Returns 0, or -1 when memory runs out. */
-int image_init(image *im, uint32_t width, uint32_t height);
+/* Allocates a black image. Returns PM_OK, or PM_ERR_NOMEM when memory runs
+ * out. */
+pm_status image_init(image *im, uint32_t width, uint32_t height);
 /* Frees the pixels; the struct is left empty. A zeroed image is fine. */
 void image_free(image *im);
 /* Pixels with a non-finite channel. */
@@ -23,13 +26,14 @@ uint64_t image_count_nonfinite(const image *im);
 void image_mean(const image *im, double mean[3]);
 
 /* Writes a linear float RGB OpenEXR (ZIP compressed) to `path` by way of a
- * temporary file. Returns 0, or -1 with "path: reason" in err. */
-int image_write_exr(const image *im, const char *path, char *err, size_t errlen);
-/* Reads an RGB(A) OpenEXR into im (for tests and tools). Returns 0, or -1
- * with "path: reason" in err. */
-int image_read_exr(image *im, const char *path, char *err, size_t errlen);
+ * temporary file. Returns PM_OK, or PM_ERR_IO with "path: reason" in err. */
+pm_status image_write_exr(const image *im, const char *path, char *err, size_t errlen);
+/* Reads an RGB(A) OpenEXR into im (for tests and tools). Returns PM_OK, or
+ * PM_ERR_IO with "path: reason" in err (im is then empty). */
+pm_status image_read_exr(image *im, const char *path, char *err, size_t errlen);
 /* Writes an 8-bit sRGB PNG of im * exposure (clamped) to `path` by way of a
- * temporary file. Returns 0, or -1 with "path: reason" in err. */
-int image_write_png(const image *im, const char *path, double exposure, char *err, size_t errlen);
+ * temporary file. Returns PM_OK, or PM_ERR_IO (PM_ERR_NOMEM when memory
+ * runs out) with "path: reason" in err. */
+pm_status image_write_png(const image *im, const char *path, double exposure, char *err, size_t errlen);
 
 #endif

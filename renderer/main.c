@@ -1,9 +1,11 @@
 /* main: the command line. `photonmap render SCENE [options]` renders;
  * `photonmap export-pov SCENE [options]` writes POV-Ray SDL. Each
  * subcommand's options are one table (cli.h) that drives parsing, range
- * errors and `--help`. Exit codes (cli.h): 0 success, 1 runtime failure
- * (I/O, memory, non-finite image), 2 user input error (bad option or scene
- * file, with file:line:col). */
+ * errors and `--help`. main writes every output file. Every step returns a
+ * pm_status; the exit code is pm_status_exit's (status.h): 0 success, 1
+ * runtime failure (I/O, memory), 2 user input error (bad option or scene
+ * file, with file:line:col, or an image whose radiance leaves the float
+ * range). */
 #include <assert.h>
 #include <errno.h>
 #include <float.h>
@@ -23,6 +25,7 @@
 #include "render.h"
 #include "scene.h"
 #include "stats.h"
+#include "status.h"
 
 /* ---- render ---- */
 
@@ -124,8 +127,8 @@ static uint64_t physical_memory(void)
 
 /* Claims every output path now, so that an unwritable one fails before the
  * work, and refuses two outputs on one file. `names` are the options that
- * gave them. Returns 0 or an exit code. */
-static int claim_outputs(const cli_command *cmd, const char *const *paths, const char *const *names, int n)
+ * gave them. Returns PM_OK, PM_ERR_INPUT (two on one file) or PM_ERR_IO. */
+static pm_status claim_outputs(const cli_command *cmd, const char *const *paths, const char *const *names, int n)
 {
     char err[1024];
     for (int i = 0; i < n; i++)
@@ -139,49 +142,50 @@ static int claim_outputs(const cli_command *cmd, const char *const *paths, const
         outfile probe;
         if (outfile_begin(&probe, paths[i], 0, err, sizeof err)) {
             fprintf(stderr, "photonmap: %s\n", err);
-            return CLI_EXIT_RUNTIME;
+            return PM_ERR_IO;
         }
         outfile_abort(&probe);
     }
-    return 0;
+    return PM_OK;
 }
 
-/* Loads a scene, printing the parser's message on failure. Returns 0 or an
- * exit code. */
-static int load_scene(const char *path, scene **sc)
+/* Loads a scene, printing the parser's message on failure. Returns
+ * scene_load's result. */
+static pm_status load_scene(const char *path, scene **sc)
 {
     char err[1024];
-    int rc = scene_load(path, sc, err, sizeof err);
-    if (rc == SCENE_OK)
-        return 0;
-    fprintf(stderr, "%s\n", err);
-    return rc == SCENE_ERR_INPUT ? CLI_EXIT_USAGE : CLI_EXIT_RUNTIME;
+    pm_status rc = scene_load(path, sc, err, sizeof err);
+    if (rc != PM_OK)
+        fprintf(stderr, "%s\n", err);
+    return rc;
 }
 
 /* --dump-reps: the representatives as CSV, through a temporary file.
- * Returns 0 or an exit code. */
-static int write_reps(const char *path, const render_result *r)
+ * Returns PM_OK, or PM_ERR_IO after printing why. */
+static pm_status write_reps(const char *path, const render_result *r)
 {
     char err[1024];
     outfile f;
     if (outfile_begin(&f, path, 1, err, sizeof err) == 0) {
         if (render_write_reps(r, f.f) == 0) {
             if (outfile_commit(&f, err, sizeof err) == 0)
-                return 0;
+                return PM_OK;
         } else {
             snprintf(err, sizeof err, "%s: write error", path);
             outfile_abort(&f);
         }
     }
     fprintf(stderr, "photonmap: %s\n", err);
-    return CLI_EXIT_RUNTIME;
+    return PM_ERR_IO;
 }
 
-/* Writes what a finished render produced. Returns 0 or an exit code. */
-static int write_outputs(const render_args *a, unsigned threads, const render_result *r)
+/* Writes what a finished render produced. Returns PM_OK; PM_ERR_INPUT
+ * when the image's radiance leaves the float range (no image written);
+ * PM_ERR_IO when a file could not be written (after printing why). */
+static pm_status write_outputs(const render_args *a, unsigned threads, const render_result *r)
 {
     char err[1024];
-    int exit_code = 0;
+    pm_status exit_code = PM_OK;
     const image *img = &r->img;
     const stats_run *st = &r->st;
     if (a->stats) {
@@ -189,7 +193,7 @@ static int write_outputs(const render_args *a, unsigned threads, const render_re
         if (outfile_begin(&f, a->stats, 1, err, sizeof err) ||
             stats_write_json(f.f, a->scene, &a->cfg, threads, st) || outfile_commit(&f, err, sizeof err)) {
             fprintf(stderr, "photonmap: %s\n", err);
-            exit_code = CLI_EXIT_RUNTIME;
+            exit_code = PM_ERR_IO;
         }
     }
     if ((st->nonfinite_pixels > 0 || st->underflow_pixels > 0) && !a->cfg.allow_nonfinite) {
@@ -207,24 +211,25 @@ static int write_outputs(const render_args *a, unsigned threads, const render_re
                     "for the scene's size (radiance ~ power / size^2); scale the power up. No image written "
                     "(--allow-nonfinite keeps it)\n",
                     a->scene, st->underflow_pixels, (double)FLT_MIN);
-        return CLI_EXIT_USAGE;
+        return PM_ERR_INPUT;
     }
     if (a->exr && image_write_exr(img, a->exr, err, sizeof err)) {
         fprintf(stderr, "photonmap: %s\n", err);
-        exit_code = CLI_EXIT_RUNTIME;
+        exit_code = PM_ERR_IO;
     }
     if (a->png && image_write_png(img, a->png, a->exposure, err, sizeof err)) {
         fprintf(stderr, "photonmap: %s\n", err);
-        exit_code = CLI_EXIT_RUNTIME;
+        exit_code = PM_ERR_IO;
     }
     return exit_code;
 }
 
-static int cmd_render(int argc, char **argv)
+/* `photonmap render`. Returns the first failure's status (printed). */
+static pm_status cmd_render(int argc, char **argv)
 {
     render_args a = render_defaults();
-    int rc = cli_parse(&render_command, argc, argv, 2, &a);
-    if (rc != CLI_PARSED)
+    pm_status rc = cli_parse(&render_command, argc, argv, 2, &a);
+    if (rc != PM_OK)
         return rc;
     const config_render *cfg = &a.cfg;
     const char *why = config_check(cfg);
@@ -242,12 +247,12 @@ static int cmd_render(int argc, char **argv)
     if ((rc = render_prepare(sc, cfg, err, sizeof err))) {
         fprintf(stderr, "photonmap: %s: %s\n", a.scene, err);
         scene_free(sc);
-        return CLI_EXIT_RUNTIME;
+        return rc;
     }
     if ((rc = render_check_memory(sc, cfg, physical_memory(), err, sizeof err))) {
         fprintf(stderr, "photonmap: %s\n", err);
         scene_free(sc);
-        return rc == RENDER_ERR_INPUT ? CLI_EXIT_USAGE : CLI_EXIT_RUNTIME;
+        return rc;
     }
     if ((rc = claim_outputs(&render_command, paths, names, 4))) {
         scene_free(sc);
@@ -256,13 +261,13 @@ static int cmd_render(int argc, char **argv)
     unsigned threads = cfg->threads ? cfg->threads : parallel_cores();
     int show = !a.quiet && isatty(STDERR_FILENO);
     render_result res;
-    if ((rc = render_run(sc, cfg, threads, show, &res, err, sizeof err)) != RENDER_OK) {
-        if (rc == RENDER_ERR_INPUT)
+    if ((rc = render_run(sc, cfg, threads, show, &res, err, sizeof err)) != PM_OK) {
+        if (rc == PM_ERR_INPUT)
             fprintf(stderr, "%s: %s\n", a.scene, err);
         else
             fprintf(stderr, "photonmap: %s\n", err);
         scene_free(sc);
-        return rc == RENDER_ERR_INPUT ? CLI_EXIT_USAGE : CLI_EXIT_RUNTIME;
+        return rc;
     }
     /* the representatives first: when they cannot be written, nothing else is */
     if (cfg->dump_reps && (rc = write_reps(cfg->dump_reps, &res))) {
@@ -328,34 +333,35 @@ static pov_args pov_defaults_args(void)
     return a;
 }
 
-static int cmd_export_pov(int argc, char **argv)
+/* `photonmap export-pov`. Returns the first failure's status (printed). */
+static pm_status cmd_export_pov(int argc, char **argv)
 {
     pov_args a = pov_defaults_args();
-    int rc = cli_parse(&pov_command, argc, argv, 2, &a);
-    if (rc != CLI_PARSED)
+    pm_status rc = cli_parse(&pov_command, argc, argv, 2, &a);
+    if (rc != PM_OK)
         return rc;
     scene *sc = NULL;
     if ((rc = load_scene(a.scene, &sc)))
         return rc;
     char err[1024];
-    int exit_code = 0;
+    pm_status exit_code = PM_OK;
     if (!a.out) {
         if (povray_write(stdout, sc, a.scene, &a.pov) || fflush(stdout)) {
             fprintf(stderr, "photonmap: writing standard output: %s\n", strerror(errno));
-            exit_code = CLI_EXIT_RUNTIME;
+            exit_code = PM_ERR_IO;
         }
     } else {
         outfile f;
         if (outfile_begin(&f, a.out, 1, err, sizeof err)) {
             fprintf(stderr, "photonmap: %s\n", err);
-            exit_code = CLI_EXIT_RUNTIME;
+            exit_code = PM_ERR_IO;
         } else if (povray_write(f.f, sc, a.scene, &a.pov)) {
             fprintf(stderr, "photonmap: %s: write error\n", a.out);
             outfile_abort(&f);
-            exit_code = CLI_EXIT_RUNTIME;
+            exit_code = PM_ERR_IO;
         } else if (outfile_commit(&f, err, sizeof err)) {
             fprintf(stderr, "photonmap: %s\n", err);
-            exit_code = CLI_EXIT_RUNTIME;
+            exit_code = PM_ERR_IO;
         }
     }
     scene_free(sc);
@@ -377,12 +383,12 @@ int main(int argc, char **argv)
 {
     if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
         print_usage(argc < 2 ? stderr : stdout);
-        return argc < 2 ? CLI_EXIT_USAGE : CLI_EXIT_OK;
+        return pm_status_exit(argc < 2 ? PM_ERR_INPUT : PM_DONE);
     }
     if (!strcmp(argv[1], "render"))
-        return cmd_render(argc, argv);
+        return pm_status_exit(cmd_render(argc, argv));
     if (!strcmp(argv[1], "export-pov"))
-        return cmd_export_pov(argc, argv);
+        return pm_status_exit(cmd_export_pov(argc, argv));
     fprintf(stderr, "photonmap: unknown command '%s' (expected render or export-pov; see photonmap --help)\n", argv[1]);
-    return CLI_EXIT_USAGE;
+    return pm_status_exit(PM_ERR_INPUT);
 }

@@ -77,14 +77,14 @@ static void outfile_untrack(outfile *o)
     o->slot = -1;
 }
 
-int outfile_begin(outfile *o, const char *path, int stream, char *err, size_t errlen)
+pm_status outfile_begin(outfile *o, const char *path, int stream, char *err, size_t errlen)
 {
     memset(o, 0, sizeof *o);
     o->slot = -1;
     size_t n = strlen(path);
     if (n == 0 || n + 32 >= OUTFILE_PATH_MAX) {
         snprintf(err, errlen, "%s: bad output path", path);
-        return -1;
+        return PM_ERR_IO;
     }
     /* Renaming over a device, FIFO or directory would replace it: `-o
      * /dev/full` run as root turned /dev/full into a regular file (found by
@@ -92,7 +92,7 @@ int outfile_begin(outfile *o, const char *path, int stream, char *err, size_t er
     struct stat st;
     if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
         snprintf(err, errlen, "%s: not a regular file; outputs are written beside it and renamed over it", path);
-        return -1;
+        return PM_ERR_IO;
     }
     memcpy(o->path, path, n + 1);
     snprintf(o->tmp, sizeof o->tmp, "%s.tmp.%ld", path, (long)getpid());
@@ -102,7 +102,7 @@ int outfile_begin(outfile *o, const char *path, int stream, char *err, size_t er
         snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
         outfile_untrack(o);
         o->tmp[0] = '\0';
-        return -1;
+        return PM_ERR_IO;
     }
     if (stream) {
         o->f = fdopen(fd, "wb");
@@ -112,15 +112,15 @@ int outfile_begin(outfile *o, const char *path, int stream, char *err, size_t er
             unlink(o->tmp);
             outfile_untrack(o);
             o->tmp[0] = '\0';
-            return -1;
+            return PM_ERR_IO;
         }
     } else {
         close(fd);
     }
-    return 0;
+    return PM_OK;
 }
 
-int outfile_commit(outfile *o, char *err, size_t errlen)
+pm_status outfile_commit(outfile *o, char *err, size_t errlen)
 {
     int rc = 0;
     if (o->f) {
@@ -142,7 +142,7 @@ int outfile_commit(outfile *o, char *err, size_t errlen)
         unlink(o->tmp);
     outfile_untrack(o);
     o->tmp[0] = '\0';
-    return rc;
+    return rc == 0 ? PM_OK : PM_ERR_IO;
 }
 
 void outfile_abort(outfile *o)

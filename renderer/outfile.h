@@ -10,6 +10,8 @@
 
 #include <stdio.h>
 
+#include "status.h"
+
 #define OUTFILE_PATH_MAX 4096
 
 typedef struct {
@@ -21,11 +23,12 @@ typedef struct {
 
 /* Prepares writing `path`: creates the temporary file (so an unwritable
  * directory fails now, before any work) and, if `stream`, keeps it open as
- * o->f. Returns 0, or -1 with "path: reason" in err. */
-int outfile_begin(outfile *o, const char *path, int stream, char *err, size_t errlen);
+ * o->f. Returns PM_OK, or PM_ERR_IO with "path: reason" in err. */
+pm_status outfile_begin(outfile *o, const char *path, int stream, char *err, size_t errlen);
 /* Flushes, syncs and closes the stream (if any) and renames tmp over path.
- * Returns 0, or -1 with "path: reason" in err (the temporary is removed). */
-int outfile_commit(outfile *o, char *err, size_t errlen);
+ * Returns PM_OK, or PM_ERR_IO with "path: reason" in err (the temporary is
+ * removed). */
+pm_status outfile_commit(outfile *o, char *err, size_t errlen);
 /* Closes and removes the temporary; the final path is untouched. */
 void outfile_abort(outfile *o);
 /* 1 when paths a and b name the same file (the same string, the same

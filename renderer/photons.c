@@ -142,13 +142,13 @@ static void trace_chunk(uint64_t chunk, unsigned thread, void *arg)
     progress_add(tc->prog, hi - lo);
 }
 
-int photons_trace(const scene *sc, const photons_params *p, unsigned threads, progress *prog, photons_list *out)
+pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threads, progress *prog, photons_list *out)
 {
     memset(out, 0, sizeof *out);
     uint64_t nchunks = (p->photons + PHOTONS_CHUNK - 1) / PHOTONS_CHUNK;
     photons_chunk *chunks = calloc(nchunks ? nchunks : 1, sizeof(photons_chunk));
     if (!chunks)
-        return -1;
+        return PM_ERR_NOMEM;
     trace_ctx tc = {sc, p, chunks, prog};
     parallel_for(threads, nchunks, trace_chunk, &tc);
     int failed = 0;
@@ -177,7 +177,7 @@ int photons_trace(const scene *sc, const photons_params *p, unsigned threads, pr
     free(chunks);
     if (failed) {
         photons_list_free(out);
-        return -1;
+        return PM_ERR_NOMEM;
     }
     out->count = total;
     out->unit = p->photons ? vec_scale(sc->light.power, 1.0 / (double)p->photons) : vec_make(0, 0, 0);
@@ -231,7 +231,7 @@ void photons_map_point(const photons_map *m, vec3 x, float q[3])
     q[2] = (float)((x.z - m->centre.z) * inv);
 }
 
-int photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, photons_list *left)
+pm_status photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, photons_list *left)
 {
     assert(left || leave_out == 0);
     memset(m, 0, sizeof *m);
@@ -239,7 +239,7 @@ int photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, photon
         memset(left, 0, sizeof *left);
     if (l->count > UINT32_MAX - 1) {
         photons_list_free(l);
-        return -1;
+        return PM_ERR_NOMEM;
     }
     m->unit = l->unit;
     m->stored = l->count;
@@ -290,7 +290,7 @@ int photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, photon
         if (left)
             photons_list_free(left);
     }
-    return rc;
+    return rc == 0 ? PM_OK : PM_ERR_NOMEM;
 }
 
 void photons_map_free(photons_map *m)

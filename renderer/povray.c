@@ -300,7 +300,7 @@ static void put_shapes(FILE *f, const scene *sc, const povray_options *o)
     }
 }
 
-int povray_write(FILE *f, const scene *sc, const char *scene_name, const povray_options *o)
+pm_status povray_write(FILE *f, const scene *sc, const char *scene_name, const povray_options *o)
 {
     assert(f && sc && scene_name && o && o->width > 0 && o->height > 0);
     assert(o->rect_thickness >= POVRAY_RECT_THICKNESS_MIN && o->rect_thickness <= POVRAY_RECT_THICKNESS_MAX);
@@ -310,5 +310,5 @@ int povray_write(FILE *f, const scene *sc, const char *scene_name, const povray_
     put_light(f, sc, o);
     put_materials(f, sc);
     put_shapes(f, sc, o);
-    return ferror(f) ? -1 : 0;
+    return ferror(f) ? PM_ERR_IO : PM_OK;
 }

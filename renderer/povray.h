@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "scene.h"
+#include "status.h"
 
 typedef enum { POVRAY_QUALITY_FAST = 0, POVRAY_QUALITY_REFERENCE = 1 } povray_quality;
 
@@ -38,7 +39,7 @@ povray_options povray_defaults(void);
 const char *povray_quality_name(povray_quality q);
 
 /* Writes sc as POV-Ray 3.7 SDL to f; scene_name goes into a comment.
- * Returns 0, or -1 if the stream reports a write error. */
-int povray_write(FILE *f, const scene *sc, const char *scene_name, const povray_options *o);
+ * Returns PM_OK, or PM_ERR_IO if the stream reports a write error. */
+pm_status povray_write(FILE *f, const scene *sc, const char *scene_name, const povray_options *o);
 
 #endif

@@ -42,8 +42,9 @@ static double seconds_since(int64_t t0)
     return (double)(stats_now_ns() - t0) * 1e-9;
 }
 
-/* Step 1: emit and trace the photons. Returns 0, or -1 out of memory. */
-static int step_trace(render_state *rs)
+/* Step 1: emit and trace the photons, and choose the representatives among
+ * them. Returns PM_OK, or PM_ERR_NOMEM. */
+static pm_status step_trace(render_state *rs)
 {
     const config_render *cfg = rs->cfg;
     photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS};
@@ -51,7 +52,7 @@ static int step_trace(render_state *rs)
     progress_begin(&prog, "photons", cfg->photons, rs->show_progress);
     int64_t t0 = stats_now_ns();
     if (photons_trace(rs->sc, &pp, rs->threads, &prog, &rs->list))
-        return -1;
+        return PM_ERR_NOMEM;
     reps_choose(&rs->rp, &rs->list);
     progress_end(&prog);
     rs->st->trace = seconds_since(t0);
@@ -59,34 +60,34 @@ static int step_trace(render_state *rs)
     rs->st->photons_stored = rs->list.count;
     rs->st->photon_paths_truncated = rs->list.truncated;
     rs->st->photons_escaped = rs->list.escaped;
-    return 0;
+    return PM_OK;
 }
 
 /* Step 2: build the photon map (kd-tree) and find the representatives'
- * sites in it. Returns 0, or -1 out of memory. */
-static int step_build(render_state *rs)
+ * sites in it. Returns PM_OK, or PM_ERR_NOMEM. */
+static pm_status step_build(render_state *rs)
 {
     int64_t t0 = stats_now_ns();
     photons_list left;
     if (photons_build_map(&rs->list, reps_leave_out_mask(&rs->rp), &rs->map, &left))
-        return -1;
-    int rc = reps_collect(&rs->rp, &rs->map, &left, &rs->reps);
+        return PM_ERR_NOMEM;
+    pm_status rc = reps_collect(&rs->rp, &rs->map, &left, &rs->reps);
     photons_list_free(&left);
     if (rc)
-        return -1;
+        return rc;
     rs->st->build = seconds_since(t0);
     /* the representatives' sites count with the map, whose build finds them */
     rs->st->bytes_photon_map = photons_map_bytes(&rs->map) + reps_sites_bytes(&rs->reps);
     rs->max_radius = render_max_radius(rs->sc, rs->cfg, &rs->map);
     rs->st->max_radius = rs->max_radius;
-    return 0;
+    return PM_OK;
 }
 
 /* Refuses a scene whose lit part is too small for double precision where it
  * sits: the photons' bounding box (the scene's, without photons) must span
  * at least RENDER_MIN_RELATIVE_EXTENT of its distance from the origin.
- * Returns RENDER_OK, or RENDER_ERR_INPUT with the reason in err. */
-static int check_precision(const render_state *rs, char *err, size_t errlen)
+ * Returns PM_OK, or PM_ERR_INPUT with the reason in err. */
+static pm_status check_precision(const render_state *rs, char *err, size_t errlen)
 {
     const scene *sc = rs->sc;
     double extent = rs->map.extent, far;
@@ -98,18 +99,18 @@ static int check_precision(const render_state *rs, char *err, size_t errlen)
     }
     far = fmax(far, vec_max_abs(sc->camera.position));
     if (extent >= RENDER_MIN_RELATIVE_EXTENT * far)
-        return RENDER_OK;
+        return PM_OK;
     snprintf(err, errlen,
              "the lit part of the scene spans %.3g units but lies %.3g from the origin, where doubles are %.2g "
              "apart; renders are exact to 0.5%% only while the span is at least 2^-38 (%.2g) of that distance: "
              "move the scene toward the origin",
              extent, far, far * DBL_EPSILON, RENDER_MIN_RELATIVE_EXTENT);
-    return RENDER_ERR_INPUT;
+    return PM_ERR_INPUT;
 }
 
 /* Step 3 (precomputed method): irradiance at the representatives. Returns
- * 0, or -1 out of memory. */
-static int step_precompute(render_state *rs)
+ * PM_OK, or PM_ERR_NOMEM. */
+static pm_status step_precompute(render_state *rs)
 {
     const config_render *cfg = rs->cfg;
     est_gather g = est_gather_make(&rs->map, cfg->nn, rs->max_radius, cfg->bias_correction);
@@ -117,45 +118,45 @@ static int step_precompute(render_state *rs)
     progress_begin(&prog, "precompute", rs->reps.count, rs->show_progress);
     int64_t t0 = stats_now_ns();
     if (reps_evaluate(&rs->reps, &rs->map, &g, rs->threads, &prog))
-        return -1;
+        return PM_ERR_NOMEM;
     progress_end(&prog);
     rs->st->precompute = seconds_since(t0);
     rs->st->representatives = rs->reps.count;
     rs->st->bytes_representatives = reps_bytes(&rs->reps, &rs->map);
-    return 0;
+    return PM_OK;
 }
 
-/* Step 4: the eye pass into *out. Returns 0, or -1 out of memory. */
-static int step_eye(render_state *rs, image *out)
+/* Step 4: the eye pass into *out. Returns PM_OK, or PM_ERR_NOMEM. */
+static pm_status step_eye(render_state *rs, image *out)
 {
     eye_input in = {rs->sc, rs->cfg, &rs->map, &rs->reps, rs->max_radius};
     return eye_render(&in, rs->threads, rs->show_progress, out, rs->st);
 }
 
-int render_prepare(scene *sc, const config_render *cfg, char *err, size_t errlen)
+pm_status render_prepare(scene *sc, const config_render *cfg, char *err, size_t errlen)
 {
     if (scene_set_accel(sc, cfg->accel) == 0)
-        return RENDER_OK;
+        return PM_OK;
     snprintf(err, errlen, "out of memory building the BVH of %zu shapes", sc->nshapes);
-    return RENDER_ERR_MEMORY;
+    return PM_ERR_NOMEM;
 }
 
-int render_check_memory(const scene *sc, const config_render *cfg, uint64_t mem, char *err, size_t errlen)
+pm_status render_check_memory(const scene *sc, const config_render *cfg, uint64_t mem, char *err, size_t errlen)
 {
     photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS};
     double per_emitted = photons_stored_per_emitted(sc, &pp);
     if (per_emitted < 0.0) {
         snprintf(err, errlen, "out of memory in the pilot photon pass");
-        return RENDER_ERR_MEMORY;
+        return PM_ERR_NOMEM;
     }
     if (per_emitted == 0.0)
-        return RENDER_OK;
+        return PM_OK;
     double stored = per_emitted * (double)cfg->photons * 1.1 + 4096.0;
     double bytes = photons_peak_bytes(stored);
     if (stored > (double)UINT32_MAX - 1.0) {
         snprintf(err, errlen, "--photons %" PRIu64 " would store about %.3g photons; the map holds at most 2^32-1",
                  cfg->photons, stored);
-        return RENDER_ERR_INPUT;
+        return PM_ERR_INPUT;
     }
     if (mem > 0 && bytes > CONFIG_MEMORY_HEADROOM * (double)mem) {
         snprintf(err, errlen,
@@ -163,12 +164,12 @@ int render_check_memory(const scene *sc, const config_render *cfg, uint64_t mem,
                  "at the peak), more than %.0f%% of this machine's %.1f GiB; use fewer photons",
                  cfg->photons, bytes / 1073741824.0, per_emitted, bytes / stored, CONFIG_MEMORY_HEADROOM * 100.0,
                  (double)mem / 1073741824.0);
-        return RENDER_ERR_INPUT;
+        return PM_ERR_INPUT;
     }
-    return RENDER_OK;
+    return PM_OK;
 }
 
-int render_run(const scene *sc, const config_render *cfg, unsigned threads, int show_progress, render_result *out,
+pm_status render_run(const scene *sc, const config_render *cfg, unsigned threads, int show_progress, render_result *out,
                char *err, size_t errlen)
 {
     assert(threads >= 1 && cfg->width > 0 && cfg->height > 0 && cfg->subpixels > 0);
@@ -183,19 +184,19 @@ int render_run(const scene *sc, const config_render *cfg, unsigned threads, int 
     rs.st = st;
     rs.rp = reps_params_of(cfg);
     int64_t t_start = stats_now_ns();
-    int rc = step_trace(&rs) ? RENDER_ERR_MEMORY : RENDER_OK;
-    if (rc == RENDER_OK && reps_check_stored(cfg, rs.list.count, err, errlen))
-        rc = RENDER_ERR_INPUT;
-    if (rc == RENDER_OK && step_build(&rs))
-        rc = RENDER_ERR_MEMORY;
-    if (rc == RENDER_OK)
+    pm_status rc = step_trace(&rs);
+    if (rc == PM_OK)
+        rc = reps_check_stored(cfg, rs.list.count, err, errlen);
+    if (rc == PM_OK)
+        rc = step_build(&rs);
+    if (rc == PM_OK)
         rc = check_precision(&rs, err, errlen);
-    if (rc == RENDER_OK && cfg->method == CONFIG_METHOD_PRECOMPUTED && step_precompute(&rs))
-        rc = RENDER_ERR_MEMORY;
-    if (rc == RENDER_OK && step_eye(&rs, &out->img))
-        rc = RENDER_ERR_MEMORY;
+    if (rc == PM_OK && cfg->method == CONFIG_METHOD_PRECOMPUTED)
+        rc = step_precompute(&rs);
+    if (rc == PM_OK)
+        rc = step_eye(&rs, &out->img);
     photons_list_free(&rs.list);
-    if (rc == RENDER_OK && cfg->dump_reps) {
+    if (rc == PM_OK && cfg->dump_reps) {
         /* the caller writes them: they stay with the map that places them */
         out->map = rs.map;
         out->reps = rs.reps;
@@ -203,18 +204,18 @@ int render_run(const scene *sc, const config_render *cfg, unsigned threads, int 
         reps_free(&rs.reps);
         photons_map_free(&rs.map);
     }
-    if (rc == RENDER_ERR_MEMORY)
+    if (rc == PM_ERR_NOMEM)
         snprintf(err, errlen, "out of memory while rendering");
-    if (rc != RENDER_OK) {
+    if (rc != PM_OK) {
         image_free(&out->img);
         memset(out, 0, sizeof *out);
         return rc;
     }
     st->total = seconds_since(t_start);
-    return RENDER_OK;
+    return PM_OK;
 }
 
-int render_write_reps(const render_result *r, FILE *f)
+pm_status render_write_reps(const render_result *r, FILE *f)
 {
     return reps_write_csv(&r->reps, &r->map, f);
 }

@@ -16,6 +16,7 @@
 #include "reps.h"
 #include "scene.h"
 #include "stats.h"
+#include "status.h"
 
 /* The search radius cap in scene units: cfg->max_radius if set, else
  * cfg->max_radius_frac of the photon map's extent (of the scene's
@@ -28,22 +29,18 @@ double render_max_radius(const scene *sc, const config_render *cfg, const photon
  * about 16,000 doubles across the span; measured in results/stability.md). */
 #define RENDER_MIN_RELATIVE_EXTENT 0x1p-38
 
-/* Results of the pipeline's functions: done, out of memory, a scene or
- * setting the renderer cannot render faithfully (a user input error). */
-enum { RENDER_OK = 0, RENDER_ERR_MEMORY = 1, RENDER_ERR_INPUT = 2 };
-
 /* The pipeline's first step: builds (or drops) sc's ray-casting structure
- * for cfg->accel (scene_set_accel). Returns RENDER_OK, or
- * RENDER_ERR_MEMORY with the reason in err (sc then casts rays by the
+ * for cfg->accel (scene_set_accel). Returns PM_OK, or
+ * PM_ERR_NOMEM with the reason in err (sc then casts rays by the
  * linear loop, which gives the same images). */
-int render_prepare(scene *sc, const config_render *cfg, char *err, size_t errlen);
+pm_status render_prepare(scene *sc, const config_render *cfg, char *err, size_t errlen);
 
 /* Refuses up front a render whose photon map would not fit in mem bytes
  * of physical memory (0: unknown, no limit) or in the map's 2^32-1 photons,
- * from a pilot of the photon pass. Returns RENDER_OK; RENDER_ERR_INPUT with
- * the reason in err (too many photons); RENDER_ERR_MEMORY when the pilot
+ * from a pilot of the photon pass. Returns PM_OK; PM_ERR_INPUT with
+ * the reason in err (too many photons); PM_ERR_NOMEM when the pilot
  * runs out of memory. */
-int render_check_memory(const scene *sc, const config_render *cfg, uint64_t mem, char *err, size_t errlen);
+pm_status render_check_memory(const scene *sc, const config_render *cfg, uint64_t mem, char *err, size_t errlen);
 
 /* What render_run made. */
 typedef struct {
@@ -56,13 +53,14 @@ typedef struct {
 } render_result;
 
 /* Renders sc with cfg into *out on `threads` workers (>= 1), progress bars
- * on stderr if show_progress. Returns RENDER_OK, or RENDER_ERR_MEMORY /
- * RENDER_ERR_INPUT with the reason in err (out is then empty). */
-int render_run(const scene *sc, const config_render *cfg, unsigned threads, int show_progress, render_result *out,
+ * on stderr if show_progress. Returns PM_OK, or PM_ERR_NOMEM, or
+ * PM_ERR_INPUT (a scene or setting it cannot render faithfully), with the
+ * reason in err (out is then empty). */
+pm_status render_run(const scene *sc, const config_render *cfg, unsigned threads, int show_progress, render_result *out,
                char *err, size_t errlen);
-/* Writes the representatives of r as CSV to f (reps_write_csv). Returns 0,
- * or -1 on a write error. */
-int render_write_reps(const render_result *r, FILE *f);
+/* Writes the representatives of r as CSV to f (reps_write_csv). Returns
+ * PM_OK, or PM_ERR_IO on a write error. */
+pm_status render_write_reps(const render_result *r, FILE *f);
 /* Frees what render_run made; a zeroed result is fine. */
 void render_result_free(render_result *r);
 

@@ -43,18 +43,18 @@ const char *reps_check(const config_render *c)
     return NULL;
 }
 
-int reps_check_stored(const config_render *cfg, uint64_t stored, char *err, size_t errlen)
+pm_status reps_check_stored(const config_render *cfg, uint64_t stored, char *err, size_t errlen)
 {
     /* reps_check refuses --rep-every 1 up front; the count's share of the
      * stored photons is known only after the photon pass */
     if (!(cfg->method == CONFIG_METHOD_PRECOMPUTED && cfg->bias_correction && cfg->rep_count > 0 && stored > 0 &&
           cfg->rep_count >= stored))
-        return 0;
+        return PM_OK;
     snprintf(err, errlen,
              "--rep-count %llu flags every one of the %llu stored photons, and --bias-correction estimates at "
              "representatives from the photons that are not: use a count below the stored photons",
              (unsigned long long)cfg->rep_count, (unsigned long long)stored);
-    return -1;
+    return PM_ERR_INPUT;
 }
 
 void reps_choose(const reps_params *p, photons_list *l)
@@ -79,7 +79,7 @@ uint8_t reps_leave_out_mask(const reps_params *p)
     return p->leave_out ? PHOTONS_FLAG_REP : 0;
 }
 
-int reps_collect(const reps_params *p, const photons_map *m, const photons_list *left, reps_set *out)
+pm_status reps_collect(const reps_params *p, const photons_map *m, const photons_list *left, reps_set *out)
 {
     memset(out, 0, sizeof *out);
     out->tree = p->tree;
@@ -88,7 +88,7 @@ int reps_collect(const reps_params *p, const photons_map *m, const photons_list 
         nin += (m->ph[i].flags & PHOTONS_FLAG_REP) != 0;
     out->site = malloc(sizeof(reps_site) * (nin + nleft ? nin + nleft : 1));
     if (!out->site)
-        return -1;
+        return PM_ERR_NOMEM;
     uint32_t r = 0;
     /* those in the tree, in its leaf order */
     for (uint32_t i = 0; i < m->count; i++) {
@@ -114,7 +114,7 @@ int reps_collect(const reps_params *p, const photons_map *m, const photons_list 
         rp->tree_index = KD_NONE;
     }
     out->count = r;
-    return 0;
+    return PM_OK;
 }
 
 size_t reps_sites_bytes(const reps_set *r)
@@ -164,7 +164,7 @@ static void free_values(reps_set *r)
     r->rep_of = NULL;
 }
 
-int reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, unsigned threads, progress *prog)
+pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, unsigned threads, progress *prog)
 {
     unsigned nt = threads ? threads : 1;
     uint32_t count = r->count;
@@ -207,7 +207,7 @@ int reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, unsign
     est_scratch_delete(scratch, nt);
     if (rc != 0)
         free_values(r);
-    return rc;
+    return rc == 0 ? PM_OK : PM_ERR_NOMEM;
 }
 
 typedef struct {
@@ -263,7 +263,7 @@ vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, double
     return vec_mul(vec_make(v->irradiance[0], v->irradiance[1], v->irradiance[2]), est_world_factor(m));
 }
 
-int reps_write_csv(const reps_set *r, const photons_map *m, FILE *f)
+pm_status reps_write_csv(const reps_set *r, const photons_map *m, FILE *f)
 {
     vec3 wf = est_world_factor(m);
     fputs("x,y,z,nx,ny,nz,e_r,e_g,e_b\n", f);
@@ -283,7 +283,7 @@ int reps_write_csv(const reps_set *r, const photons_map *m, FILE *f)
                 m->centre.y + m->scale * q[1], m->centre.z + m->scale * q[2], e->normal[0], e->normal[1],
                 e->normal[2], e->irradiance[0] * wf.x, e->irradiance[1] * wf.y, e->irradiance[2] * wf.z);
     }
-    return ferror(f) ? -1 : 0;
+    return ferror(f) ? PM_ERR_IO : PM_OK;
 }
 
 size_t reps_bytes(const reps_set *r, const photons_map *m)

@@ -28,6 +28,7 @@
 #include "kdtree.h"
 #include "photons.h"
 #include "progress.h"
+#include "status.h"
 #include "vec.h"
 
 /* Which photons are representatives and where they live, as the pipeline
@@ -51,9 +52,9 @@ reps_params reps_params_of(const config_render *cfg);
 const char *reps_check(const config_render *cfg);
 /* The check that needs the stored count (known after the photon pass): a
  * fixed count that takes every stored photon leaves the corrected estimate
- * none to gather from. Returns 0, or -1 with the reason in err (a user
- * error). */
-int reps_check_stored(const config_render *cfg, uint64_t stored, char *err, size_t errlen);
+ * none to gather from. Returns PM_OK, or PM_ERR_INPUT with the reason in
+ * err. */
+pm_status reps_check_stored(const config_render *cfg, uint64_t stored, char *err, size_t errlen);
 
 /* Flags the representatives of list l by p's rule (PHOTONS_FLAG_REP).
  * Never fails. */
@@ -90,9 +91,9 @@ typedef struct {
 
 /* The sites of the representatives into out (no values yet, p's layout):
  * the flagged photons of m's tree, then those photons_build_map left out
- * into `left` (NULL: none). Returns 0, or -1 when memory runs out (out is
- * then empty). */
-int reps_collect(const reps_params *p, const photons_map *m, const photons_list *left, reps_set *out);
+ * into `left` (NULL: none). Returns PM_OK, or PM_ERR_NOMEM when memory
+ * runs out (out is then empty). */
+pm_status reps_collect(const reps_params *p, const photons_map *m, const photons_list *left, reps_set *out);
 /* Bytes the sites hold. */
 size_t reps_sites_bytes(const reps_set *r);
 
@@ -100,9 +101,9 @@ size_t reps_sites_bytes(const reps_set *r);
  * representative from its g->nn nearest photons of m (equation 1,
  * est_irradiance_at), on `threads` threads, deterministically. The shared
  * layout needs the representatives in the photon tree (asserted). Returns
- * 0, or -1 when memory runs out (r's lookup and values are then freed, its
- * sites kept). */
-int reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, unsigned threads, progress *prog);
+ * PM_OK, or PM_ERR_NOMEM when memory runs out (r's lookup and values are
+ * then freed, its sites kept). */
+pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, unsigned threads, progress *prog);
 
 /* Irradiance (W per unit^2) of the nearest representative within the
  * gather's radius cap of world point x whose normal has cosine > cos_min
@@ -115,9 +116,9 @@ vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, double
 /* Writes the representatives as CSV to f: the header
  * "x,y,z,nx,ny,nz,e_r,e_g,e_b", then one line per representative: its
  * position in scene units, its unit normal and its precomputed irradiance
- * in W per scene unit^2 (what reps_lookup returns for it). Returns 0, or -1
- * on a write error. */
-int reps_write_csv(const reps_set *r, const photons_map *m, FILE *f);
+ * in W per scene unit^2 (what reps_lookup returns for it). Returns PM_OK,
+ * or PM_ERR_IO on a write error. */
+pm_status reps_write_csv(const reps_set *r, const photons_map *m, FILE *f);
 /* Bytes the values and the lookup layout hold (not the sites). */
 size_t reps_bytes(const reps_set *r, const photons_map *m);
 /* Frees the representatives; a zeroed struct is fine. */

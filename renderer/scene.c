@@ -61,7 +61,7 @@ static int perr(parser *p, int col, const char *fmt, ...)
         vsnprintf(p->err + n, p->errlen - (size_t)n, fmt, ap);
         va_end(ap);
     }
-    return SCENE_ERR_INPUT;
+    return PM_ERR_INPUT;
 }
 
 static int tok_is(const parser *p, int i, const char *word)
@@ -124,7 +124,7 @@ static int tokenize(parser *p, size_t start, size_t end)
         p->tok[p->ntok].col = col;
         p->ntok++;
     }
-    return SCENE_OK;
+    return PM_OK;
 }
 
 /* Parses token i as a finite number in [lo, hi]. */
@@ -148,7 +148,7 @@ static int parse_number(parser *p, int i, double lo, double hi, double *out)
     if (v < lo || v > hi)
         return perr(p, tk->col, "%s is out of range [%g, %g]", buf, lo, hi);
     *out = v;
-    return SCENE_OK;
+    return PM_OK;
 }
 
 typedef enum { F_NUM, F_VEC, F_NAME } field_kind;
@@ -238,7 +238,7 @@ static int parse_fields(parser *p, int first, const field_spec *spec, field_val 
     for (int k = 0; k < nf; k++)
         if (!val[k].col)
             return perr(p, p->tok[0].col, "%s is missing field '%s'", stmt, spec[k].key);
-    return SCENE_OK;
+    return PM_OK;
 }
 
 static int is_name(const parser *p, int i)
@@ -344,7 +344,7 @@ static int parse_camera(parser *p)
     p->sc->camera.up = f[CAM_UP].v;
     p->sc->camera.hfov_deg = f[CAM_FOV].v.x;
     p->camera_line = p->line;
-    return SCENE_OK;
+    return PM_OK;
 }
 
 static int parse_light(parser *p)
@@ -362,7 +362,7 @@ static int parse_light(parser *p)
     p->sc->light.position = f[LIGHT_POSITION].v;
     p->sc->light.power = f[LIGHT_POWER].v;
     p->light_line = p->line;
-    return SCENE_OK;
+    return PM_OK;
 }
 
 static int grow(void **arr, size_t *cap, size_t n, size_t elem)
@@ -416,18 +416,18 @@ static int parse_material(parser *p)
     m.name[p->tok[1].len] = '\0';
     size_t cap = p->cap_materials;
     if (grow((void **)&sc->materials, &p->cap_materials, sc->nmaterials, sizeof(material)) || names_reserve(p))
-        return SCENE_ERR_RUNTIME;
+        return PM_ERR_NOMEM;
     if (p->cap_materials != cap) {
         int *q = realloc(p->material_line, p->cap_materials * sizeof(int));
         if (!q)
-            return SCENE_ERR_RUNTIME;
+            return PM_ERR_NOMEM;
         p->material_line = q;
     }
     p->material_line[sc->nmaterials] = p->line;
     size_t slot = name_slot(p, 1); /* the empty slot for this name */
     sc->materials[sc->nmaterials] = m;
     p->name_index[slot] = (int)sc->nmaterials++;
-    return SCENE_OK;
+    return PM_OK;
 }
 
 static int resolve_material(parser *p, const field_val *f, int *out)
@@ -438,7 +438,7 @@ static int resolve_material(parser *p, const field_val *f, int *out)
         return perr(p, f->col, "unknown material '%s'%s", tok_str(p, f->name, buf, sizeof buf),
                     p->sc->nmaterials ? "" : " (no material is defined above this line)");
     *out = m;
-    return SCENE_OK;
+    return PM_OK;
 }
 
 static int add_shape(parser *p, shape s)
@@ -446,9 +446,9 @@ static int add_shape(parser *p, shape s)
     if (p->sc->nshapes >= SCENE_MAX_ITEMS)
         return perr(p, p->tok[0].col, "too many shapes (at most %d)", SCENE_MAX_ITEMS);
     if (grow((void **)&p->sc->shapes, &p->cap_shapes, p->sc->nshapes, sizeof(shape)))
-        return SCENE_ERR_RUNTIME;
+        return PM_ERR_NOMEM;
     p->sc->shapes[p->sc->nshapes++] = s;
-    return SCENE_OK;
+    return PM_OK;
 }
 
 static int parse_sphere(parser *p)
@@ -489,7 +489,7 @@ static int parse_line(parser *p)
 {
     char buf[64];
     if (p->ntok == 0)
-        return SCENE_OK;
+        return PM_OK;
     if (tok_is(p, 0, "camera"))
         return parse_camera(p);
     if (tok_is(p, 0, "light"))
@@ -518,7 +518,7 @@ static void compute_bounds(scene *sc)
     sc->scale = vec_len(vec_sub(hi, lo));
 }
 
-int scene_parse_buffer(const char *name, const char *text, size_t len, scene **out, char *err, size_t errlen)
+pm_status scene_parse_buffer(const char *name, const char *text, size_t len, scene **out, char *err, size_t errlen)
 {
     assert(name && out && err && errlen > 0);
     *out = NULL;
@@ -532,21 +532,21 @@ int scene_parse_buffer(const char *name, const char *text, size_t len, scene **o
     p.sc = calloc(1, sizeof(scene));
     if (!p.sc) {
         snprintf(err, errlen, "%s: out of memory", name);
-        return SCENE_ERR_RUNTIME;
+        return PM_ERR_NOMEM;
     }
-    int rc = SCENE_OK;
+    pm_status rc = PM_OK;
     size_t pos = 0;
     p.line = 0;
-    while (pos < len && rc == SCENE_OK) {
+    while (pos < len && rc == PM_OK) {
         const char *nl = memchr(text + pos, '\n', len - pos);
         size_t end = nl ? (size_t)(nl - text) : len;
         p.line++;
         rc = tokenize(&p, pos, end);
-        if (rc == SCENE_OK)
+        if (rc == PM_OK)
             rc = parse_line(&p);
         pos = end + 1;
     }
-    if (rc == SCENE_OK) {
+    if (rc == PM_OK) {
         if (p.line == 0)
             p.line = 1;
         if (!p.camera_line)
@@ -556,11 +556,11 @@ int scene_parse_buffer(const char *name, const char *text, size_t len, scene **o
         else if (p.sc->nshapes == 0)
             rc = perr(&p, 1, "end of scene: no shapes");
     }
-    if (rc == SCENE_ERR_RUNTIME)
+    if (rc == PM_ERR_NOMEM)
         snprintf(err, errlen, "%s: out of memory while parsing", name);
     free(p.material_line);
     free(p.name_index);
-    if (rc != SCENE_OK) {
+    if (rc != PM_OK) {
         scene_free(p.sc);
         return rc;
     }
@@ -571,28 +571,28 @@ int scene_parse_buffer(const char *name, const char *text, size_t len, scene **o
         perr(&p, 1, "end of scene: the scene has no extent (bounding-box diagonal %g, at least %g needed)",
              p.sc->scale, SCENE_MIN_LENGTH);
         scene_free(p.sc);
-        return SCENE_ERR_INPUT;
+        return PM_ERR_INPUT;
     }
     *out = p.sc;
-    return SCENE_OK;
+    return PM_OK;
 }
 
-int scene_load(const char *path, scene **out, char *err, size_t errlen)
+pm_status scene_load(const char *path, scene **out, char *err, size_t errlen)
 {
     *out = NULL;
     FILE *f = fopen(path, "rb");
     if (!f) {
         snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-        return SCENE_ERR_RUNTIME;
+        return PM_ERR_IO;
     }
     size_t cap = 1 << 16, len = 0;
     char *buf = malloc(cap);
-    int rc = SCENE_OK;
+    pm_status rc = PM_OK;
     while (buf) {
         if (len == cap) {
             if (cap >= SCENE_MAX_FILE) {
                 snprintf(err, errlen, "%s:1:1: file larger than %u MiB; not a scene", path, SCENE_MAX_FILE >> 20);
-                rc = SCENE_ERR_INPUT;
+                rc = PM_ERR_INPUT;
                 break;
             }
             char *q = realloc(buf, cap * 2);
@@ -609,7 +609,7 @@ int scene_load(const char *path, scene **out, char *err, size_t errlen)
         if (n == 0) {
             if (ferror(f)) {
                 snprintf(err, errlen, "%s: read error: %s", path, strerror(errno));
-                rc = SCENE_ERR_RUNTIME;
+                rc = PM_ERR_IO;
             }
             break;
         }
@@ -617,9 +617,9 @@ int scene_load(const char *path, scene **out, char *err, size_t errlen)
     fclose(f);
     if (!buf) {
         snprintf(err, errlen, "%s: out of memory reading the file", path);
-        return SCENE_ERR_RUNTIME;
+        return PM_ERR_NOMEM;
     }
-    if (rc == SCENE_OK)
+    if (rc == PM_OK)
         rc = scene_parse_buffer(path, buf, len, out, err, errlen);
     free(buf);
     return rc;
@@ -635,7 +635,7 @@ void scene_free(scene *s)
     free(s);
 }
 
-int scene_set_accel(scene *s, scene_accel mode)
+pm_status scene_set_accel(scene *s, scene_accel mode)
 {
     assert(s && s->nshapes > 0);
     assert(mode == SCENE_ACCEL_AUTO || mode == SCENE_ACCEL_BVH || mode == SCENE_ACCEL_LINEAR);
@@ -643,14 +643,14 @@ int scene_set_accel(scene *s, scene_accel mode)
     if (!want) {
         bvh_free(s->accel);
         s->accel = NULL;
-        return 0;
+        return PM_OK;
     }
     if (s->accel) /* the shapes never change after parsing */
-        return 0;
+        return PM_OK;
     /* every ray starts at the camera, the light or a point on a shape */
     double reach = vec_max2(vec_max_abs(s->camera.position), vec_max2(vec_max_abs(s->bounds_lo), vec_max_abs(s->bounds_hi)));
     s->accel = bvh_build(s->shapes, s->nshapes, reach);
-    return s->accel ? 0 : -1;
+    return s->accel ? PM_OK : PM_ERR_NOMEM;
 }
 
 int scene_intersect(const scene *s, const shape_ray *r, double tmax, scene_hit *h)

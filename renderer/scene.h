@@ -9,6 +9,7 @@
 #include "bvh.h"
 #include "material.h"
 #include "shapes.h"
+#include "status.h"
 #include "vec.h"
 
 typedef struct {
@@ -43,22 +44,19 @@ typedef enum { SCENE_ACCEL_AUTO = 0, SCENE_ACCEL_BVH = 1, SCENE_ACCEL_LINEAR = 2
 #define SCENE_BVH_MIN_SHAPES 24
 #define SCENE_BVH_MIN_SHAPES_TEXT "24"
 
-/* Result codes of the parser: SCENE_OK, a user input error (exit 2), or a
- * runtime failure such as I/O or memory (exit 1). */
-enum { SCENE_OK = 0, SCENE_ERR_RUNTIME = 1, SCENE_ERR_INPUT = 2 };
-
 /* Parses len bytes of scene text; name is used in messages. On success
- * returns SCENE_OK with *out owned by the caller (scene_free). On failure
- * returns SCENE_ERR_INPUT or SCENE_ERR_RUNTIME, *out = NULL, and err holds
- * "name:line:col: message". */
-int scene_parse_buffer(const char *name, const char *text, size_t len, scene **out, char *err, size_t errlen);
-/* Reads and parses a file; same contract as scene_parse_buffer (an unreadable
- * file is SCENE_ERR_RUNTIME with "path: reason"). */
-int scene_load(const char *path, scene **out, char *err, size_t errlen);
+ * returns PM_OK with *out owned by the caller (scene_free). On failure
+ * returns PM_ERR_INPUT (err holds "name:line:col: message") or
+ * PM_ERR_NOMEM (err says so), and *out = NULL. */
+pm_status scene_parse_buffer(const char *name, const char *text, size_t len, scene **out, char *err, size_t errlen);
+/* Reads and parses a file; same contract as scene_parse_buffer, and an
+ * unreadable file is PM_ERR_IO with "path: reason" in err. */
+pm_status scene_load(const char *path, scene **out, char *err, size_t errlen);
 /* Builds (or drops) the scene's BVH for `mode` (the parser leaves a scene
- * without one; the render pipeline calls this first). Returns 0, or -1 when memory runs out (the scene
- * then has no BVH and still works, by the linear loop). */
-int scene_set_accel(scene *s, scene_accel mode);
+ * without one; the render pipeline calls this first). Returns PM_OK, or
+ * PM_ERR_NOMEM when memory runs out (the scene then has no BVH and still
+ * works, by the linear loop). */
+pm_status scene_set_accel(scene *s, scene_accel mode);
 /* Frees a scene; NULL is fine. */
 void scene_free(scene *s);
 

@@ -51,7 +51,7 @@ static void json_number(FILE *f, double x)
         fputs("null", f);
 }
 
-int stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, unsigned threads,
+pm_status stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, unsigned threads,
                      const stats_run *st)
 {
     fprintf(f, "{\n  \"scene\": ");
@@ -88,5 +88,5 @@ int stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, 
     }
     fprintf(f, "  \"underflow_pixels\": %llu,\n", (unsigned long long)st->underflow_pixels);
     fprintf(f, "  \"nonfinite_pixels\": %llu\n}\n", (unsigned long long)st->nonfinite_pixels);
-    return ferror(f) ? -1 : 0;
+    return ferror(f) ? PM_ERR_IO : PM_OK;
 }

@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "config.h"
+#include "status.h"
 
 typedef struct {
     /* seconds, monotonic clock */
@@ -28,8 +29,9 @@ typedef struct {
 
 /* Monotonic time in nanoseconds. */
 int64_t stats_now_ns(void);
-/* Writes the run as one JSON object to f. Returns 0, or -1 on a write error. */
-int stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, unsigned threads,
+/* Writes the run as one JSON object to f. Returns PM_OK, or PM_ERR_IO on a
+ * write error. */
+pm_status stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, unsigned threads,
                      const stats_run *st);
 
 #endif

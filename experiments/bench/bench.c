@@ -230,7 +230,7 @@ int main(int argc, char **argv)
         reps = 1;
     char err[256];
     scene *sc;
-    if (scene_load(scene_path, &sc, err, sizeof err) != SCENE_OK) {
+    if (scene_load(scene_path, &sc, err, sizeof err) != PM_OK) {
         fprintf(stderr, "bench: %s\n", err);
         return 1;
     }

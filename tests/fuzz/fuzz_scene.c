@@ -29,7 +29,7 @@ static int vec_finite(vec3 v)
 static void check_scene(const scene *s)
 {
     if (!s)
-        finding("SCENE_OK without a scene");
+        finding("PM_OK without a scene");
     if (!(isfinite(s->scale) && s->scale > 0.0))
         finding("scene size is zero or not finite");
     const scene_camera *c = &s->camera;
@@ -108,7 +108,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     char err[512];
     scene *s = (scene *)(uintptr_t)1; /* must be set to NULL on failure */
     int rc = scene_parse_buffer("fuzz.scene", (const char *)data, size, &s, err, sizeof err);
-    if (rc == SCENE_OK) {
+    if (rc == PM_OK) {
         check_scene(s);
         check_bvh(s);
         scene_free(s);
@@ -116,12 +116,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     if (s != NULL)
         finding("failure left a scene");
-    if (rc == SCENE_ERR_INPUT) {
+    if (rc == PM_ERR_INPUT) {
         int line = 0, col = 0, n = 0;
         if (sscanf(err, "fuzz.scene:%d:%d: %n", &line, &col, &n) != 2 || n == 0 || line < 1 || col < 1 ||
             err[n] == '\0')
             finding("input error without fuzz.scene:line:col: message");
-    } else if (rc != SCENE_ERR_RUNTIME) {
+    } else if (rc != PM_ERR_NOMEM) { /* a buffer parse reads no file: PM_ERR_IO cannot happen */
         finding("unknown result code");
     }
     return 0;

@@ -11,7 +11,7 @@ scene *helper_scene(const char *text)
 {
     char err[512];
     scene *s = NULL;
-    if (scene_parse_buffer("test.scene", text, strlen(text), &s, err, sizeof err) != SCENE_OK) {
+    if (scene_parse_buffer("test.scene", text, strlen(text), &s, err, sizeof err) != PM_OK) {
         fprintf(stderr, "test scene does not parse: %s\n", err);
         abort();
     }
@@ -23,7 +23,7 @@ int helper_render(const scene *sc, const config_render *cfg, unsigned threads, i
     char err[512];
     render_result res;
     int rc = render_run(sc, cfg, threads, 0, &res, err, sizeof err);
-    if (rc != RENDER_OK)
+    if (rc != PM_OK)
         fprintf(stderr, "  render_run: %s\n", err);
     *out = res.img;
     *st = res.st;

@@ -13,7 +13,7 @@
 /* Parses scene text or aborts the test run with the parser's message. */
 scene *helper_scene(const char *text);
 /* render_run without progress; prints render_run's message when it fails.
- * Returns render_run's result (RENDER_OK = 0). */
+ * Returns render_run's result (PM_OK = 0). */
 int helper_render(const scene *sc, const config_render *cfg, unsigned threads, image *out, stats_run *st);
 
 /* The representatives of map m (its flagged photons, all in the tree) in

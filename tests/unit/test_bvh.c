@@ -354,7 +354,7 @@ static double parse_seconds(size_t nboxes, size_t *nshapes)
         if (sc)
             CHECK(scene_set_accel(sc, SCENE_ACCEL_AUTO) == 0 && sc->accel);
         double dt = (double)(clock() - c0) / CLOCKS_PER_SEC;
-        CHECK_MSG(rc == SCENE_OK, "%s", err);
+        CHECK_MSG(rc == PM_OK, "%s", err);
         if (sc)
             *nshapes = sc->nshapes;
         scene_free(sc);

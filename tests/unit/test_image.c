@@ -27,9 +27,9 @@ void test_exr_round_trip(void)
         CHECK(memcmp(back.rgb, im.rgb, sizeof(float) * 37 * 21 * 3) == 0);
     image_free(&back);
     /* unwritable directory: an error naming the path, nothing left behind */
-    CHECK(image_write_exr(&im, "/nonexistent-dir/x.exr", err, sizeof err) == -1);
+    CHECK(image_write_exr(&im, "/nonexistent-dir/x.exr", err, sizeof err) == PM_ERR_IO);
     CHECK(strstr(err, "/nonexistent-dir/x.exr") != NULL);
-    CHECK(image_write_png(&im, "/nonexistent-dir/x.png", 1.0, err, sizeof err) == -1);
+    CHECK(image_write_png(&im, "/nonexistent-dir/x.png", 1.0, err, sizeof err) == PM_ERR_IO);
     /* PNG: a real file with the PNG signature */
     char png[64];
     snprintf(png, sizeof png, "%s.png", path);

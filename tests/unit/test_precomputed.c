@@ -116,7 +116,7 @@ void test_precomputed_converges_on_cornell(void)
 {
     char err[512];
     scene *sc = NULL;
-    CHECK_MSG(scene_load("scenes/cornell.scene", &sc, err, sizeof err) == SCENE_OK, "%s", err);
+    CHECK_MSG(scene_load("scenes/cornell.scene", &sc, err, sizeof err) == PM_OK, "%s", err);
     if (!sc)
         return;
     double diff[3];
@@ -185,7 +185,7 @@ void test_precomputed_extremes(void)
 {
     char err[512];
     scene *sc = NULL;
-    CHECK_MSG(scene_load("scenes/cornell.scene", &sc, err, sizeof err) == SCENE_OK, "%s", err);
+    CHECK_MSG(scene_load("scenes/cornell.scene", &sc, err, sizeof err) == PM_OK, "%s", err);
     if (!sc)
         return;
     config_render cfg = config_defaults();
@@ -228,7 +228,7 @@ void test_precomputed_rep_count(void)
 {
     char err[512];
     scene *sc = NULL;
-    CHECK_MSG(scene_load("scenes/cornell.scene", &sc, err, sizeof err) == SCENE_OK, "%s", err);
+    CHECK_MSG(scene_load("scenes/cornell.scene", &sc, err, sizeof err) == PM_OK, "%s", err);
     if (!sc)
         return;
     const uint64_t counts[4] = {1, 777, 5000, 1000000};

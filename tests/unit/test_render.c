@@ -150,7 +150,7 @@ void test_cornell_finite_and_deterministic(void)
 {
     char err[512];
     scene *sc = NULL;
-    CHECK_MSG(scene_load("scenes/cornell.scene", &sc, err, sizeof err) == SCENE_OK, "%s", err);
+    CHECK_MSG(scene_load("scenes/cornell.scene", &sc, err, sizeof err) == PM_OK, "%s", err);
     if (!sc)
         return;
     for (int method = 0; method < 2; method++) {

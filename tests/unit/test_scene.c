@@ -11,7 +11,7 @@ void test_scene_parses_cornell(void)
     char err[512];
     scene *s = NULL;
     int rc = scene_load("scenes/cornell.scene", &s, err, sizeof err);
-    CHECK_MSG(rc == SCENE_OK, "%s", err);
+    CHECK_MSG(rc == PM_OK, "%s", err);
     if (!s)
         return;
     CHECK(s->nmaterials == 4 && s->nshapes == 9);
@@ -88,7 +88,7 @@ void test_scene_errors(void)
         char err[512];
         scene *s = (scene *)1;
         int rc = scene_parse_buffer("test.scene", cases[i].text, strlen(cases[i].text), &s, err, sizeof err);
-        CHECK_MSG(rc == SCENE_ERR_INPUT && s == NULL, "case %zu: rc %d", i, rc);
+        CHECK_MSG(rc == PM_ERR_INPUT && s == NULL, "case %zu: rc %d", i, rc);
         CHECK_MSG(strncmp(err, cases[i].where, strlen(cases[i].where)) == 0, "case %zu: '%s', want '%s'", i, err,
                   cases[i].where);
         CHECK_MSG(strstr(err, cases[i].message) != NULL, "case %zu: '%s', want '%s'", i, err, cases[i].message);
@@ -101,14 +101,14 @@ void test_scene_errors(void)
     line[big + 1] = '\0';
     char err[512];
     scene *s;
-    CHECK(scene_parse_buffer("test.scene", line, big + 1, &s, err, sizeof err) == SCENE_ERR_INPUT);
+    CHECK(scene_parse_buffer("test.scene", line, big + 1, &s, err, sizeof err) == PM_ERR_INPUT);
     CHECK_MSG(strstr(err, "test.scene:1:1: token longer") != NULL, "%s", err);
     for (size_t i = 0; i < big; i++)
         line[i] = (char)(i * 2654435761u >> 13);
-    CHECK(scene_parse_buffer("test.scene", line, big, &s, err, sizeof err) == SCENE_ERR_INPUT);
+    CHECK(scene_parse_buffer("test.scene", line, big, &s, err, sizeof err) == PM_ERR_INPUT);
     CHECK_MSG(strncmp(err, "test.scene:", 11) == 0, "%s", err);
     free(line);
     /* a missing file is a runtime error naming the path */
-    CHECK(scene_load("no/such/file.scene", &s, err, sizeof err) == SCENE_ERR_RUNTIME);
+    CHECK(scene_load("no/such/file.scene", &s, err, sizeof err) == PM_ERR_IO);
     CHECK(strstr(err, "no/such/file.scene") != NULL);
 }

@@ -484,7 +484,7 @@ void test_stability_parser_degenerate_sizes(void)
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         snprintf(text, sizeof text, "%s%s", head, bad[i].shape);
         int rc = scene_parse_buffer("t", text, strlen(text), &s, err, sizeof err);
-        CHECK_MSG(rc == SCENE_ERR_INPUT && s == NULL, "case %zu parsed", i);
+        CHECK_MSG(rc == PM_ERR_INPUT && s == NULL, "case %zu parsed", i);
         CHECK_MSG(strncmp(err, bad[i].where, strlen(bad[i].where)) == 0 && strstr(err, bad[i].what), "case %zu: %s",
                   i, err);
     }
@@ -492,11 +492,11 @@ void test_stability_parser_degenerate_sizes(void)
                        "light point position 1e15 1e15 1e15 power 1 1 1\n"
                        "material w lambert rho 1 1 1\n"
                        "sphere center 1e15 1e15 1e15 radius 1e-40 material w\n";
-    CHECK(scene_parse_buffer("t", flat, strlen(flat), &s, err, sizeof err) == SCENE_ERR_INPUT);
+    CHECK(scene_parse_buffer("t", flat, strlen(flat), &s, err, sizeof err) == PM_ERR_INPUT);
     CHECK_MSG(strstr(err, "t:4:1:") == err && strstr(err, "no extent"), "%s", err);
     /* just above the limit: a usable rect with a unit normal */
     snprintf(text, sizeof text, "%srect corner 1 0 0 edge1 1e-49 0 0 edge2 0 1e-49 0 material w\n", head);
-    CHECK(scene_parse_buffer("t", text, strlen(text), &s, err, sizeof err) == SCENE_OK);
+    CHECK(scene_parse_buffer("t", text, strlen(text), &s, err, sizeof err) == PM_OK);
     if (s) {
         const shape *r = &s->shapes[0];
         CHECK(isfinite(r->inv_len2_1) && isfinite(r->inv_len2_2));
