@@ -52,63 +52,78 @@ _Static_assert(SCENE_ACCEL_AUTO == 0 && SCENE_ACCEL_BVH == 1 && SCENE_ACCEL_LINE
 #define RO(field) offsetof(render_args, field)
 #define RC(field) offsetof(render_args, cfg.field)
 static const cli_option render_options[] = {
-    {"--method", CLI_CHOICE, NULL, RC(method), 0, 0, 0, 0, method_names, 0,
-     "radiance estimate: the paper's eq. 1 or eq. 2", NULL},
-    {"--photons", CLI_U64, "N", RC(photons), 0, CONFIG_MAX_PHOTONS, 0, 0, NULL, 0,
-     "photons emitted from the light, P_e; 0: no photon map (a black image, or direct light only "
-     "with --direct shadow-rays)", NULL},
-    {"--nn", CLI_U32, "N", RC(nn), CONFIG_MIN_NN, CONFIG_MAX_NN, 0, 0, NULL, 0,
-     "nearest photons per estimate / per precompute, n (n = 1 has no finite mean; the precomputed method "
-     "needs n >= 3 without --bias-correction)", NULL},
-    {"--bias-correction", CLI_FLAG, NULL, RC(bias_correction), 0, 0, 0, 0, NULL, 1,
-     "the unbiased estimate instead of the paper's: count only the photons strictly inside r (the paper's "
-     "follows n/(n-1)); precomputed: estimate at representatives from the other, non-representative photons",
-     NULL},
-    {"--width", CLI_U32, "W", RC(width), 1, CONFIG_MAX_SIDE, 0, 0, NULL, 0, "image width in pixels", NULL},
-    {"--height", CLI_U32, "H", RC(height), 1, CONFIG_MAX_SIDE, 0, 0, NULL, 0, "image height in pixels", NULL},
-    {"--subpixels", CLI_U32, "S", RC(subpixels), 1, CONFIG_MAX_SUBPIXELS, 0, 0, NULL, 0,
-     "SxS subpixel samples per pixel, box filtered", NULL},
-    {"--threads", CLI_U32, "T", RC(threads), 0, CONFIG_MAX_THREADS, 0, 0, NULL, 0,
-     "worker threads, 0 = all cores (the image does not depend on it)", NULL},
-    {"--seed", CLI_U64, "S", RC(seed), 0, UINT64_MAX, 0, 0, NULL, 0, "names every random stream", NULL},
-    {"--rep-every", CLI_U32, "K", RC(rep_every), 1, UINT32_MAX, 0, 0, NULL, 0,
-     "precomputed: every K-th stored photon is a representative", NULL},
-    {"--rep-count", CLI_U64, "N", RC(rep_count), 0, CONFIG_MAX_REP_COUNT, 0, 0, NULL, 0,
-     "precomputed: a fixed count of representatives instead of --rep-every: N stored photons spread evenly "
-     "over the trace order (every stored photon when fewer are stored); 0: the --rep-every rule", NULL},
-    {"--normal-cos", CLI_REAL, "C", RC(normal_cos), 0, 0, -1.0, 1.0, NULL, 0,
-     "precomputed: a representative's normal must agree above this cosine", NULL},
-    {"--rep-tree", CLI_CHOICE, NULL, RC(rep_tree), 0, 0, 0, 0, rep_tree_names, 0,
-     "precomputed: the representatives' own kd-tree, or the photon tree by flag", NULL},
-    {"--max-radius", CLI_REAL, "R", RC(max_radius), 0, 0, 1e-30, 1e30, NULL, 0,
-     "search radius cap in scene units", CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT " x the diagonal of the photons' bounding box"},
-    {"--direct", CLI_CHOICE, NULL, RC(direct), 0, 0, 0, 0, direct_names, 0,
-     "direct light from the photon map (the paper) or by shadow rays", NULL},
-    {"--photon-depth", CLI_U32, "D", RC(photon_depth), 1, CONFIG_MAX_DEPTH, 0, 0, NULL, 0,
-     "maximum bounces of a photon path", NULL},
-    {"--eye-depth", CLI_U32, "D", RC(eye_depth), 0, CONFIG_MAX_DEPTH, 0, 0, NULL, 0,
-     "maximum specular bounces of an eye path", NULL},
-    {"--accel", CLI_CHOICE, NULL, RC(accel), 0, 0, 0, 0, accel_names, 0,
-     "ray casting: a BVH over the shapes from " SCENE_BVH_MIN_SHAPES_TEXT " shapes on (auto), always, or a loop over "
-     "every shape; the image does not depend on it", NULL},
-    {"-o", CLI_STRING, "FILE.exr", RO(exr), 0, 0, 0, 0, NULL, 0, "linear float RGB OpenEXR", NULL},
-    {"--png", CLI_STRING, "FILE.png", RO(png), 0, 0, 0, 0, NULL, 0, "sRGB 8-bit preview", NULL},
-    {"--exposure", CLI_REAL, "E", RO(exposure), 0, 0, 0.0, 1e30, NULL, 0, "scale of the PNG preview", NULL},
-    {"--stats", CLI_STRING, "FILE.json", RO(stats), 0, 0, 0, 0, NULL, 0, "run statistics as JSON", NULL},
-    {"--dump-reps", CLI_STRING, "FILE.csv", RC(dump_reps), 0, 0, 0, 0, NULL, 0,
-     "precomputed: the representatives as CSV (x,y,z, normal nx,ny,nz, precomputed irradiance e_r,e_g,e_b "
-     "in W per scene unit^2), written after the render, outside its times", NULL},
-    {"--allow-nonfinite", CLI_FLAG, NULL, RC(allow_nonfinite), 0, 0, 0, 0, NULL, 1,
-     "keep an image whose radiance leaves the float range (Inf, or below the smallest normal float; "
-     "otherwise exit 2, no image)", NULL},
-    {"--quiet", CLI_FLAG, NULL, RO(quiet), 0, 0, 0, 0, NULL, 1, "no progress bar and no summary line", NULL},
+    {.name = "--method", .kind = CLI_CHOICE, .offset = RC(method), .choices = method_names,
+     .help = "radiance estimate: the paper's eq. 1 or eq. 2"},
+    {.name = "--photons", .kind = CLI_U64, .metavar = "N", .offset = RC(photons), .uhi = CONFIG_MAX_PHOTONS,
+     .help = "photons emitted from the light, P_e; 0: no photon map (a black image, or direct light only "
+             "with --direct shadow-rays)"},
+    {.name = "--nn", .kind = CLI_U32, .metavar = "N", .offset = RC(nn), .ulo = CONFIG_MIN_NN, .uhi = CONFIG_MAX_NN,
+     .help = "nearest photons per estimate / per precompute, n (n = 1 has no finite mean; the precomputed method "
+             "needs n >= 3 without --bias-correction)"},
+    {.name = "--bias-correction", .kind = CLI_FLAG, .offset = RC(bias_correction), .flag_value = 1,
+     .help = "the unbiased estimate instead of the paper's: count only the photons strictly inside r (the paper's "
+             "follows n/(n-1)); precomputed: estimate at representatives from the other, non-representative photons"},
+    {.name = "--width", .kind = CLI_U32, .metavar = "W", .offset = RC(width), .ulo = 1, .uhi = CONFIG_MAX_SIDE,
+     .help = "image width in pixels"},
+    {.name = "--height", .kind = CLI_U32, .metavar = "H", .offset = RC(height), .ulo = 1, .uhi = CONFIG_MAX_SIDE,
+     .help = "image height in pixels"},
+    {.name = "--subpixels", .kind = CLI_U32, .metavar = "S", .offset = RC(subpixels), .ulo = 1,
+     .uhi = CONFIG_MAX_SUBPIXELS,
+     .help = "SxS subpixel samples per pixel, box filtered"},
+    {.name = "--threads", .kind = CLI_U32, .metavar = "T", .offset = RC(threads), .uhi = CONFIG_MAX_THREADS,
+     .help = "worker threads, 0 = all cores (the image does not depend on it)"},
+    {.name = "--seed", .kind = CLI_U64, .metavar = "S", .offset = RC(seed), .uhi = UINT64_MAX,
+     .help = "names every random stream"},
+    {.name = "--rep-every", .kind = CLI_U32, .metavar = "K", .offset = RC(rep_every), .ulo = 1, .uhi = UINT32_MAX,
+     .help = "precomputed: every K-th stored photon is a representative"},
+    {.name = "--rep-count", .kind = CLI_U64, .metavar = "N", .offset = RC(rep_count), .uhi = CONFIG_MAX_REP_COUNT,
+     .help = "precomputed: a fixed count of representatives instead of --rep-every: N stored photons spread evenly "
+             "over the trace order (every stored photon when fewer are stored); 0: the --rep-every rule"},
+    {.name = "--normal-cos", .kind = CLI_REAL, .metavar = "C", .offset = RC(normal_cos), .rlo = -1.0, .rhi = 1.0,
+     .help = "precomputed: a representative's normal must agree above this cosine"},
+    {.name = "--rep-tree", .kind = CLI_CHOICE, .offset = RC(rep_tree), .choices = rep_tree_names,
+     .help = "precomputed: the representatives' own kd-tree, or the photon tree by flag"},
+    {.name = "--max-radius", .kind = CLI_REAL, .metavar = "R", .offset = RC(max_radius), .rlo = 1e-30, .rhi = 1e30,
+     .help = "search radius cap in scene units",
+     .default_text = CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT " x the diagonal of the photons' bounding box"},
+    {.name = "--direct", .kind = CLI_CHOICE, .offset = RC(direct), .choices = direct_names,
+     .help = "direct light from the photon map (the paper) or by shadow rays"},
+    {.name = "--photon-depth", .kind = CLI_U32, .metavar = "D", .offset = RC(photon_depth), .ulo = 1,
+     .uhi = CONFIG_MAX_DEPTH,
+     .help = "maximum bounces of a photon path"},
+    {.name = "--eye-depth", .kind = CLI_U32, .metavar = "D", .offset = RC(eye_depth), .uhi = CONFIG_MAX_DEPTH,
+     .help = "maximum specular bounces of an eye path"},
+    {.name = "--accel", .kind = CLI_CHOICE, .offset = RC(accel), .choices = accel_names,
+     .help = "ray casting: a BVH over the shapes from " SCENE_BVH_MIN_SHAPES_TEXT " shapes on (auto), always, or a loop over "
+             "every shape; the image does not depend on it"},
+    {.name = "-o", .kind = CLI_STRING, .metavar = "FILE.exr", .offset = RO(exr),
+     .help = "linear float RGB OpenEXR"},
+    {.name = "--png", .kind = CLI_STRING, .metavar = "FILE.png", .offset = RO(png),
+     .help = "sRGB 8-bit preview"},
+    {.name = "--exposure", .kind = CLI_REAL, .metavar = "E", .offset = RO(exposure), .rlo = 0.0, .rhi = 1e30,
+     .help = "scale of the PNG preview"},
+    {.name = "--stats", .kind = CLI_STRING, .metavar = "FILE.json", .offset = RO(stats),
+     .help = "run statistics as JSON"},
+    {.name = "--dump-reps", .kind = CLI_STRING, .metavar = "FILE.csv", .offset = RC(dump_reps),
+     .help = "precomputed: the representatives as CSV (x,y,z, normal nx,ny,nz, precomputed irradiance e_r,e_g,e_b "
+             "in W per scene unit^2), written after the render, outside its times"},
+    {.name = "--allow-nonfinite", .kind = CLI_FLAG, .offset = RC(allow_nonfinite), .flag_value = 1,
+     .help = "keep an image whose radiance leaves the float range (Inf, or below the smallest normal float; "
+             "otherwise exit 2, no image)"},
+    {.name = "--quiet", .kind = CLI_FLAG, .offset = RO(quiet), .flag_value = 1,
+     .help = "no progress bar and no summary line"},
 };
 #undef RO
 #undef RC
 
 static const cli_command render_command = {
-    "render", "renders SCENE by photon mapping (see README.md)", "SCENE", "scene file", offsetof(render_args, scene),
-    render_options, sizeof render_options / sizeof render_options[0]};
+    .name = "render",
+    .summary = "renders SCENE by photon mapping (see README.md)",
+    .positional = "SCENE",
+    .positional_what = "scene file",
+    .positional_offset = offsetof(render_args, scene),
+    .options = render_options,
+    .noptions = sizeof render_options / sizeof render_options[0]};
 
 static render_args render_defaults(void)
 {
@@ -300,30 +315,38 @@ _Static_assert(sizeof(povray_quality) == sizeof(int), "povray_quality is int-siz
 
 #define PO(field) offsetof(pov_args, field)
 static const cli_option pov_options_table[] = {
-    {"--width", CLI_U32, "W", PO(pov.width), 1, CONFIG_MAX_SIDE, 0, 0, NULL, 0,
-     "the image width POV-Ray will render (sets the aspect ratio)", NULL},
-    {"--height", CLI_U32, "H", PO(pov.height), 1, CONFIG_MAX_SIDE, 0, 0, NULL, 0,
-     "the image height POV-Ray will render", NULL},
-    {"--quality", CLI_CHOICE, NULL, PO(pov.quality), 0, 0, 0, 0, quality_names, 0,
-     "radiosity and photon settings (reference/README.md)", NULL},
-    {"--no-radiosity", CLI_FLAG, NULL, PO(pov.radiosity), 0, 0, 0, 0, NULL, 0,
-     "no indirect diffuse light (radiosity on unless given)", NULL},
-    {"--no-photons", CLI_FLAG, NULL, PO(pov.photons), 0, 0, 0, 0, NULL, 0,
-     "no caustics; glass still shadows direct light (photons on unless given)", NULL},
-    {"--rect-thickness", CLI_REAL, "F", PO(pov.rect_thickness), 0, 0, POVRAY_RECT_THICKNESS_MIN,
-     POVRAY_RECT_THICKNESS_MAX, NULL, 0,
-     "a rectangle becomes a box this fraction of the scene's diagonal thick, behind its lit face; thin "
-     "geometry needs less", NULL},
-    {"--bounces", CLI_U32, "B", PO(pov.bounces), 1, POVRAY_BOUNCES_MAX, 0, 0, NULL, 0,
-     "indirect diffuse bounces of the radiosity (its recursion_limit); the same light paths as "
-     "render --photon-depth B+1", NULL},
-    {"-o", CLI_STRING, "FILE.pov", PO(out), 0, 0, 0, 0, NULL, 0, "where to write the SDL", "standard output"},
+    {.name = "--width", .kind = CLI_U32, .metavar = "W", .offset = PO(pov.width), .ulo = 1, .uhi = CONFIG_MAX_SIDE,
+     .help = "the image width POV-Ray will render (sets the aspect ratio)"},
+    {.name = "--height", .kind = CLI_U32, .metavar = "H", .offset = PO(pov.height), .ulo = 1, .uhi = CONFIG_MAX_SIDE,
+     .help = "the image height POV-Ray will render"},
+    {.name = "--quality", .kind = CLI_CHOICE, .offset = PO(pov.quality), .choices = quality_names,
+     .help = "radiosity and photon settings (reference/README.md)"},
+    {.name = "--no-radiosity", .kind = CLI_FLAG, .offset = PO(pov.radiosity),
+     .help = "no indirect diffuse light (radiosity on unless given)"},
+    {.name = "--no-photons", .kind = CLI_FLAG, .offset = PO(pov.photons),
+     .help = "no caustics; glass still shadows direct light (photons on unless given)"},
+    {.name = "--rect-thickness", .kind = CLI_REAL, .metavar = "F", .offset = PO(pov.rect_thickness),
+     .rlo = POVRAY_RECT_THICKNESS_MIN, .rhi = POVRAY_RECT_THICKNESS_MAX,
+     .help = "a rectangle becomes a box this fraction of the scene's diagonal thick, behind its lit face; thin "
+             "geometry needs less"},
+    {.name = "--bounces", .kind = CLI_U32, .metavar = "B", .offset = PO(pov.bounces), .ulo = 1,
+     .uhi = POVRAY_BOUNCES_MAX,
+     .help = "indirect diffuse bounces of the radiosity (its recursion_limit); the same light paths as "
+             "render --photon-depth B+1"},
+    {.name = "-o", .kind = CLI_STRING, .metavar = "FILE.pov", .offset = PO(out),
+     .help = "where to write the SDL",
+     .default_text = "standard output"},
 };
 #undef PO
 
 static const cli_command pov_command = {
-    "export-pov", "writes SCENE as POV-Ray 3.7 SDL radiometrically matched to the renderer", "SCENE",
-    "scene file", offsetof(pov_args, scene), pov_options_table, sizeof pov_options_table / sizeof pov_options_table[0]};
+    .name = "export-pov",
+    .summary = "writes SCENE as POV-Ray 3.7 SDL radiometrically matched to the renderer",
+    .positional = "SCENE",
+    .positional_what = "scene file",
+    .positional_offset = offsetof(pov_args, scene),
+    .options = pov_options_table,
+    .noptions = sizeof pov_options_table / sizeof pov_options_table[0]};
 
 static pov_args pov_defaults_args(void)
 {

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# fuzz.test.sh: the scene parser's fuzz target in CI (issue 6): every seed in
+# fuzz.test.sh: the scene parser's fuzz target in CI: every seed in
 # tests/fuzz/corpus (broken variants and past findings) replays cleanly, then
 # FUZZ_TEST_SECONDS (20) of libFuzzer from those seeds finds nothing. Skipped,
 # counted as passed with a note, only when clang's libFuzzer runtime is

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# hostile.test.sh: hostile input at the command line (issue 6). Broken scene
+# hostile.test.sh: hostile input at the command line. Broken scene
 # files give "file:line:col: message", exit 2 and no output file; malformed or
 # out-of-range options give a clear message and exit 2; a full disk, an
 # unwritable directory or a device as output is an error naming the path, and

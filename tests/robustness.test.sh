@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# robustness.test.sh: the image depends only on what the scene is (issue 15).
+# robustness.test.sh: the image depends only on what the scene is, not on where
+# it sits or its scale.
 #   - the quick sweeps of scripts/stability.py: the room scaled by 1e-30 and
 #     1e14, moved by 1e12, a far sphere at 1e15 (each must equal the
 #     baseline), and the limits refused with exit 2 (too far for double

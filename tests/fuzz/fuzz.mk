@@ -1,4 +1,4 @@
-# fuzz.mk: the scene parser's libFuzzer target (issue 6), included by the
+# fuzz.mk: the scene parser's libFuzzer target, included by the
 # top Makefile. `make fuzz` builds build/fuzz_scene with clang
 # (-fsanitize=fuzzer,address,undefined) and runs it for FUZZ_SECONDS (60)
 # from the committed seeds in tests/fuzz/corpus; new inputs go to

@@ -1,4 +1,4 @@
-/* fuzz_scene: libFuzzer target for the .scene parser (issue 6). Any input
+/* fuzz_scene: libFuzzer target for the .scene parser. Any input
  * must either parse into a scene that every later stage can use (finite
  * numbers, unit normals, a positive finite size, valid material indices) or
  * fail with "fuzz.scene:LINE:COL: message" and no scene. Anything else, and

@@ -1,5 +1,5 @@
 /* test_stability: the estimates and the whole pipeline at the extremes
- * (issue 6): n = 1, n at and beyond the stored count, P_e = 1 and 0,
+ * where floating point and counting break first: n = 1, n at and beyond the stored count, P_e = 1 and 0,
  * coincident photons, too few or no photons in range, no agreeing
  * representative, light power 1e-30 / 1e30, the Cornell scene scaled by
  * 1e-3 / 1e3 (and 1e-15), grazing rays, a camera inside the glass sphere,
