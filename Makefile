@@ -21,14 +21,20 @@ EXR_CFLAGS = $(shell pkg-config --cflags OpenEXR 2>/dev/null || echo -I/usr/incl
 # compile to single instructions (results are the same)
 CFLAGS_COMMON = -std=c17 -D_POSIX_C_SOURCE=200809L -fno-math-errno $(WARN) -pthread $(EXR_CFLAGS) -Irenderer
 CFLAGS ?= -O2 -g
+# the release objects (build/obj: build/photonmap, the binary the benchmarks
+# time, and the tools) are built without asserts; the unit tests link the
+# same sources built with them (build/dbg), and the sanitizer build
+# (build/san) keeps them too
+RELEASE_FLAGS := -DNDEBUG
 LDLIBS := -lOpenEXRCore -lpng -lm -pthread
 SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined
 
 LIB_SRC := $(filter-out renderer/main.c,$(wildcard renderer/*.c))
 LIB_OBJ := $(LIB_SRC:renderer/%.c=$(BUILD)/obj/%.o)
+DBG_OBJ := $(LIB_SRC:renderer/%.c=$(BUILD)/dbg/%.o)
 SAN_OBJ := $(LIB_SRC:renderer/%.c=$(BUILD)/san/%.o)
 TEST_SRC := $(wildcard tests/unit/*.c)
-TEST_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/obj/test_%.o)
+TEST_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/dbg/test_%.o)
 TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 IMGMETRICS := $(BUILD)/imgmetrics
 
@@ -56,7 +62,7 @@ sweep-slurm: ## a Slurm job array of make targets: TASKS=FILE or SWEEP=TARGET ->
 help: ## this list
 	@awk -F':.*## ' '/^[a-z][a-z-]*:.*## / { printf "  make %-17s %s\n", $$1, $$2 }' $(firstword $(MAKEFILE_LIST))
 clean: ## remove the build (not results/ or reference/)
-	rm -rf $(BUILD)/obj $(BUILD)/san $(BUILD)/photonmap $(BUILD)/imgmetrics $(BUILD)/unit-tests $(BUILD)/unit-tests-san
+	rm -rf $(BUILD)/obj $(BUILD)/dbg $(BUILD)/san $(BUILD)/photonmap $(BUILD)/imgmetrics $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 
 stability: $(BUILD)/photonmap
 	@mkdir -p $(RESULTS)
@@ -71,13 +77,17 @@ $(DEPS_STAMP): scripts/install-deps.sh
 
 $(BUILD)/obj/%.o: renderer/%.c renderer/*.h | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_COMMON) $(CFLAGS) $(RELEASE_FLAGS) -c $< -o $@
+
+$(BUILD)/dbg/%.o: renderer/%.c renderer/*.h | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_COMMON) $(CFLAGS) -c $< -o $@
 
 $(BUILD)/san/%.o: renderer/%.c renderer/*.h | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_COMMON) $(SAN_FLAGS) -c $< -o $@
 
-$(BUILD)/obj/test_%.o: tests/unit/%.c tests/unit/*.h renderer/*.h | $(DEPS_STAMP)
+$(BUILD)/dbg/test_%.o: tests/unit/%.c tests/unit/*.h renderer/*.h | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_COMMON) $(CFLAGS) -Itests/unit -c $< -o $@
 
@@ -87,7 +97,7 @@ $(BUILD)/san/test_%.o: tests/unit/%.c tests/unit/*.h renderer/*.h | $(DEPS_STAMP
 
 $(BUILD)/obj/imgmetrics.o: scripts/imgmetrics.c renderer/image.h | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_COMMON) $(CFLAGS) -c $< -o $@
+	$(CC) $(CFLAGS_COMMON) $(CFLAGS) $(RELEASE_FLAGS) -c $< -o $@
 
 $(BUILD)/photonmap: $(LIB_OBJ) $(BUILD)/obj/main.o
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
@@ -100,7 +110,7 @@ $(BUILD)/san/photonmap: $(SAN_OBJ) $(BUILD)/san/main.o
 $(IMGMETRICS): $(BUILD)/obj/imgmetrics.o $(BUILD)/obj/image.o $(BUILD)/obj/outfile.o
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
-$(BUILD)/unit-tests: $(LIB_OBJ) $(TEST_OBJ)
+$(BUILD)/unit-tests: $(DBG_OBJ) $(TEST_OBJ)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
 $(BUILD)/unit-tests-san: $(SAN_OBJ) $(TEST_SAN_OBJ)
