@@ -43,3 +43,29 @@ int helper_reps(const photons_map *m, const est_gather *g, config_rep_tree tree,
     }
     return 0;
 }
+
+/* A photon map of `count` photons at pos[], each travelling along dir onto a
+ * surface of normal `normal`, power `power` per channel, flags as given. */
+void helper_map(photons_map *m, const float (*pos)[3], uint32_t count, vec3 dir, vec3 normal, float power,
+                     unsigned flags)
+{
+    photons_list l;
+    memset(&l, 0, sizeof l);
+    l.count = count;
+    l.pos = malloc(sizeof(double) * 3 * (count ? count : 1));
+    l.ph = calloc(count ? count : 1, sizeof(photons_record));
+    if (!l.pos || !l.ph)
+        abort();
+    for (uint32_t i = 0; i < count; i++) {
+        for (int a = 0; a < 3; a++)
+            l.pos[3 * i + (uint32_t)a] = pos[i][a];
+        for (int c = 0; c < 3; c++)
+            l.ph[i].power[c] = power;
+        photons_pack_dir(dir.x, dir.y, dir.z, l.ph[i].dir);
+        photons_pack_dir(normal.x, normal.y, normal.z, l.ph[i].normal);
+        l.ph[i].flags = (uint8_t)flags;
+    }
+    l.unit = vec_make(1, 1, 1);
+    if (photons_build_map(&l, 0, m, NULL))
+        abort();
+}

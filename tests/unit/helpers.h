@@ -16,6 +16,11 @@ scene *helper_scene(const char *text);
  * Returns render_run's result (PM_OK = 0). */
 int helper_render(const scene *sc, const config_render *cfg, unsigned threads, image *out, stats_run *st);
 
+/* A photon map of `count` photons at pos[] (world units), each travelling
+ * along dir onto a surface of normal `normal`, power `power` per channel,
+ * flags as given; aborts the test run when memory runs out. */
+void helper_map(photons_map *m, const float (*pos)[3], uint32_t count, vec3 dir, vec3 normal, float power,
+                unsigned flags);
 /* The representatives of map m (its flagged photons, all in the tree) in
  * layout `tree`, evaluated with gather g on `threads` threads. Returns 0, or
  * -1 when memory runs out (out is then empty). */

@@ -112,3 +112,47 @@ void test_scene_errors(void)
     CHECK(scene_load("no/such/file.scene", &s, err, sizeof err) == PM_ERR_IO);
     CHECK(strstr(err, "no/such/file.scene") != NULL);
 }
+
+void test_stability_parser_degenerate_sizes(void)
+{
+    /* fuzz_scene findings (tests/fuzz/corpus/finding-*.scene): lengths whose
+     * squares underflow gave a rect an infinite 1/|edge|^2 and a NaN normal,
+     * a scene of no extent got a zero epsilon and radius; hex floats were
+     * taken though the format is decimal. Each is now an input error. */
+    static const char *head = "camera position 1 1 1 look_at 1 1 0 up 0 1 0 fov 60\n"
+                              "light point position 0 1 0 power 1 1 1\n"
+                              "material w lambert rho 1 1 1\n";
+    static const struct {
+        const char *shape, *where, *what;
+    } bad[] = {
+        {"rect corner 1 0 0 edge1 1e-160 0 0 edge2 0 1e-160 0 material w\n", "t:4:25:", "shorter than"},
+        {"rect corner 1 0 0 edge1 1 0 0 edge2 0 0 1e-60 material w\n", "t:4:37:", "shorter than"},
+        {"sphere center 1 0 0 radius 1e-320 material w\n", "t:4:28:", "at least"},
+        {"sphere center 0x10 0 0 radius 1 material w\n", "t:4:15:", "expected a number"},
+    };
+    char text[512], err[512];
+    scene *s;
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        snprintf(text, sizeof text, "%s%s", head, bad[i].shape);
+        int rc = scene_parse_buffer("t", text, strlen(text), &s, err, sizeof err);
+        CHECK_MSG(rc == PM_ERR_INPUT && s == NULL, "case %zu parsed", i);
+        CHECK_MSG(strncmp(err, bad[i].where, strlen(bad[i].where)) == 0 && strstr(err, bad[i].what), "case %zu: %s",
+                  i, err);
+    }
+    const char *flat = "camera position 1 1 1 look_at 1 1 0 up 0 1 0 fov 60\n"
+                       "light point position 1e15 1e15 1e15 power 1 1 1\n"
+                       "material w lambert rho 1 1 1\n"
+                       "sphere center 1e15 1e15 1e15 radius 1e-40 material w\n";
+    CHECK(scene_parse_buffer("t", flat, strlen(flat), &s, err, sizeof err) == PM_ERR_INPUT);
+    CHECK_MSG(strstr(err, "t:4:1:") == err && strstr(err, "no extent"), "%s", err);
+    /* just above the limit: a usable rect with a unit normal */
+    snprintf(text, sizeof text, "%srect corner 1 0 0 edge1 1e-49 0 0 edge2 0 1e-49 0 material w\n", head);
+    CHECK(scene_parse_buffer("t", text, strlen(text), &s, err, sizeof err) == PM_OK);
+    if (s) {
+        const shape *r = &s->shapes[0];
+        CHECK(isfinite(r->inv_len2_1) && isfinite(r->inv_len2_2));
+        CHECK_NEAR(vec_len(r->normal), 1.0, 1e-12);
+        CHECK(s->scale > 0.0 && isfinite(s->scale));
+        scene_free(s);
+    }
+}

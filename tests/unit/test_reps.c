@@ -1,14 +1,19 @@
-/* test_precomputed: the paper's method (precomputed irradiance at
- * representatives) against the conventional estimate, the normal test, and
- * its extremes. Synthetic photon maps give exact expectations. */
+/* test_reps: the representatives (reps.h): the precompute and lookup
+ * against the conventional estimate on a uniform plane, both layouts, the
+ * normal test at a corner, no agreeing representative, the fixed-count rule
+ * and the CSV dump. Synthetic photon maps give exact expectations. */
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "estimate.h"
 #include "helpers.h"
 #include "photons.h"
 #include "render.h"
+#include "reps.h"
 #include "rng.h"
 #include "tests.h"
 
@@ -94,56 +99,6 @@ void test_precomputed_equals_conventional_on_uniform_plane(void)
     photons_map_free(&m);
 }
 
-/* Relative RMSE between two images (over pixels the reference lights). */
-static double rel_rmse(const image *a, const image *ref)
-{
-    double num = 0, den = 0;
-    size_t n = (size_t)a->width * a->height * 3;
-    for (size_t i = 0; i < n; i++) {
-        num += (a->rgb[i] - ref->rgb[i]) * (double)(a->rgb[i] - ref->rgb[i]);
-        den += ref->rgb[i] * (double)ref->rgb[i];
-    }
-    return sqrt(num / den);
-}
-
-/* At a fixed n the two methods differ by a fixed relative amount whatever
- * P_e: the representatives' spacing and the kNN radius both scale as
- * P_e^-1/2 (measured at 128x96, n=100: relative RMSE 0.029, 0.027, 0.027 at
- * 50k, 100k, 500k). The difference shrinks when the kNN radius grows
- * relative to the representatives' spacing: with n, or with P_e at a fixed
- * radius (n proportional to P_e), the paper's Fig. 3 sequence. */
-void test_precomputed_converges_on_cornell(void)
-{
-    char err[512];
-    scene *sc = NULL;
-    CHECK_MSG(scene_load("scenes/cornell.scene", &sc, err, sizeof err) == PM_OK, "%s", err);
-    if (!sc)
-        return;
-    double diff[3];
-    const uint64_t counts[3] = {50000, 500000, 50000};
-    const uint32_t nns[3] = {10, 100, 100};
-    for (int i = 0; i < 3; i++) {
-        config_render cfg = config_defaults();
-        cfg.photons = counts[i];
-        cfg.nn = nns[i];
-        cfg.width = 48;
-        cfg.height = 36;
-        image conv, pre;
-        stats_run st;
-        CHECK(helper_render(sc, &cfg, 2, &conv, &st) == 0);
-        cfg.method = CONFIG_METHOD_PRECOMPUTED;
-        CHECK(helper_render(sc, &cfg, 2, &pre, &st) == 0);
-        CHECK(st.representatives > 0 && st.nonfinite_pixels == 0);
-        diff[i] = rel_rmse(&pre, &conv);
-        image_free(&conv);
-        image_free(&pre);
-    }
-    /* measured: 0.18 at (50k, 10), 0.024 at (500k, 100) and at (50k, 100) */
-    CHECK_MSG(diff[1] < 0.33 * diff[0], "relative RMSE %.4f at (50k, 10), %.4f at (500k, 100)", diff[0], diff[1]);
-    CHECK_MSG(diff[2] < 0.33 * diff[0], "relative RMSE %.4f at n=10, %.4f at n=100", diff[0], diff[2]);
-    scene_free(sc);
-}
-
 void test_precomputed_normal_test_at_corner(void)
 {
     /* floor y=0 (normal +y) with dense dim photons, back wall z=0 (normal +z)
@@ -179,46 +134,6 @@ void test_precomputed_normal_test_at_corner(void)
     reps_free(&reps);
     est_scratch_delete(s, 1);
     photons_map_free(&m);
-}
-
-void test_precomputed_extremes(void)
-{
-    char err[512];
-    scene *sc = NULL;
-    CHECK_MSG(scene_load("scenes/cornell.scene", &sc, err, sizeof err) == PM_OK, "%s", err);
-    if (!sc)
-        return;
-    config_render cfg = config_defaults();
-    cfg.method = CONFIG_METHOD_PRECOMPUTED;
-    cfg.photons = 5000;
-    cfg.width = 32;
-    cfg.height = 24;
-    image im;
-    stats_run st;
-    /* one representative in the whole map */
-    cfg.rep_every = 1000000000u;
-    CHECK(helper_render(sc, &cfg, 2, &im, &st) == 0);
-    CHECK(st.representatives == 1 && st.nonfinite_pixels == 0);
-    CHECK(st.empty_estimates > 0); /* almost every point has no representative in range: black */
-    image_free(&im);
-    /* n larger than the stored photon count */
-    cfg.rep_every = 4;
-    cfg.nn = 100000;
-    cfg.photons = 2000;
-    CHECK(helper_render(sc, &cfg, 2, &im, &st) == 0);
-    CHECK(st.photons_stored < cfg.nn && st.nonfinite_pixels == 0);
-    image_free(&im);
-    /* a normal threshold no representative can meet: defined black image */
-    cfg.nn = 10;
-    cfg.normal_cos = 1.0;
-    CHECK(helper_render(sc, &cfg, 2, &im, &st) == 0);
-    CHECK(st.nonfinite_pixels == 0);
-    double sum = 0;
-    for (size_t i = 0; i < (size_t)cfg.width * cfg.height * 3; i++)
-        sum += im.rgb[i];
-    CHECK(sum == 0.0);
-    image_free(&im);
-    scene_free(sc);
 }
 
 /* --rep-count: exactly min(N, stored) representatives, spread evenly over
@@ -309,6 +224,40 @@ void test_precomputed_dump_reps(void)
                   lookups_equal, rows / 97);
         fclose(f);
         reps_free(&reps);
+    }
+    photons_map_free(&m);
+}
+
+static const vec3 down = {0, -1, 0}, up_n = {0, 1, 0};
+
+void test_stability_no_agreeing_representative(void)
+{
+    /* representatives on a floor (normal +y); a lookup on a surface facing
+     * -y (the floor's underside) or sideways finds none: 0 */
+    float pos[16][3];
+    for (int i = 0; i < 16; i++)
+        pos[i][0] = (float)(0.01 * (i % 4)), pos[i][1] = 0.0f, pos[i][2] = (float)(0.01 * (i / 4));
+    photons_map m;
+    helper_map(&m, (const float(*)[3])pos, 16, down, up_n, 1.0f, PHOTONS_FLAG_REP);
+    for (int layout = 0; layout < 2; layout++) {
+        reps_set r;
+        est_gather g = est_gather_make(&m, 4, 0.1, 0);
+        est_scratch *ls = est_scratch_new(1, 4);
+        CHECK(helper_reps(&m, &g, layout ? CONFIG_REP_TREE_SHARED : CONFIG_REP_TREE_SEPARATE, 2, &r) == 0);
+        CHECK(r.count == 16);
+        int found = -1;
+        vec3 e = reps_lookup(&r, &m, vec_make(0.01, 0, 0.01), down, 0.9, &g, ls, &found);
+        CHECK(found == 0 && e.x == 0.0 && e.y == 0.0 && e.z == 0.0);
+        e = reps_lookup(&r, &m, vec_make(0.01, 0, 0.01), vec_make(1, 0, 0), 0.9, &g, ls, &found);
+        CHECK(found == 0 && e.x == 0.0);
+        /* the agreeing side finds one, finite and positive */
+        e = reps_lookup(&r, &m, vec_make(0.01, 0, 0.01), up_n, 0.9, &g, ls, &found);
+        CHECK(found == 1 && isfinite(e.x) && e.x > 0.0);
+        /* none in range */
+        e = reps_lookup(&r, &m, vec_make(5, 0, 5), up_n, 0.9, &g, ls, &found);
+        CHECK(found == 0 && e.x == 0.0);
+        reps_free(&r);
+        est_scratch_delete(ls, 1);
     }
     photons_map_free(&m);
 }
