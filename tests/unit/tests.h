@@ -51,6 +51,18 @@
     X(stability_exr_round_trip_of_renders) \
     X(precomputed_converges_on_cornell) \
     X(precomputed_extremes) \
+    /* test_cli.c */ \
+    X(cli_parses_every_kind) \
+    X(cli_usage_lists_defaults_and_ranges) \
+    /* test_config.c */ \
+    X(config_defaults) \
+    X(config_check) \
+    /* test_outfile.c */ \
+    X(outfile_whole_or_nothing) \
+    /* test_utf8.c */ \
+    X(utf8_sequences) \
+    /* test_status.c */ \
+    X(status_codes) \
     /* test_image.c */ \
     X(exr_round_trip) \
     /* test_bvh.c */ \
