@@ -325,6 +325,9 @@ static const cli_option pov_options_table[] = {
      .help = "no indirect diffuse light (radiosity on unless given)"},
     {.name = "--no-photons", .kind = CLI_FLAG, .offset = PO(pov.photons),
      .help = "no caustics; glass still shadows direct light (photons on unless given)"},
+    {.name = "--no-glass-caustics", .kind = CLI_FLAG, .offset = PO(pov.glass_caustics),
+     .help = "glass casts no caustic (it is no photon target; a shadow-only proxy still blocks direct light), "
+             "mirror caustics and radiosity stay: the caustic-missing negative control of the POV-Ray checks"},
     {.name = "--rect-thickness", .kind = CLI_REAL, .metavar = "F", .offset = PO(pov.rect_thickness),
      .rlo = POVRAY_RECT_THICKNESS_MIN, .rhi = POVRAY_RECT_THICKNESS_MAX,
      .help = "a rectangle becomes a box this fraction of the scene's diagonal thick, behind its lit face; thin "

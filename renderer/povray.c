@@ -45,6 +45,7 @@ povray_options povray_defaults(void)
     o.quality = POVRAY_QUALITY_FAST;
     o.radiosity = 1;
     o.photons = 1;
+    o.glass_caustics = 1;
     o.rect_thickness = POVRAY_RECT_THICKNESS;
     o.bounces = POVRAY_BOUNCES;
     return o;
@@ -215,13 +216,16 @@ static void put_materials(FILE *f, const scene *sc)
     fputc('\n', f);
 }
 
-/* The object-level photons block for a shape of material kind k. */
-static void put_photon_block(FILE *f, material_kind k)
+/* The object-level photons block for a shape of material kind k (none for
+ * glass without its caustic: a comment says so). */
+static void put_photon_block(FILE *f, material_kind k, const povray_options *o)
 {
     if (k == MATERIAL_MIRROR)
         fprintf(f, "  photons { target reflection on refraction off collect off }\n");
-    else if (k == MATERIAL_GLASS)
+    else if (k == MATERIAL_GLASS && o->glass_caustics)
         fprintf(f, "  photons { target reflection on refraction on collect off }\n");
+    else if (k == MATERIAL_GLASS)
+        fprintf(f, "  // glass caustic removed (negative control)\n");
 }
 
 /* A rectangle as a thin box whose face toward the light lies exactly in the
@@ -276,6 +280,19 @@ static void put_geometry(FILE *f, const scene *sc, const shape *s, int proxy, do
     }
 }
 
+/* The shadow-only proxy of glass shape s. Without photons POV-Ray lets
+ * direct light straight through glass; the renderer treats light through
+ * glass as a caustic (photons only). An opaque twin just inside, invisible
+ * to camera, refracted, reflected and radiosity rays, casts the shadow the
+ * renderer's shadow rays see. */
+static void put_glass_proxy(FILE *f, const scene *sc, const shape *s, const povray_options *o)
+{
+    fprintf(f, "// shadow-only proxy of the glass above (photons off)\n");
+    put_geometry(f, sc, s, 1, o->rect_thickness);
+    fprintf(f, "  pigment { rgb 0 } finish { diffuse 0 ambient 0 }\n");
+    fprintf(f, "  no_image no_reflection no_radiosity\n}\n");
+}
+
 static void put_shapes(FILE *f, const scene *sc, const povray_options *o)
 {
     for (size_t i = 0; i < sc->nshapes; i++) {
@@ -284,20 +301,16 @@ static void put_shapes(FILE *f, const scene *sc, const povray_options *o)
         const material *m = &sc->materials[s->material];
         put_geometry(f, sc, s, 0, o->rect_thickness);
         fprintf(f, "  material { PM_Mat%d }  // %s\n", s->material, m->name);
-        put_photon_block(f, m->kind);
+        put_photon_block(f, m->kind, o);
         fprintf(f, "}\n");
-        if (m->kind == MATERIAL_GLASS && !o->photons) {
-            /* Without photons POV-Ray lets direct light straight through
-             * glass; the renderer treats light through glass as a caustic
-             * (photons only). An opaque twin just inside, invisible to
-             * camera, refracted, reflected and radiosity rays, casts the
-             * shadow the renderer's shadow rays see. */
-            fprintf(f, "// shadow-only proxy of the glass above (photons off)\n");
-            put_geometry(f, sc, s, 1, o->rect_thickness);
-            fprintf(f, "  pigment { rgb 0 } finish { diffuse 0 ambient 0 }\n");
-            fprintf(f, "  no_image no_reflection no_radiosity\n}\n");
-        }
+        if (m->kind == MATERIAL_GLASS && !o->photons)
+            put_glass_proxy(f, sc, s, o);
     }
+    /* without the glass caustic (photons on), the proxies follow all the
+     * shapes */
+    for (size_t i = 0; i < sc->nshapes && o->photons && !o->glass_caustics; i++)
+        if (sc->materials[sc->shapes[i].material].kind == MATERIAL_GLASS)
+            put_glass_proxy(f, sc, &sc->shapes[i], o);
 }
 
 pm_status povray_write(FILE *f, const scene *sc, const char *scene_name, const povray_options *o)

@@ -16,6 +16,9 @@ typedef struct {
     povray_quality quality;    /* radiosity and photon settings: fast or reference */
     int radiosity;          /* 0: no indirect diffuse light */
     int photons;            /* 0: no caustics (glass still shadows direct light) */
+    int glass_caustics;     /* 0: glass is no photon target, so it casts no caustic, and its shadow-only
+                               proxy is added so that it still blocks direct light; mirror caustics and
+                               radiosity stay (the "glass caustic missing" negative control) */
     double rect_thickness;  /* a rectangle's box, as a fraction of the scene's diagonal */
     uint32_t bounces;       /* radiosity recursion_limit: indirect diffuse bounces */
 } povray_options;
@@ -32,8 +35,8 @@ typedef struct {
 #define POVRAY_BOUNCES 20
 #define POVRAY_BOUNCES_MAX 20
 
-/* 1024x768, fast, radiosity (20 bounces) and photons on, rectangles 1e-3
- * thick; never fails. */
+/* 1024x768, fast, radiosity (20 bounces), photons and glass caustics on,
+ * rectangles 1e-3 thick; never fails. */
 povray_options povray_defaults(void);
 /* "fast" or "reference". */
 const char *povray_quality_name(povray_quality q);

@@ -1,14 +1,9 @@
 #!/usr/bin/env bash
-# pov-nocaustic.sh IN.pov SCENE W H: prints IN.pov (exported with photons on)
-# changed into the "glass caustic missing" negative control: the glass is no
-# longer a photon target, so it gets no caustic, and the shadow-only proxy
-# that `export-pov --no-photons` writes is added so that the glass still
-# blocks direct light. Everything else (radiosity, mirror caustics) stays.
+# pov-nocaustic.sh IN.pov SCENE W H: prints the "glass caustic missing"
+# negative control of IN.pov (exported from SCENE at WxH with photons on):
+# `export-pov --no-glass-caustics` at IN.pov's quality.
 set -eu -o pipefail
 in=$1 scene=$2 w=$3 h=$4
-proxy=$(build/photonmap export-pov "$scene" --width "$w" --height "$h" --no-photons |
-        awk '/shadow-only proxy/ { p = 1 } p { print } p && /^}/ { p = 0 }')
-[ -n "$proxy" ] || { echo "pov-nocaustic: no glass proxy in the export of $scene" >&2; exit 1; }
-grep -q 'photons { target reflection on refraction on' "$in" || { echo "pov-nocaustic: no glass target in $in" >&2; exit 1; }
-sed 's|^  photons { target reflection on refraction on collect off }|  // glass caustic removed (negative control)|' "$in"
-printf '%s\n' "$proxy"
+quality=$(sed -n 's|^// settings: .*, quality \([a-z]*\),.*|\1|p' "$in")
+[ -n "$quality" ] || { echo "pov-nocaustic: no settings line in $in" >&2; exit 1; }
+build/photonmap export-pov "$scene" --width "$w" --height "$h" --quality "$quality" --no-glass-caustics

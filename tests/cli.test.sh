@@ -92,7 +92,7 @@ check "render --help: exit 0, every option with default and range" help_lists re
   --height --subpixels --threads --seed --rep-every --rep-count --normal-cos --rep-tree --max-radius --direct \
   --photon-depth --eye-depth -o --png --exposure --stats --dump-reps --allow-nonfinite --quiet
 check "export-pov --help: exit 0, every option with default and range" help_lists export-pov --width --height \
-  --quality --no-radiosity --no-photons -o
+  --quality --no-radiosity --no-photons --no-glass-caustics -o
 check "photonmap --help: both subcommands, exit 0" bash -c "$PM --help | grep -q 'usage: photonmap render' && $PM --help | grep -q 'usage: photonmap export-pov'"
 check "export-pov: malformed option, same message style as render, exit 2" \
   expect_exit 2 "^photonmap: --width: expected an integer in \[1, 16384\], got 'wide'" $PM export-pov scenes/cornell.scene --width wide
@@ -114,6 +114,20 @@ check "exr bit-identical with --accel bvh and linear" accel_identical
 check "export-pov: --rect-thickness out of range: exit 2" expect_exit 2 "--rect-thickness: expected a number in \[1e-09, 0.01\]" \
   $PM export-pov scenes/cornell.scene --rect-thickness 0.1
 check "export-pov: --bounces 0: exit 2" expect_exit 2 "--bounces: expected an integer in \[1, 20\]" $PM export-pov scenes/cornell.scene --bounces 0
+
+# --no-glass-caustics: the glass is no photon target and gets its shadow-only
+# proxy; the mirror stays a target; the committed negative-control references
+# were exported this way (negative control: the plain export is not that)
+no_glass_caustics() {
+  $PM export-pov scenes/cornell.scene --width 256 --height 192 --quality fast --no-glass-caustics > "$TMP/nc.pov" &&
+  $PM export-pov scenes/cornell.scene --width 256 --height 192 --quality fast > "$TMP/c.pov" &&
+  ! grep -q 'photons { target reflection on refraction on' "$TMP/nc.pov" &&
+  grep -q 'photons { target reflection on refraction on' "$TMP/c.pov" &&
+  grep -q 'photons { target reflection on refraction off' "$TMP/nc.pov" &&
+  grep -q 'shadow-only proxy' "$TMP/nc.pov" && ! grep -q 'shadow-only proxy' "$TMP/c.pov" &&
+  cmp -s "$TMP/nc.pov" reference/cornell-nocaustic-128x96.pov && ! cmp -s "$TMP/c.pov" reference/cornell-nocaustic-128x96.pov
+}
+check "export-pov --no-glass-caustics: no glass target, its proxy, the committed negative control" no_glass_caustics
 check "missing scene file: exit 1 naming it" expect_exit 1 "nope.scene: cannot open" $PM render nope.scene
 
 bad_scene() {
