@@ -4,7 +4,7 @@
  * does", has the measured facts behind it):
  *   - coordinates: POV-Ray is left-handed, so z is negated everywhere;
  *   - camera: `right x*W/H`, `up y`, `sky`, `angle` (horizontal FOV), then
- *     `look_at`; the image plane then matches render_camera_ray exactly;
+ *     `look_at`; the image plane then matches camera_ray exactly;
  *   - light: POV's attenuation with fade_power 2 is 2/(1+(d/D)^2), so an
  *     intensity I (= power/4pi) becomes colour I/(2 pi D^2) with a tiny D;
  *     the Lambert 1/pi lives in that colour, diffuse is 1;

@@ -1,4 +1,5 @@
-/* helpers: small shared pieces of the unit tests (scenes from text). */
+/* helpers: small shared pieces of the unit tests (scenes from text, renders,
+ * synthetic photon maps and their representatives). */
 #ifndef PM_TEST_HELPERS_H
 #define PM_TEST_HELPERS_H
 
