@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "kdtree.h"
+#include "kdtree_test.h"
 #include "rng.h"
 #include "tests.h"
 
