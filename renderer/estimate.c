@@ -232,9 +232,7 @@ int est_reps_write_csv(const est_reps *r, const photons_map *m, FILE *f)
          * i (separate layout) or the map's representative i (shared) */
         float q[3];
         if (r->layout == EST_REPS_SEPARATE) {
-            q[0] = r->tree.x[i];
-            q[1] = r->tree.y[i];
-            q[2] = r->tree.z[i];
+            kd_point(&r->tree, i, q);
         } else {
             memcpy(q, m->rep[i].pos, sizeof q);
         }

@@ -21,6 +21,7 @@
 #ifndef PM_KDTREE_H
 #define PM_KDTREE_H
 
+#include <assert.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -33,7 +34,7 @@ typedef struct {
     float *split;         /* nleaves-1 inner nodes */
     uint8_t *axis;        /* nleaves-1 inner nodes */
     uint32_t *leaf_start; /* nleaves+1 offsets into x, y, z */
-    float *x, *y, *z;     /* points in leaf order (+ padding, see kdtree_impl.h) */
+    float *x, *y, *z;     /* points in leaf order (+ padding); read them with kd_point */
     float lo[3], hi[3];   /* bounds of all points */
     uint32_t scan_h;      /* k nearest scans whole subtrees this high (see kdtree_build.c) */
 } kd_tree;
@@ -47,6 +48,20 @@ int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint3
 void kd_free(kd_tree *t);
 /* Bytes of memory the tree holds. */
 size_t kd_bytes(const kd_tree *t);
+/* Peak bytes kd_build holds while it builds a tree over n points with
+ * leaf_size (0: KD_DEFAULT_LEAF): its working copy and the tree's arrays,
+ * not the caller's pts and perm. A double, so that a count can be sized
+ * (and refused) before its points exist. Never fails. */
+double kd_build_peak_bytes(double n, uint32_t leaf_size);
+
+/* The coordinates of leaf-order point i (i < t->n) to out. */
+static inline void kd_point(const kd_tree *t, uint32_t i, float out[3])
+{
+    assert(i < t->n);
+    out[0] = t->x[i];
+    out[1] = t->y[i];
+    out[2] = t->z[i];
+}
 
 /* Instruction sets of the k-nearest leaf scans. KD_SIMD_BASE is SSE2 on
  * x86-64 (portable C elsewhere); KD_SIMD_AVX2 needs the CPU to have it. */
