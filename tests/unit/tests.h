@@ -11,6 +11,10 @@
     X(kdtree_query_hints)              \
     X(kdtree_query_history_independent) \
     X(kdtree_query_state)              \
+    X(kdtree_query_avx2)               \
+    X(kdtree_build_memory)             \
+    X(kdtree_select_base)              \
+    X(kdtree_select_avx2)              \
     X(sphere_hits)                     \
     X(rect_hits)                       \
     X(rect_aligned_path_is_exact)      \
