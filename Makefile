@@ -75,7 +75,7 @@ $(DEPS_STAMP): scripts/install-deps.sh
 	bash scripts/install-deps.sh
 	@touch $@
 
-$(BUILD)/obj/%.o: renderer/%.c renderer/*.h | $(DEPS_STAMP)
+$(BUILD)/obj/%.o: renderer/%.c renderer/*.h renderer/*.inc | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_COMMON) $(CFLAGS) $(RELEASE_FLAGS) -c $< -o $@
 
@@ -83,7 +83,7 @@ $(BUILD)/dbg/%.o: renderer/%.c renderer/*.h | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_COMMON) $(CFLAGS) -c $< -o $@
 
-$(BUILD)/san/%.o: renderer/%.c renderer/*.h | $(DEPS_STAMP)
+$(BUILD)/san/%.o: renderer/%.c renderer/*.h renderer/*.inc | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_COMMON) $(SAN_FLAGS) -c $< -o $@
 

@@ -7,15 +7,21 @@
  * 2i+1, 2i+2), pointer-free inner nodes (split value + axis), leaves of at
  * most `leaf_size` points stored contiguously as x[], y[], z[] arrays.
  *
- * k nearest: kd_query_knn with a per-thread kd_query is the fast entry point
- * (it starts each search from the radius the previous query needed);
- * kd_knn is the same search with no state. Both return the k points with
- * the smallest (squared distance, leaf-order index) pairs, so ties at the
- * k-th distance are broken by index and a result never depends on earlier
- * queries, on the instruction set used, or on which entry point ran it. */
+ * k nearest: kd_query_knn with a per-thread kd_query is the entry point (it
+ * starts each search from the radius the previous query needed). It returns
+ * the k points with the smallest (squared distance, leaf-order index)
+ * pairs, so ties at the k-th distance are broken by index and a result
+ * never depends on earlier queries or on the instruction set used.
+ *
+ * The implementation is split by concept: kdtree_build.c (construction and
+ * memory), kdtree_select.c (selecting the k nearest candidates),
+ * kdtree_simd.c (the leaf scans and traversals per instruction set),
+ * kdtree_knn.c (the k-nearest driver and kd_query), kdtree_nearest.c
+ * (kd_nearest_if); kdtree_impl.h is what they share. */
 #ifndef PM_KDTREE_H
 #define PM_KDTREE_H
 
+#include <assert.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -28,9 +34,9 @@ typedef struct {
     float *split;         /* nleaves-1 inner nodes */
     uint8_t *axis;        /* nleaves-1 inner nodes */
     uint32_t *leaf_start; /* nleaves+1 offsets into x, y, z */
-    float *x, *y, *z;     /* points in leaf order (+ padding, see kdtree.c) */
+    float *x, *y, *z;     /* points in leaf order (+ padding); read them with kd_point */
     float lo[3], hi[3];   /* bounds of all points */
-    uint32_t scan_h;      /* k nearest scans whole subtrees this high (see kdtree.c) */
+    uint32_t scan_h;      /* k nearest scans whole subtrees this high (see kdtree_build.c) */
 } kd_tree;
 
 /* Builds a tree over n points (xyz triples in pts). If perm is not NULL it
@@ -42,6 +48,20 @@ int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint3
 void kd_free(kd_tree *t);
 /* Bytes of memory the tree holds. */
 size_t kd_bytes(const kd_tree *t);
+/* Peak bytes kd_build holds while it builds a tree over n points with
+ * leaf_size (0: KD_DEFAULT_LEAF): its working copy and the tree's arrays,
+ * not the caller's pts and perm. A double, so that a count can be sized
+ * (and refused) before its points exist. Never fails. */
+double kd_build_peak_bytes(double n, uint32_t leaf_size);
+
+/* The coordinates of leaf-order point i (i < t->n) to out. */
+static inline void kd_point(const kd_tree *t, uint32_t i, float out[3])
+{
+    assert(i < t->n);
+    out[0] = t->x[i];
+    out[1] = t->y[i];
+    out[2] = t->z[i];
+}
 
 /* Instruction sets of the k-nearest leaf scans. KD_SIMD_BASE is SSE2 on
  * x86-64 (portable C elsewhere); KD_SIMD_AVX2 needs the CPU to have it. */
@@ -80,11 +100,6 @@ kd_simd kd_query_simd(kd_query *s, kd_simd want);
  * starting radius; the result is the same whatever s held. */
 uint32_t kd_query_knn(const kd_tree *t, kd_query *s, const float q[3], uint32_t k, float max_d2, uint32_t *idx,
                       float *d2, float *r2);
-
-/* kd_query_knn without a state (the same result; no starting radius, so
- * slower on coherent query sequences). Never fails. */
-uint32_t kd_knn(const kd_tree *t, const float q[3], uint32_t k, float max_d2, uint32_t *idx, float *d2,
-                float *r2);
 
 /* Predicate for kd_nearest_if: nonzero when leaf-order point i qualifies. */
 typedef int (*kd_pred)(uint32_t i, const void *ctx);

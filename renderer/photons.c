@@ -308,12 +308,11 @@ size_t photons_map_bytes(const photons_map *m)
 double photons_peak_bytes(double stored)
 {
     /* the trace's chunk buffers and the joined list (double positions), then
-     * the build: the list, the map-frame copy, the kd-tree's working copy
-     * and its arrays, the permutations, the payload */
+     * the build: the list, the map-frame copy, the permutations, the
+     * payload, and what kd_build holds */
     double list = 3.0 * sizeof(double) + sizeof(photons_record);
-    double build = list + 3.0 * sizeof(float) + 16.0 + 3.0 * sizeof(float) + 2.0 * sizeof(uint32_t) +
-                   sizeof(photons_record);
-    return stored * fmax(2.0 * list, build);
+    double build = list + 3.0 * sizeof(float) + 2.0 * sizeof(uint32_t) + sizeof(photons_record);
+    return fmax(stored * 2.0 * list, stored * build + kd_build_peak_bytes(stored, KD_DEFAULT_LEAF));
 }
 
 double photons_stored_per_emitted(const scene *sc, const photons_params *p)

@@ -95,9 +95,7 @@ pm_status reps_collect(const reps_params *p, const photons_map *m, const photons
         const photons_record *rec = &m->ph[i];
         if (rec->flags & PHOTONS_FLAG_REP) {
             reps_site *rp = &out->site[r++];
-            rp->pos[0] = m->tree.x[i];
-            rp->pos[1] = m->tree.y[i];
-            rp->pos[2] = m->tree.z[i];
+            kd_point(&m->tree, i, rp->pos);
             memcpy(rp->normal, rec->normal, 3);
             rp->pad = 0;
             rp->tree_index = i;

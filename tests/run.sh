@@ -2,8 +2,9 @@
 # The test runner behind `make test`: the unit tests, the same unit tests
 # under AddressSanitizer + UndefinedBehaviorSanitizer, then every
 # tests/*.test.sh script, then the command-line and hostile-input scripts
-# again against build/san/photonmap (photonmap itself under ASan+UBSan). Each part prints "N passed, N failed"; this script
-# adds them up, prints the total last, and exits non-zero on any failure.
+# again against build/san/photonmap (photonmap itself under ASan+UBSan). Each part prints "N passed, N failed" (the unit
+# tests add ", N skipped": tests that cannot run on this machine); this script adds them up, prints the total last
+# ("N passed, N failed, N skipped"), and exits non-zero on any failure.
 set -u
 cd "$(dirname "$0")/.."
 # the test scripts run make themselves: not as part of the make that runs
@@ -12,6 +13,7 @@ unset MAKEFLAGS MFLAGS MAKELEVEL
 
 total_pass=0
 total_fail=0
+total_skip=0
 
 run_part() { # name, command...
   local name=$1; shift
@@ -19,18 +21,19 @@ run_part() { # name, command...
   local out rc
   out=$("$@" 2>&1); rc=$?
   printf '%s\n' "$out" | grep -v '^ok ' || true
-  local line p f
+  local line p f s=0
   line=$(printf '%s\n' "$out" | grep -E '^[0-9]+ passed, [0-9]+ failed' | tail -n 1)
   if [ -z "$line" ]; then
     echo "   $name: no result line (exit $rc): counted as 1 failure"
     total_fail=$((total_fail + 1)); return
   fi
   p=${line%% passed*}; f=${line#*, }; f=${f%% failed*}
+  case $line in *skipped*) s=${line##*failed, }; s=${s%% skipped*} ;; esac
   if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
     echo "   $name: exited $rc with no failed test: counted as 1 failure"
     f=1
   fi
-  total_pass=$((total_pass + p)); total_fail=$((total_fail + f))
+  total_pass=$((total_pass + p)); total_fail=$((total_fail + f)); total_skip=$((total_skip + s))
 }
 
 run_part "unit tests" build/unit-tests
@@ -48,5 +51,5 @@ for t in tests/cli.test.sh tests/hostile.test.sh; do
 done
 
 echo
-echo "$total_pass passed, $total_fail failed"
+echo "$total_pass passed, $total_fail failed, $total_skip skipped"
 [ "$total_fail" -eq 0 ]

@@ -1,7 +1,7 @@
 /* check: the unit-test harness. A test is a function; CHECK* record a
- * failure with file:line and the values involved but let the test go on.
- * The runner (main.c) prints "N passed, N failed" and exits non-zero on any
- * failure. */
+ * failure with file:line and the values involved but let the test go on;
+ * CHECK_SKIP marks a test that cannot run here. The runner (main.c) prints
+ * "N passed, N failed, N skipped" and exits non-zero on any failure. */
 #ifndef PM_CHECK_H
 #define PM_CHECK_H
 
@@ -9,11 +9,18 @@
 #include <stdio.h>
 
 typedef struct {
-    int failures; /* checks failed in the current test */
+    int failures;        /* checks failed in the current test */
+    const char *skipped; /* why the current test could not run here; NULL: it ran */
 } check_state;
 
 /* The runner's state for the test that is running. */
 check_state *check_current(void);
+
+/* Marks the current test as skipped, for the reason `why` (a string
+ * literal), when what it tests cannot run on this machine (AVX2 on a CPU
+ * without it): the runner counts it as skipped, never as passed (a check
+ * that failed before still fails it). The test returns after it. */
+#define CHECK_SKIP(why) (check_current()->skipped = (why))
 
 #define CHECK(cond)                                                                                  \
     do {                                                                                             \

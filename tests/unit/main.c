@@ -1,5 +1,6 @@
 /* main: runs every unit test of tests.h (or those named on the command
- * line), prints each result and "N passed, N failed"; exit 1 on failure. */
+ * line), prints each result and "N passed, N failed, N skipped"; exit 1 on
+ * failure. */
 #include <stdio.h>
 #include <string.h>
 
@@ -23,7 +24,7 @@ static const test_entry all_tests[] = {TEST_LIST(TEST_ENTRY)};
 
 int main(int argc, char **argv)
 {
-    int passed = 0, failed = 0;
+    int passed = 0, failed = 0, skipped = 0;
     for (size_t i = 0; i < sizeof all_tests / sizeof all_tests[0]; i++) {
         if (argc > 1) {
             int wanted = 0;
@@ -33,16 +34,20 @@ int main(int argc, char **argv)
                 continue;
         }
         current.failures = 0;
+        current.skipped = NULL;
         all_tests[i].fn();
-        if (current.failures == 0) {
-            passed++;
-            printf("ok   %s\n", all_tests[i].name);
-        } else {
+        if (current.failures > 0) {
             failed++;
             printf("FAIL %s (%d checks)\n", all_tests[i].name, current.failures);
+        } else if (current.skipped) {
+            skipped++;
+            printf("skip %s (%s)\n", all_tests[i].name, current.skipped);
+        } else {
+            passed++;
+            printf("ok   %s\n", all_tests[i].name);
         }
         fflush(stdout);
     }
-    printf("%d passed, %d failed\n", passed, failed);
+    printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
     return failed ? 1 : 0;
 }

@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "kdtree.h"
+#include "kdtree_test.h"
 #include "rng.h"
 #include "tests.h"
 
@@ -341,17 +341,12 @@ static void check_walk(const kd_tree *t, uint32_t n, const float *q, kd_pair **a
     free(d2);
 }
 
-void test_kdtree_query_matches_brute_force(void)
+/* Every k, cap, leaf size and point set against brute force, with the
+ * leaf scans of `simd`. */
+static void query_matches_brute_force(kd_simd simd)
 {
     const uint32_t sizes[] = {1, 7, 13, 600, 4099};
     const uint32_t leaves[] = {1, 3, KD_DEFAULT_LEAF, 1000};
-    kd_query probe;
-    CHECK(kd_query_init(&probe, 1) == 0);
-    int have_avx2 = kd_query_simd(&probe, KD_SIMD_AVX2) == KD_SIMD_AVX2;
-    CHECK(kd_query_simd(&probe, KD_SIMD_BASE) == KD_SIMD_BASE);
-    kd_query_free(&probe);
-    if (!have_avx2)
-        fprintf(stderr, "  (this CPU has no AVX2: only the base path is tested)\n");
     for (int kind = 0; kind < 4; kind++)
         for (size_t si = 0; si < sizeof sizes / sizeof sizes[0]; si++) {
             uint32_t n = kind == 3 ? 576 : sizes[si];
@@ -369,9 +364,7 @@ void test_kdtree_query_matches_brute_force(void)
                 kd_pair *all[KQ_NQ];
                 for (uint32_t i = 0; i < KQ_NQ; i++)
                     all[i] = brute_sorted(pts, perm, n, q + 3 * (size_t)i);
-                check_walk(&t, n, q, all, KD_SIMD_BASE);
-                if (have_avx2)
-                    check_walk(&t, n, q, all, KD_SIMD_AVX2);
+                check_walk(&t, n, q, all, simd);
                 for (uint32_t i = 0; i < KQ_NQ; i++)
                     free(all[i]);
                 kd_free(&t);
@@ -381,10 +374,19 @@ void test_kdtree_query_matches_brute_force(void)
         }
 }
 
+void test_kdtree_query_matches_brute_force(void)
+{
+    kd_query probe;
+    CHECK(kd_query_init(&probe, 1) == 0);
+    CHECK(kd_query_simd(&probe, KD_SIMD_BASE) == KD_SIMD_BASE);
+    kd_query_free(&probe);
+    query_matches_brute_force(KD_SIMD_BASE);
+}
+
 /* Whatever starting radius a state holds (none, zero, tiny, too small, too
  * large, infinite, not a number, from another k), the answer is the same;
  * too small takes more passes, too large fills the buffer. */
-void test_kdtree_query_hints(void)
+static void query_hints(kd_simd simd)
 {
     const uint32_t n = 20000;
     float *pts = point_set(1, n, 3);
@@ -398,42 +400,39 @@ void test_kdtree_query_hints(void)
     uint32_t idx[100];
     float d2[100];
     int bad = 0;
-    uint64_t passes = 0, queries = 0;
-    for (int simd = KD_SIMD_BASE; simd <= KD_SIMD_AVX2; simd++) {
-        kd_query s;
-        CHECK(kd_query_init(&s, 100) == 0);
-        if (kd_query_simd(&s, (kd_simd)simd) != (kd_simd)simd) {
-            kd_query_free(&s);
-            continue;
-        }
-        float q[3] = {0.3f, -1.0f, 0.2f}; /* on the floor wall */
-        kd_pair *all = brute_sorted(pts, perm, n, q);
-        for (size_t hi = 0; hi < sizeof hints / sizeof hints[0]; hi++)
-            for (size_t hk = 0; hk < sizeof hint_ks / sizeof hint_ks[0]; hk++)
-                for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ki++)
-                    for (size_t ci = 0; ci < sizeof caps / sizeof caps[0]; ci++) {
-                        s.hint_k = hint_ks[hk];
-                        s.hint_r2 = hints[hi];
-                        float r2;
-                        uint32_t got = kd_query_knn(&t, &s, q, ks[ki], caps[ci], idx, d2, &r2);
-                        bad += !check_answer(all, n, ks[ki], caps[ci], got, idx, d2, r2, "forced hint");
-                    }
-        passes += s.passes;
-        queries += s.queries;
-        free(all);
-        kd_query_free(&s);
-    }
+    kd_query s;
+    CHECK(kd_query_init(&s, 100) == 0);
+    CHECK(kd_query_simd(&s, simd) == simd);
+    float q[3] = {0.3f, -1.0f, 0.2f}; /* on the floor wall */
+    kd_pair *all = brute_sorted(pts, perm, n, q);
+    for (size_t hi = 0; hi < sizeof hints / sizeof hints[0]; hi++)
+        for (size_t hk = 0; hk < sizeof hint_ks / sizeof hint_ks[0]; hk++)
+            for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ki++)
+                for (size_t ci = 0; ci < sizeof caps / sizeof caps[0]; ci++) {
+                    s.hint_k = hint_ks[hk];
+                    s.hint_r2 = hints[hi];
+                    float r2;
+                    uint32_t got = kd_query_knn(&t, &s, q, ks[ki], caps[ci], idx, d2, &r2);
+                    bad += !check_answer(all, n, ks[ki], caps[ci], got, idx, d2, r2, "forced hint");
+                }
+    free(all);
     CHECK_MSG(bad == 0, "%d answers differ from brute force", bad);
-    CHECK(passes > queries); /* the too-small hints were widened */
+    CHECK(s.passes > s.queries); /* the too-small hints were widened */
+    kd_query_free(&s);
     kd_free(&t);
     free(perm);
     free(pts);
 }
 
+void test_kdtree_query_hints(void)
+{
+    query_hints(KD_SIMD_BASE);
+}
+
 /* The result of a query does not depend on the queries before it: the same
  * query after different histories (and on a grid, where many points tie at
  * the k-th distance) gives the same set, and that set is brute force's. */
-void test_kdtree_query_history_independent(void)
+static void query_history_independent(kd_simd simd)
 {
     const uint32_t n = 576;
     float *pts = point_set(3, n, 1);
@@ -451,24 +450,45 @@ void test_kdtree_query_history_independent(void)
         uint32_t ref = kd_knn(&t, target, k, INFINITY, ref_idx, ref_d2, &ref_r2);
         bad += !check_answer(all, n, k, INFINITY, ref, ref_idx, ref_d2, ref_r2, "grid");
         const float *before[] = {other, far, target, pts};
-        for (int simd = KD_SIMD_BASE; simd <= KD_SIMD_AVX2; simd++)
-            for (size_t b = 0; b < 4; b++)
-                for (uint32_t pk = 1; pk <= 64; pk *= 4) {
-                    kd_query s;
-                    CHECK(kd_query_init(&s, 1) == 0);
-                    kd_query_simd(&s, (kd_simd)simd);
-                    float pr2;
-                    kd_query_knn(&t, &s, before[b], pk, INFINITY, idx, d2, &pr2);
-                    uint32_t got = kd_query_knn(&t, &s, target, k, INFINITY, idx, d2, &r2);
-                    bad += !check_answer(all, n, k, INFINITY, got, idx, d2, r2, "after another query");
-                    kd_query_free(&s);
-                }
+        for (size_t b = 0; b < 4; b++)
+            for (uint32_t pk = 1; pk <= 64; pk *= 4) {
+                kd_query s;
+                CHECK(kd_query_init(&s, 1) == 0);
+                CHECK(kd_query_simd(&s, simd) == simd);
+                float pr2;
+                kd_query_knn(&t, &s, before[b], pk, INFINITY, idx, d2, &pr2);
+                uint32_t got = kd_query_knn(&t, &s, target, k, INFINITY, idx, d2, &r2);
+                bad += !check_answer(all, n, k, INFINITY, got, idx, d2, r2, "after another query");
+                kd_query_free(&s);
+            }
     }
     CHECK_MSG(bad == 0, "%d answers differ", bad);
     free(all);
     kd_free(&t);
     free(perm);
     free(pts);
+}
+
+void test_kdtree_query_history_independent(void)
+{
+    query_history_independent(KD_SIMD_BASE);
+}
+
+/* The three query tests above with the AVX2 leaf scans, selection and
+ * output (kdtree_simd.c); skipped on a CPU without AVX2. */
+void test_kdtree_query_avx2(void)
+{
+    kd_query probe;
+    CHECK(kd_query_init(&probe, 1) == 0);
+    int have_avx2 = kd_query_simd(&probe, KD_SIMD_AVX2) == KD_SIMD_AVX2;
+    kd_query_free(&probe);
+    if (!have_avx2) {
+        CHECK_SKIP("this CPU has no AVX2");
+        return;
+    }
+    query_matches_brute_force(KD_SIMD_AVX2);
+    query_hints(KD_SIMD_AVX2);
+    query_history_independent(KD_SIMD_AVX2);
 }
 
 /* State life cycle: k_max 0, growing past k_max, a state without a buffer
@@ -517,4 +537,36 @@ void test_kdtree_query_state(void)
     kd_free(&empty);
     free(perm);
     free(pts);
+}
+
+/* kd_build_peak_bytes is what the build holds at its peak: the tree's
+ * arrays (kd_bytes once built) and its working copy of 16 bytes a point;
+ * kd_point reads back the points in leaf order. */
+void test_kdtree_build_memory(void)
+{
+    const uint32_t sizes[] = {0, 1, 12, 13, 1000, 4099};
+    const uint32_t leaves[] = {0, 1, 3, KD_DEFAULT_LEAF, 1000};
+    for (size_t si = 0; si < sizeof sizes / sizeof sizes[0]; si++)
+        for (size_t li = 0; li < sizeof leaves / sizeof leaves[0]; li++) {
+            uint32_t n = sizes[si];
+            float *pts = random_points(n, 31 + n, 0);
+            uint32_t *perm = malloc(sizeof(uint32_t) * (n + 1));
+            kd_tree t;
+            CHECK(kd_build(&t, pts, n, leaves[li], perm) == 0);
+            double want = (double)kd_bytes(&t) + 16.0 * (n > 0 ? n : 1);
+            CHECK_MSG(kd_build_peak_bytes(n, leaves[li]) == want, "n=%u leaf=%u: %.0f bytes, want %.0f", n,
+                      leaves[li], kd_build_peak_bytes(n, leaves[li]), want);
+            int same = 1;
+            for (uint32_t i = 0; i < n; i++) {
+                float p[3];
+                kd_point(&t, i, p);
+                same &= memcmp(p, pts + 3 * (size_t)perm[i], sizeof p) == 0;
+            }
+            CHECK_MSG(same, "n=%u: kd_point differs from the input point", n);
+            kd_free(&t);
+            free(perm);
+            free(pts);
+        }
+    /* beyond what a tree holds: still a number, growing with n */
+    CHECK(kd_build_peak_bytes(1e12, KD_DEFAULT_LEAF) > 16e12);
 }

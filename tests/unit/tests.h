@@ -12,6 +12,11 @@
     X(kdtree_query_hints) \
     X(kdtree_query_history_independent) \
     X(kdtree_query_state) \
+    X(kdtree_query_avx2) \
+    X(kdtree_build_memory) \
+    /* test_kdtree_select.c */ \
+    X(kdtree_select_base) \
+    X(kdtree_select_avx2) \
     /* test_shapes.c */ \
     X(sphere_hits) \
     X(rect_hits) \

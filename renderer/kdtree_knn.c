@@ -1,0 +1,225 @@
+/* kdtree_knn: the k-nearest search's entry points and driver: the
+ * per-thread kd_query state (its candidate buffer and its starting radius,
+ * the previous query's k-th distance), the passes (repeated wider when the
+ * starting radius proves too small), the final selection and output, and
+ * the heap search used when no buffer is at hand. Where the leaf scans and
+ * traversals live: kdtree_simd.c; the selection: kdtree_select.c.
+ *
+ * k nearest gathers rather than ranks: a pass collects every point within
+ * a radius into a buffer of (distance, index) keys and selects the k
+ * smallest at the end, so no heap is kept per point. For k <= KD_SMALL_K
+ * the pass keeps the k nearest sorted instead and shrinks the radius as
+ * soon as it holds k. */
+#include "kdtree_impl.h"
+#include "kdtree_test.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define KD_LOCAL_K 128u /* kd_knn: k up to this gathers in a stack buffer; above, a heap in the output */
+#define KD_MAX_BUF_K (1u << 24) /* kd_query: larger k (16M) takes the heap in the output, no buffer */
+
+/* ---- k nearest: without a buffer ----
+ * When no candidate buffer is at hand (k beyond kd_knn's stack buffer, or
+ * no memory for a state's), a max-heap of keys lives in idx/d2 themselves.
+ * Slower, same result. */
+static inline uint64_t heap_key(const uint32_t *hi, const float *hd, uint32_t j)
+{
+    return pack_key(hd[j], hi[j]);
+}
+
+static uint32_t knn_heap(const kd_tree *t, const float q[3], uint32_t k, float max_d2, uint32_t *hi, float *hd,
+                         float *r2)
+{
+    uint32_t n = 0;
+    float worst = max_d2, bound = prune_bound(worst);
+    kd_frame stack[KD_STACK];
+    int sp = 0;
+    float off[3];
+    float rd = root_offsets(t, q, off);
+    uint32_t node = 0;
+    if (rd <= bound) {
+        do {
+            uint32_t leaf = descend(t, node, q, rd, off, bound, stack, &sp);
+            uint32_t beg = t->leaf_start[leaf], end = t->leaf_start[leaf + 1];
+            for (uint32_t c = beg; c < end; c += KD_CHUNK) {
+                float dd[KD_CHUNK];
+                chunk_d2(t, c, q[0], q[1], q[2], dd);
+                uint32_t m = end - c < KD_CHUNK ? end - c : KD_CHUNK;
+                for (uint32_t j = 0; j < m; j++) {
+                    float d = dd[j];
+                    if (!(d <= worst))
+                        continue;
+                    uint64_t key = pack_key(d, c + j);
+                    uint32_t at;
+                    if (n < k) { /* sift up from the end */
+                        at = n++;
+                        while (at > 0 && heap_key(hi, hd, (at - 1) / 2) < key) {
+                            uint32_t parent = (at - 1) / 2;
+                            hd[at] = hd[parent];
+                            hi[at] = hi[parent];
+                            at = parent;
+                        }
+                    } else { /* replace the root, sift down */
+                        if (key >= heap_key(hi, hd, 0))
+                            continue;
+                        at = 0;
+                        for (;;) {
+                            uint32_t ch = 2 * at + 1;
+                            if (ch >= k)
+                                break;
+                            if (ch + 1 < k && heap_key(hi, hd, ch + 1) > heap_key(hi, hd, ch))
+                                ch++;
+                            if (heap_key(hi, hd, ch) <= key)
+                                break;
+                            hd[at] = hd[ch];
+                            hi[at] = hi[ch];
+                            at = ch;
+                        }
+                    }
+                    hd[at] = d;
+                    hi[at] = c + j;
+                    if (n == k) {
+                        worst = hd[0];
+                        bound = prune_bound(worst);
+                    }
+                }
+            }
+        } while (pop(stack, &sp, bound, &node, &rd, off));
+    }
+    *r2 = n > 0 ? hd[0] : 0.0f;
+    return n;
+}
+
+/* ---- k nearest: entry points ---- */
+
+/* Candidate buffer entries for k (see kdtree_gather.inc: at least k + 2 chunks;
+ * twice k so that a full buffer's selection is paid for by k appends). The
+ * buffer is three regions of buf_entries(k) + KD_CHUNK keys: the gathered
+ * candidates and kd_select_k's two scratch areas, each with slack for the
+ * vector stores. */
+static uint32_t buf_entries(uint32_t k)
+{
+    return 2 * k + 4 * KD_CHUNK;
+}
+
+static size_t buf_keys(uint32_t cap)
+{
+    return 3 * ((size_t)cap + KD_CHUNK);
+}
+
+/* How much wider than the last query's k-th radius (squared) to start: the
+ * k-th distance of neighbouring queries varies about as 1/sqrt(k). */
+static float start_slack(uint32_t k)
+{
+    return 1.0f + 2.5f / sqrtf((float)k);
+}
+
+/* The search with a buffer of s->cap >= buf_entries(k) entries; k <= t->n. */
+static uint32_t knn_run(const kd_tree *t, kd_query *s, const float q[3], uint32_t k, float max_d2, uint32_t *idx,
+                        float *d2, float *r2)
+{
+    assert(k >= 1 && k <= t->n && s->cap >= buf_entries(k));
+    float r = max_d2;
+    if (s->hint_k) {
+        float g = s->hint_r2 * ((float)k / (float)s->hint_k) * start_slack(k);
+        r = g < r ? g : r;
+    }
+    const kd_ops *ops = &kd_ops_base;
+#if KD_HAVE_AVX2
+    if (s->simd == KD_SIMD_AVX2)
+        ops = &kd_ops_avx2;
+#endif
+    uint64_t *buf = s->buf;
+    uint32_t n;
+    int small = k <= KD_SMALL_K;
+    for (int pass = 0;; pass++) {
+        float used = r;
+#if KD_HAVE_AVX2
+        if (s->simd == KD_SIMD_AVX2)
+            n = small ? kd_gather_small_avx2(t, q, k, buf, s->cap, &r) : kd_gather_avx2(t, q, k, buf, s->cap, &r);
+        else
+#endif
+            n = small ? kd_gather_small_base(t, q, k, buf, s->cap, &r) : kd_gather_base(t, q, k, buf, s->cap, &r);
+        s->passes++;
+        if (n >= k || !(used < max_d2))
+            break;
+        /* too few within r: widen (2-d density: count ~ r2), at most 3 times before the cap */
+        float g = n > 0 ? used * 1.5f * (float)k / (float)n : used * 4.0f;
+        r = (pass < 3 && g > used && g < max_d2) ? g : max_d2;
+    }
+    s->queries++;
+    if (n > k) {
+        uint32_t stride = s->cap + KD_CHUNK;
+        kd_select_k(buf, buf + stride, buf + 2 * (size_t)stride, n, k, r, ops);
+        n = k;
+    }
+    float top = ops->output(buf, n, idx, d2);
+    *r2 = top;
+    s->hint_k = k;
+    s->hint_r2 = n == k ? top : max_d2;
+    return n;
+}
+
+int kd_query_init(kd_query *s, uint32_t k_max)
+{
+    memset(s, 0, sizeof *s);
+    s->simd = kd_simd_best();
+    uint32_t cap = buf_entries(k_max == 0 ? 1 : (k_max < KD_MAX_BUF_K ? k_max : KD_MAX_BUF_K));
+    s->buf = malloc(sizeof(uint64_t) * buf_keys(cap));
+    if (!s->buf)
+        return -1;
+    s->cap = cap;
+    return 0;
+}
+
+void kd_query_free(kd_query *s)
+{
+    free(s->buf);
+    memset(s, 0, sizeof *s);
+}
+
+kd_simd kd_query_simd(kd_query *s, kd_simd want)
+{
+    kd_simd best = kd_simd_best();
+    s->simd = want < best ? KD_SIMD_BASE : best;
+    return s->simd;
+}
+
+uint32_t kd_query_knn(const kd_tree *t, kd_query *s, const float q[3], uint32_t k, float max_d2, uint32_t *idx,
+                      float *d2, float *r2)
+{
+    *r2 = 0.0f;
+    if (k == 0 || t->n == 0 || !(max_d2 >= 0.0f))
+        return 0;
+    k = k < t->n ? k : t->n;
+    if (k > KD_MAX_BUF_K)
+        return knn_heap(t, q, k, max_d2, idx, d2, r2);
+    if (s->cap < buf_entries(k)) {
+        uint64_t *b = realloc(s->buf, sizeof(uint64_t) * buf_keys(buf_entries(k)));
+        if (!b)
+            return knn_heap(t, q, k, max_d2, idx, d2, r2);
+        s->buf = b;
+        s->cap = buf_entries(k);
+    }
+    return knn_run(t, s, q, k, max_d2, idx, d2, r2);
+}
+
+uint32_t kd_knn(const kd_tree *t, const float q[3], uint32_t k, float max_d2, uint32_t *idx, float *d2, float *r2)
+{
+    *r2 = 0.0f;
+    if (k == 0 || t->n == 0 || !(max_d2 >= 0.0f))
+        return 0;
+    k = k < t->n ? k : t->n;
+    if (k > KD_LOCAL_K)
+        return knn_heap(t, q, k, max_d2, idx, d2, r2);
+    uint64_t local[3 * (2 * KD_LOCAL_K + 5 * KD_CHUNK)];
+    kd_query s;
+    memset(&s, 0, sizeof s);
+    s.simd = kd_simd_best();
+    s.buf = local;
+    s.cap = buf_entries(k);
+    return knn_run(t, &s, q, k, max_d2, idx, d2, r2);
+}
