@@ -79,7 +79,7 @@ $(BUILD)/obj/%.o: renderer/%.c renderer/*.h renderer/*.inc | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_COMMON) $(CFLAGS) $(RELEASE_FLAGS) -c $< -o $@
 
-$(BUILD)/dbg/%.o: renderer/%.c renderer/*.h | $(DEPS_STAMP)
+$(BUILD)/dbg/%.o: renderer/%.c renderer/*.h renderer/*.inc | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_COMMON) $(CFLAGS) -c $< -o $@
 
