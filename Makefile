@@ -54,7 +54,8 @@ resolution: ## cheapest settings per output size -> results/resolution.md
 estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias.md
 scenes: ## the grid on every scene: equal-error speed-up, kNN share, where the error lies -> results/scenes.md
 stability: ## every extreme with its expected value and verdict -> results/stability-extremes.md
-bench: ## kNN, lookup and eye-pass benchmarks -> results/bench.md
+bench: ## kNN (against FLANN, cKDTree, nanoflann), lookup and eye-pass benchmarks -> results/bench.md
+bench-quick: ## only the kNN against FLANN, cKDTree and nanoflann, about a minute, on stdout
 reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one
 fuzz: ## run the scene parser's libFuzzer target for FUZZ_SECONDS (60)

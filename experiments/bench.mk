@@ -1,9 +1,14 @@
 # `make bench`: the performance benchmark of issue 7 (not a test). Builds
 # build/bench/bench (experiments/bench/bench.c on the renderer objects, plus
-# nanoflann behind experiments/bench/nano.cpp) and writes results/bench.md
+# nanoflann behind experiments/bench/nano.cpp, FLANN behind flann.cpp:
+# its headers pull in lz4 for serialisation, hence -llz4) and writes results/bench.md
 # via experiments/bench/run.sh (BENCH_REPS, BENCH_HEAVY_REPS tune it).
 
 $(BUILD)/bench/nano.o: experiments/bench/nano.cpp | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CXX) -std=c++17 -O2 -g -Wall -Wextra -c $< -o $@
+
+$(BUILD)/bench/flann.o: experiments/bench/flann.cpp | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CXX) -std=c++17 -O2 -g -Wall -Wextra -c $< -o $@
 
@@ -11,10 +16,16 @@ $(BUILD)/bench/bench.o: experiments/bench/bench.c renderer/*.h | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_COMMON) $(CFLAGS) -c $< -o $@
 
-$(BENCH_BIN): $(LIB_OBJ) $(BUILD)/bench/bench.o $(BUILD)/bench/nano.o
-	$(CXX) $(CFLAGS) -o $@ $^ $(LDLIBS)
+$(BENCH_BIN): $(LIB_OBJ) $(BUILD)/bench/bench.o $(BUILD)/bench/nano.o $(BUILD)/bench/flann.o
+	$(CXX) $(CFLAGS) -o $@ $^ $(LDLIBS) -llz4
 
 .PHONY: bench-bin
 bench-bin: $(BENCH_BIN) $(BUILD)/photonmap
 bench: bench-bin
 	bash experiments/bench/run.sh
+
+# `make bench-quick`: the kNN against FLANN, cKDTree and nanoflann alone, in
+# about a minute, on stdout (results/bench.md untouched).
+.PHONY: bench-quick
+bench-quick: bench-bin
+	bash experiments/bench/run.sh --quick

@@ -10,6 +10,7 @@ PACKAGES=(
   povray                            # POV-Ray 3.7: the independent reference
   gnuplot-nox                       # plots
   libnanoflann-dev                  # benchmark comparison (C++ header-only)
+  libflann-dev                      # benchmark comparison: FLANN (KDTreeSingleIndex)
   libclang-rt-14-dev                # sanitizer and libFuzzer runtimes for clang
   time                              # /usr/bin/time: CPU seconds of every table cell
   valgrind linux-perf python3       # make bench: instruction counts, profile, JSON

@@ -3,15 +3,26 @@
  * queries (16x16-tile order and shuffled), and times our kd-tree against
  * nanoflann side by side in one process; then the representative lookup,
  * the eye pass on 1 and 2 threads, and the memory per photon. Prints
- * Markdown on stdout.
+ * Markdown on stdout. With --peers, the kNN against FLANN, scipy's
+ * cKDTree and nanoflann instead (CSV).
  *
  *   bench [--scene F] [--reps R] [--qw W --qh H] [--icount] [--sizes a,b,c]
- *         [--ks a,b,c] [--knn-only]
+ *         [--ks a,b,c] [--knn-only] [--peers DIR [--python P]]
+ *
+ * --peers DIR: instead of the tables, the kNN against every peer on the
+ * largest of --sizes, tile order: ours, nanoflann, FLANN (flann.cpp: its
+ * knnSearch and its radiusSearch) and scipy's cKDTree (ckdtree.py, a co-process run with interpreter P,
+ * default /usr/bin/python3, talking through pipes; DIR holds the files it
+ * reads and writes). Each rep times the five on the same queries one after
+ * another; every peer's neighbour sets are checked against ours, and ours
+ * against brute force on a sample (see check_sets for ties). Prints CSV
+ * rows for report.py peers.
  *
  * --ks: the k of the kNN tables (default 1,10,20,50,100); --knn-only: the
  * kNN tables alone (no build, lookup or eye-pass timings), for a quick
  * side-by-side reading of one cell.
- * --icount: few queries per cell, each cell's loop bracketed by callgrind
+ * --icount: few queries per cell (ours, nanoflann and FLANN's knnSearch),
+ * each cell's loop bracketed by callgrind
  * client requests (run under valgrind --tool=callgrind --instr-atstart=no);
  * run.sh turns the dumps into instructions per query. */
 #include <math.h>
@@ -19,6 +30,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <valgrind/callgrind.h>
 
@@ -39,6 +53,12 @@ void *nano_build(const float *pts, uint32_t n, uint32_t leaf);
 void nano_free(void *h);
 uint64_t nano_knn_batch(void *h, const float *q, uint32_t nq, uint32_t k, float max_d2, uint32_t *idx, float *d2,
                         double *r2sum);
+
+uint64_t nano_knn_collect(void *h, const float *q, uint32_t nq, uint32_t k, float max_d2, uint32_t *out_idx);
+void *flann_peer_build(const float *pts, uint32_t n, uint32_t leaf);
+void flann_peer_free(void *h);
+uint64_t flann_peer_knn_batch(void *h, const float *q, uint32_t nq, uint32_t k, float max_d2, int knn,
+                              uint32_t *out_idx);
 
 #define TILE 16u
 #define MAXK 100u
@@ -185,9 +205,373 @@ static uint64_t lookup_batch(const reps_set *r, const photons_map *m, const qset
     return found;
 }
 
+/* ---- the kNN against the peers (--peers) ---- */
+
+/* Our neighbours of each query as input indices (perm: leaf order ->
+ * input), UINT32_MAX after the last found, the state carried from query to
+ * query as in ours_knn_batch; returns the total. */
+static uint64_t ours_collect(const kd_tree *t, const uint32_t *perm, const float *q, uint32_t nq, uint32_t k,
+                             float max_d2, uint32_t *out)
+{
+    kd_query st;
+    if (kd_query_init(&st, k)) {
+        fprintf(stderr, "bench: out of memory\n");
+        exit(1);
+    }
+    uint64_t total = 0;
+    float d2[MAXK];
+    for (uint32_t i = 0; i < nq; i++) {
+        float r2;
+        uint32_t *o = out + (size_t)i * k;
+        uint32_t f = kd_query_knn(t, &st, q + 3 * (size_t)i, k, max_d2, o, d2, &r2);
+        for (uint32_t j = 0; j < k; j++)
+            o[j] = j < f ? perm[o[j]] : UINT32_MAX;
+        total += f;
+    }
+    kd_query_free(&st);
+    return total;
+}
+
+typedef struct {
+    double d2;
+    uint32_t id;
+} neighbour;
+
+static int cmp_neighbour_id(const void *a, const void *b)
+{
+    uint32_t x = ((const neighbour *)a)->id, y = ((const neighbour *)b)->id;
+    return (x > y) - (x < y);
+}
+
+static double dist2(const float *p, const float *q)
+{
+    double dx = (double)p[0] - q[0], dy = (double)p[1] - q[1], dz = (double)p[2] - q[2];
+    return dx * dx + dy * dy + dz * dz;
+}
+
+/* One query's answer as (squared distance in double, index) pairs sorted by
+ * index; returns how many were found. */
+static uint32_t load_set(const float *pts, const float *q, const uint32_t *ids, uint32_t k, neighbour *o,
+                         double *max_d2)
+{
+    uint32_t n = 0;
+    *max_d2 = 0.0;
+    while (n < k && ids[n] != UINT32_MAX) {
+        o[n].id = ids[n];
+        o[n].d2 = dist2(pts + 3 * (size_t)ids[n], q);
+        *max_d2 = o[n].d2 > *max_d2 ? o[n].d2 : *max_d2;
+        n++;
+    }
+    qsort(o, n, sizeof *o, cmp_neighbour_id);
+    return n;
+}
+
+#define TIE_REL 1e-6 /* distances this close (relative) count as equal */
+
+static int near_boundary(double d2, double boundary)
+{
+    return fabs(d2 - boundary) <= TIE_REL * boundary;
+}
+
+/* The neighbour-set check of one query: 0 when the two answers hold the
+ * same indices; 1 when they differ only by ties: every index that one
+ * answer has and the other lacks lies (within TIE_REL, distances taken in
+ * double from the same float coordinates) at the other answer's boundary,
+ * its k-th distance when it found k, else the cap; 2 otherwise. */
+static int check_one(const float *pts, const float *q, const uint32_t *a, const uint32_t *b, uint32_t k, double cap)
+{
+    neighbour sa[MAXK], sb[MAXK];
+    double ma, mb;
+    uint32_t na = load_set(pts, q, a, k, sa, &ma), nb = load_set(pts, q, b, k, sb, &mb);
+    double ba = na == k ? ma : cap, bb = nb == k ? mb : cap; /* each answer's boundary */
+    int differ = 0;
+    uint32_t i = 0, j = 0;
+    while (i < na || j < nb) {
+        if (j == nb || (i < na && sa[i].id < sb[j].id)) { /* in a only */
+            if (!near_boundary(sa[i].d2, bb))
+                return 2;
+            differ = 1, i++;
+        } else if (i == na || sb[j].id < sa[i].id) { /* in b only */
+            if (!near_boundary(sb[j].d2, ba))
+                return 2;
+            differ = 1, j++;
+        } else {
+            i++, j++;
+        }
+    }
+    return differ;
+}
+
+/* Checks nq answers of `got` against `ref` (k per query); adds to
+ * counts[0..2] the queries that match exactly, by ties only, and not, and
+ * reports the first few mismatches on stderr. */
+static void check_sets(const char *who, const float *pts, const float *q, uint32_t nq, uint32_t k, float cap,
+                       const uint32_t *ref, const uint32_t *got, uint64_t counts[3])
+{
+    for (uint32_t i = 0; i < nq; i++) {
+        int c = check_one(pts, q + 3 * (size_t)i, ref + (size_t)i * k, got + (size_t)i * k, k, cap);
+        if (c == 2 && counts[2] < 5)
+            fprintf(stderr, "bench: MISMATCH %s k=%u query %u\n", who, k, i);
+        counts[c]++;
+    }
+}
+
+/* Brute force: the k nearest of all n points to q with squared distance (in
+ * double) at most cap, by (distance, index); UINT32_MAX after the last. */
+static void brute_knn(const float *pts, uint32_t n, const float *q, uint32_t k, double cap, uint32_t *out)
+{
+    neighbour best[MAXK];
+    uint32_t m = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        double d = dist2(pts + 3 * (size_t)i, q);
+        if (d > cap || (m == k && !(d < best[k - 1].d2)))
+            continue;
+        uint32_t j = m < k ? m++ : k - 1;
+        for (; j > 0 && best[j - 1].d2 > d; j--)
+            best[j] = best[j - 1];
+        best[j].d2 = d;
+        best[j].id = i;
+    }
+    for (uint32_t j = 0; j < k; j++)
+        out[j] = j < m ? best[j].id : UINT32_MAX;
+}
+
+/* The cKDTree co-process: its stdin and stdout. */
+typedef struct {
+    FILE *to, *from;
+    pid_t pid;
+} coproc;
+
+/* Starts `python script dir leaf` with pipes on its stdin and stdout and
+ * waits for its "ready" line; returns its build seconds, or -1 when it
+ * cannot start (c is then empty). */
+static double coproc_start(coproc *c, const char *python, const char *script, const char *dir, uint32_t leaf)
+{
+    int in[2], out[2];
+    memset(c, 0, sizeof *c);
+    if (pipe(in) || pipe(out))
+        return -1;
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid < 0)
+        return -1;
+    if (pid == 0) {
+        char leafs[16];
+        snprintf(leafs, sizeof leafs, "%u", leaf);
+        dup2(in[0], 0);
+        dup2(out[1], 1);
+        close(in[0]), close(in[1]), close(out[0]), close(out[1]);
+        execl(python, python, script, dir, leafs, (char *)NULL);
+        _exit(127);
+    }
+    close(in[0]), close(out[1]);
+    c->pid = pid;
+    c->to = fdopen(in[1], "w");
+    c->from = fdopen(out[0], "r");
+    double build;
+    if (!c->to || !c->from || fscanf(c->from, " ready %lf", &build) != 1)
+        return -1;
+    return build;
+}
+
+/* One batch in the co-process: returns its own timing of the query call
+ * (seconds) and sets *found, or -1 when it failed. */
+static double coproc_batch(coproc *c, uint32_t k, float cap, int write, uint64_t *found)
+{
+    unsigned long long f;
+    double t;
+    fprintf(c->to, "%u %a %d\n", k, (double)cap, write);
+    fflush(c->to);
+    if (fscanf(c->from, " %lf %llu", &t, &f) != 2)
+        return -1;
+    *found = f;
+    return t;
+}
+
+static void coproc_stop(coproc *c)
+{
+    if (c->to) {
+        fprintf(c->to, "quit\n");
+        fclose(c->to);
+    }
+    if (c->from)
+        fclose(c->from);
+    if (c->pid > 0)
+        waitpid(c->pid, NULL, 0);
+}
+
+static int write_f32(const char *dir, const char *name, const float *v, size_t count)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "wb");
+    int ok = f && fwrite(v, sizeof(float), count, f) == count;
+    if (f && fclose(f))
+        ok = 0;
+    return ok ? 0 : -1;
+}
+
+static int read_u32(const char *dir, const char *name, uint32_t *v, size_t count)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "rb");
+    int ok = f && fread(v, sizeof(uint32_t), count, f) == count;
+    if (f)
+        fclose(f);
+    return ok ? 0 : -1;
+}
+
+/* The check's negative control on query 0's answer `ans` (k per query):
+ * the answer with its farthest neighbour replaced by a point outside it
+ * that is not at the same distance must fail; the answer itself must
+ * pass. Returns 0 when both hold (or query 0 has no neighbour), else -1. */
+static int negative_control(const float *pts, uint32_t n, const float *q, uint32_t k, double cap,
+                            const uint32_t *ans)
+{
+    uint32_t bad[MAXK], m = 0;
+    while (m < k && ans[m] != UINT32_MAX)
+        m++;
+    if (m == 0)
+        return 0;
+    memcpy(bad, ans, sizeof(uint32_t) * k);
+    uint32_t far = 0; /* farthest of the answer: the one to replace */
+    for (uint32_t j = 1; j < m; j++)
+        far = dist2(pts + 3 * (size_t)bad[j], q) > dist2(pts + 3 * (size_t)bad[far], q) ? j : far;
+    double df = dist2(pts + 3 * (size_t)bad[far], q);
+    for (uint32_t i = 0; i < n; i++) {
+        int in = 0;
+        for (uint32_t j = 0; j < m; j++)
+            in |= ans[j] == i;
+        if (!in && !near_boundary(dist2(pts + 3 * (size_t)i, q), df)) {
+            bad[far] = i;
+            return check_one(pts, q, ans, ans, k, cap) == 0 && check_one(pts, q, ans, bad, k, cap) == 2 ? 0 : -1;
+        }
+    }
+    return 0;
+}
+
+#define BRUTE_EVERY 509u /* ours is checked against brute force on every this-th query */
+#define NWHO 5             /* ours and the peers */
+
+/* The peers comparison on the map's points `pos` and the tile-order
+ * queries q (map frame): CSV rows on stdout (see report.py peers). Returns
+ * 0, or 1 when a peer could not run or an answer did not check. */
+static int run_peers(const char *dir, const char *python, uint32_t pe, const float *pos, uint32_t n, const float *q,
+                     uint32_t nq, float cap, const uint32_t *ks, int nks, int reps)
+{
+    if (write_f32(dir, "points.f32", pos, 3 * (size_t)n) || write_f32(dir, "queries.f32", q, 3 * (size_t)nq)) {
+        fprintf(stderr, "bench: --peers: cannot write to %s\n", dir);
+        return 1;
+    }
+    printf("pe,stored,queries,k,who,rep,seconds,found,exact,ties,mismatches\n");
+    coproc ckd;
+    double tb = coproc_start(&ckd, python, "experiments/bench/ckdtree.py", dir, KD_DEFAULT_LEAF);
+    if (tb < 0) {
+        fprintf(stderr, "bench: --peers: cannot start %s experiments/bench/ckdtree.py\n", python);
+        coproc_stop(&ckd);
+        return 1;
+    }
+    printf("%u,%u,%u,0,ckdtree,build,%.6f,0,0,0,0\n", pe, n, nq, tb);
+    double t0 = now_s();
+    kd_tree ours;
+    uint32_t *perm = malloc(sizeof(uint32_t) * (n ? n : 1));
+    if (!perm || kd_build(&ours, pos, n, KD_DEFAULT_LEAF, perm)) {
+        fprintf(stderr, "bench: out of memory\n");
+        exit(1);
+    }
+    double t1 = now_s();
+    void *nano = nano_build(pos, n, KD_DEFAULT_LEAF);
+    double t2 = now_s();
+    void *fl = flann_peer_build(pos, n, KD_DEFAULT_LEAF);
+    double t3 = now_s();
+    printf("%u,%u,%u,0,ours,build,%.6f,0,0,0,0\n%u,%u,%u,0,nanoflann,build,%.6f,0,0,0,0\n"
+           "%u,%u,%u,0,flann-knn,build,%.6f,0,0,0,0\n%u,%u,%u,0,flann-radius,build,%.6f,0,0,0,0\n",
+           pe, n, nq, t1 - t0, pe, n, nq, t2 - t1, pe, n, nq, t3 - t2, pe, n, nq, t3 - t2);
+    uint32_t *ref = malloc(sizeof(uint32_t) * (size_t)nq * MAXK), *got = malloc(sizeof(uint32_t) * (size_t)nq * MAXK);
+    if (!ref || !got) {
+        fprintf(stderr, "bench: out of memory\n");
+        exit(1);
+    }
+    int bad = 0;
+    const char *who[NWHO] = {"ours", "nanoflann", "flann-knn", "flann-radius", "ckdtree"};
+    uint32_t idx[MAXK];
+    float d2[MAXK];
+    for (int ki = 0; ki < nks; ki++) {
+        uint32_t k = ks[ki];
+        /* the answers, untimed, each checked: ours against brute force on a
+         * sample, every peer against ours on all queries */
+        uint64_t found[NWHO] = {0}, cnt[NWHO][3] = {{0}};
+        found[0] = ours_collect(&ours, perm, q, nq, k, cap, ref);
+        if (ki == 0 && negative_control(pos, n, q, k, (double)cap, ref)) {
+            fprintf(stderr, "bench: --peers: the neighbour-set check let a wrong answer through\n");
+            exit(1);
+        }
+        uint32_t nb = 0;
+        for (uint32_t i = 0; i < nq; i += BRUTE_EVERY, nb++) {
+            uint32_t bf[MAXK];
+            brute_knn(pos, n, q + 3 * (size_t)i, k, (double)cap, bf);
+            int c = check_one(pos, q + 3 * (size_t)i, bf, ref + (size_t)i * k, k, (double)cap);
+            if (c == 2 && cnt[0][2] < 5)
+                fprintf(stderr, "bench: MISMATCH ours vs brute force k=%u query %u\n", k, i);
+            cnt[0][c]++;
+        }
+        found[1] = nano_knn_collect(nano, q, nq, k, cap, got);
+        check_sets("nanoflann", pos, q, nq, k, cap, ref, got, cnt[1]);
+        found[2] = flann_peer_knn_batch(fl, q, nq, k, cap, 1, got);
+        check_sets("flann-knn", pos, q, nq, k, cap, ref, got, cnt[2]);
+        found[3] = flann_peer_knn_batch(fl, q, nq, k, cap, 0, got);
+        check_sets("flann-radius", pos, q, nq, k, cap, ref, got, cnt[3]);
+        if (coproc_batch(&ckd, k, cap, 1, &found[4]) < 0 || read_u32(dir, "ckdtree.u32", got, (size_t)nq * k)) {
+            fprintf(stderr, "bench: --peers: cKDTree failed at k=%u\n", k);
+            bad = 1;
+            break;
+        }
+        check_sets("ckdtree", pos, q, nq, k, cap, ref, got, cnt[4]);
+        for (int w = 0; w < NWHO; w++) {
+            printf("%u,%u,%u,%u,%s,check,0,%llu,%llu,%llu,%llu\n", pe, n, w ? nq : nb, k, who[w],
+                   (unsigned long long)found[w], (unsigned long long)cnt[w][0], (unsigned long long)cnt[w][1],
+                   (unsigned long long)cnt[w][2]);
+            bad |= cnt[w][2] != 0;
+        }
+        /* the timed runs: all five one after another in each rep, the four
+         * in this process in an order that rotates from rep to rep */
+        for (int r = 0; r < reps; r++) {
+            double s[NWHO];
+            uint64_t f[NWHO];
+            for (int j = 0; j < 4; j++) {
+                int w = (j + r) % 4;
+                double r2 = 0, t0 = now_s();
+                if (w == 0)
+                    f[0] = ours_knn_batch(&ours, q, nq, k, cap, idx, d2, &r2);
+                else if (w == 1)
+                    f[1] = nano_knn_batch(nano, q, nq, k, cap, idx, d2, &r2);
+                else
+                    f[w] = flann_peer_knn_batch(fl, q, nq, k, cap, w == 2, NULL);
+                s[w] = now_s() - t0;
+            }
+            s[4] = coproc_batch(&ckd, k, cap, 0, &f[4]);
+            for (int w = 0; w < NWHO; w++) {
+                bad |= s[w] < 0 || f[w] != found[w];
+                printf("%u,%u,%u,%u,%s,%d,%.6f,%llu,,,\n", pe, n, nq, k, who[w], r, s[w], (unsigned long long)f[w]);
+            }
+            fflush(stdout);
+        }
+    }
+    coproc_stop(&ckd);
+    flann_peer_free(fl);
+    nano_free(nano);
+    kd_free(&ours);
+    free(perm);
+    free(ref);
+    free(got);
+    return bad;
+}
+
 int main(int argc, char **argv)
 {
     const char *scene_path = "scenes/cornell.scene";
+    const char *peers_dir = NULL, *python = "/usr/bin/python3";
     int reps = 5, icount = 0, knn_only = 0;
     uint32_t ks[8] = {1, 10, 20, 50, 100};
     int nks = 5;
@@ -207,6 +591,10 @@ int main(int argc, char **argv)
             icount = 1;
         else if (!strcmp(argv[i], "--knn-only"))
             knn_only = 1;
+        else if (!strcmp(argv[i], "--peers") && i + 1 < argc)
+            peers_dir = argv[++i];
+        else if (!strcmp(argv[i], "--python") && i + 1 < argc)
+            python = argv[++i];
         else if (!strcmp(argv[i], "--ks") && i + 1 < argc) {
             nks = 0;
             for (char *s = strtok(argv[++i], ","); s && nks < 8; s = strtok(NULL, ","))
@@ -248,6 +636,37 @@ int main(int argc, char **argv)
             memmove(shuf.p + 3 * j, shuf.p + 3 * i, 3 * sizeof(float));
         }
         tiles.n = shuf.n = j;
+    }
+    if (peers_dir) {
+        uint32_t pe = sizes[nsizes - 1];
+        photons_params pp = {pe, cfg.seed, cfg.photon_depth, 1, cfg.rep_every, 0};
+        photons_list list;
+        photons_map map;
+        if (photons_trace(sc, &pp, 1, NULL, &list) || photons_build_map(&list, 0, &map)) {
+            fprintf(stderr, "bench: out of memory\n");
+            return 1;
+        }
+        float *pos = malloc(sizeof(float) * 3 * map.count), *q = malloc(sizeof(float) * 3 * tiles.n);
+        if (!pos || !q) {
+            fprintf(stderr, "bench: out of memory\n");
+            return 1;
+        }
+        for (uint32_t i = 0; i < map.count; i++) {
+            pos[3 * (size_t)i] = map.tree.x[i];
+            pos[3 * (size_t)i + 1] = map.tree.y[i];
+            pos[3 * (size_t)i + 2] = map.tree.z[i];
+        }
+        for (uint32_t i = 0; i < tiles.n; i++) {
+            const float *w = tiles.p + 3 * (size_t)i;
+            photons_map_point(&map, vec_make(w[0], w[1], w[2]), q + 3 * (size_t)i);
+        }
+        est_gather gather = est_gather_make(&map, cfg.nn, render_max_radius(sc, &cfg, &map), 0);
+        int rc = run_peers(peers_dir, python, pe, pos, map.count, q, tiles.n, (float)gather.max_r2, ks, nks, reps);
+        free(pos), free(q);
+        photons_map_free(&map);
+        free(tiles.p), free(tiles.nr), free(shuf.p), free(shuf.nr);
+        scene_free(sc);
+        return rc;
     }
     const qset *orders[2] = {&tiles, &shuf};
     const char *order_name[2] = {"tiles", "shuffled"};
@@ -302,6 +721,7 @@ int main(int argc, char **argv)
             }
         }
         void *nano = nano_build(pos, stored, KD_DEFAULT_LEAF);
+        void *fl = icount ? flann_peer_build(pos, stored, KD_DEFAULT_LEAF) : NULL;
         if (icount)
             CALLGRIND_START_INSTRUMENTATION;
         for (int ki = 0; ki < nks; ki++) {
@@ -317,6 +737,9 @@ int main(int argc, char **argv)
                     CALLGRIND_DUMP_STATS_AT(label);
                     nano_knn_batch(nano, q, nq, k, max_d2, idx, d2, &s);
                     snprintf(label, sizeof label, "nano %u %u %s %u", sizes[si], k, order_name[o], nq);
+                    CALLGRIND_DUMP_STATS_AT(label);
+                    flann_peer_knn_batch(fl, q, nq, k, max_d2, 1, NULL);
+                    snprintf(label, sizeof label, "flann %u %u %s %u", sizes[si], k, order_name[o], nq);
                     CALLGRIND_DUMP_STATS_AT(label);
                     continue;
                 }
@@ -343,6 +766,8 @@ int main(int argc, char **argv)
         if (icount)
             CALLGRIND_STOP_INSTRUMENTATION;
         nano_free(nano);
+        if (fl)
+            flann_peer_free(fl);
         if (!icount && !knn_only) {
             /* the trees' build over the same points, interleaved */
             double tb[64], tn[64];

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstddef>
 #include <cmath>
+#include <vector>
 #include <nanoflann.hpp>
 
 namespace {
@@ -93,6 +94,25 @@ uint64_t nano_knn_batch(void *hp, const float *q, uint32_t nq, uint32_t k, float
             s += d2[rs.size() - 1];
     }
     *r2sum += s;
+    return total;
+}
+
+/* The same search, each query's neighbours (input indices, ascending
+ * distance, UINT32_MAX after the last found) written to out_idx[nq * k]
+ * for the neighbour-set check; returns the total found. */
+uint64_t nano_knn_collect(void *hp, const float *q, uint32_t nq, uint32_t k, float max_d2, uint32_t *out_idx)
+{
+    const handle *h = static_cast<const handle *>(hp);
+    uint64_t total = 0;
+    std::vector<float> d2(k);
+    for (uint32_t i = 0; i < nq; i++) {
+        uint32_t *o = out_idx + (size_t)i * k;
+        capped_knn rs(k, max_d2, o, d2.data());
+        h->t->findNeighbors(rs, q + 3 * (size_t)i, nanoflann::SearchParams());
+        for (size_t j = rs.size(); j < k; j++)
+            o[j] = UINT32_MAX;
+        total += rs.size();
+    }
     return total;
 }
 

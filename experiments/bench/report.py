@@ -3,13 +3,18 @@
 
   report.py icount CALLGRIND_OUT_PREFIX BEFORE_CSV   instructions per query, before and after
   report.py heavy ROWS_FILE                          medians of the heavy cells
+  report.py peers CSV                                the kNN against FLANN, cKDTree, nanoflann
 
 icount: every callgrind dump of `bench --icount` (its description is
-"ours|nano P_e k order queries") gives instructions per query; the table puts
-ours beside nanoflann and beside the kd-tree of before (BEFORE_CSV).
+"ours|nano|flann P_e k order queries") gives instructions per query; the
+table puts ours beside nanoflann, FLANN (when present) and the kd-tree of
+before (BEFORE_CSV).
 heavy: ROWS_FILE has one line per run "method render_s precompute_s total_s
 rss_kib"; prints one Markdown row per method: the median of each time over
 the runs and the largest RSS.
+peers: CSV is the output of `bench --peers` (one row per build, per check
+and per timed run); prints the queries/s of each tree (median over the
+runs), ours / each peer, and what the neighbour-set checks found.
 """
 import glob
 import sys
@@ -37,14 +42,16 @@ def icount(prefix, before_csv):
     before = pd.read_csv(before_csv, comment="#")
     d = d.merge(before, on=["photons", "k", "order"], how="left")
     d = d.sort_values(["photons", "k", "order"], ascending=[True, True, False])
-    print("| P_e | k | order | before (instr/query) | ours now | nanoflann | now / before | nanoflann / ours |")
-    print("|---:|---:|---|---:|---:|---:|---:|---:|")
+    fl = "flann" in d.columns
+    print("| P_e | k | order | before (instr/query) | ours now | nanoflann | now / before | nanoflann / ours |"
+          + (" FLANN knnSearch | FLANN / ours |" if fl else ""))
+    print("|---:|---:|---|---:|---:|---:|---:|---:|" + ("---:|---:|" if fl else ""))
     for _, r in d.iterrows():
         b = r["ours_instr_per_query"]
         bs = "n/a" if pd.isna(b) else f"{b:.0f}"
         ratio = "n/a" if pd.isna(b) else f"{r['ours'] / b:.2f}"
         print(f"| {r['photons']} | {r['k']} | {r['order']} | {bs} | {r['ours']:.0f} | {r['nano']:.0f} | {ratio} | "
-              f"{r['nano'] / r['ours']:.2f} |")
+              f"{r['nano'] / r['ours']:.2f} |" + (f" {r['flann']:.0f} | {r['flann'] / r['ours']:.2f} |" if fl else ""))
 
 
 def heavy(rows_file):
@@ -54,10 +61,57 @@ def heavy(rows_file):
               f"{g['total_s'].median():.2f} | {g['rss_kib'].max()} |")
 
 
+PEERS = [("flann-knn", "FLANN knnSearch"), ("flann-radius", "FLANN radiusSearch"), ("ckdtree", "cKDTree"),
+         ("nanoflann", "nanoflann")]
+
+
+def peers(csv):
+    d = pd.read_csv(csv)
+    runs = d[~d["rep"].isin(["build", "check"])].copy()
+    checks = d[d["rep"] == "check"]
+    builds = d[d["rep"] == "build"].set_index("who")["seconds"]
+    reps = runs["rep"].nunique()
+    print("| P_e | stored | k | ours (Mq/s) | " + " | ".join(f"{n} (Mq/s)" for _, n in PEERS) + " | "
+          + " | ".join(f"ours / {n}" for _, n in PEERS) + " | ours / strongest peer |")
+    print("|---:|---:|---:|---:|" + "---:|" * (2 * len(PEERS)) + "---:|")
+    for (pe, stored, k), g in runs.groupby(["pe", "stored", "k"]):
+        med = g.groupby("who")["seconds"].median()
+        nq = g["queries"].iloc[0]
+        rate = {w: nq / med[w] * 1e-6 for w in med.index}
+        best = max((w for w, _ in PEERS), key=lambda w: rate[w])
+        print(f"| {pe} | {stored} | {k} | {rate['ours']:.3f} | "
+              + " | ".join(f"{rate[w]:.3f}" for w, _ in PEERS) + " | "
+              + " | ".join(f"{med[w] / med['ours']:.2f}" for w, _ in PEERS) + " | "
+              + f"{med[best] / med['ours']:.2f} ({dict(PEERS)[best]}) |")
+    print()
+    print(f"Median of {reps} runs per cell; in each run the five answer the same queries one after another "
+          "(cKDTree timed by its own process around its one query call). Builds over the same points "
+          "(one run, seconds): "
+          + ", ".join(f"{n} {builds[w]:.3f}" for w, n in [("ours", "ours"), ("flann-knn", "FLANN"), ("ckdtree", "cKDTree"),
+                                                         ("nanoflann", "nanoflann")]) + ".")
+    print()
+    print("Neighbour sets, checked before the timed runs (ours against brute force on a sample of the queries; "
+          "every peer against ours on all of them):")
+    print()
+    print("| k | answer | checked against | queries checked | neighbours found (all queries) | same set | differ by ties only | wrong |")
+    print("|---:|---|---|---:|---:|---:|---:|---:|")
+    bad = 0
+    for _, r in checks.sort_values("k", kind="stable").iterrows():
+        name = "ours" if r["who"] == "ours" else dict(PEERS)[r["who"]]
+        against = "brute force" if r["who"] == "ours" else "ours"
+        bad += int(r["mismatches"])
+        print(f"| {int(r['k'])} | {name} | {against} | {int(r['queries'])} | {int(r['found'])} | {int(r['exact'])} | "
+              f"{int(r['ties'])} | {int(r['mismatches'])} |")
+    if bad:
+        sys.exit(f"report.py peers: {bad} neighbour sets did not check")
+
+
 if __name__ == "__main__":
     if len(sys.argv) == 4 and sys.argv[1] == "icount":
         icount(sys.argv[2], sys.argv[3])
     elif len(sys.argv) == 3 and sys.argv[1] == "heavy":
         heavy(sys.argv[2])
+    elif len(sys.argv) == 3 and sys.argv[1] == "peers":
+        peers(sys.argv[2])
     else:
         sys.exit(__doc__)

@@ -5,11 +5,19 @@
 # query (beside those of the kd-tree before, icount-before.csv), a perf
 # profile of the renders, and the heaviest cells of the paper at full
 # resolution under /usr/bin/time -v; writes results/bench.md (tables from
-# files by report.py). BENCH_REPS (5) runs per throughput cell,
-# BENCH_HEAVY_REPS (3) per heavy cell.
+# files by report.py), with the kNN against FLANN, scipy's cKDTree and
+# nanoflann (bench --peers, k = BENCH_PEER_KS). BENCH_REPS (5) runs per
+# throughput cell, BENCH_HEAVY_REPS (3) per heavy cell.
+#
+#   run.sh --quick   (`make bench-quick`, about a minute): only the peers
+#                    table at k = 10 and 100, 3 runs a cell, on stdout;
+#                    results/bench.md is left as it is.
 set -eu
 cd "$(dirname "$0")/../.."
+QUICK=0
+if [ "${1:-}" = "--quick" ]; then QUICK=1; fi
 REPS=${BENCH_REPS:-5}
+PEER_KS=${BENCH_PEER_KS:-1,10,100}
 HREPS=${BENCH_HEAVY_REPS:-3}
 OUT=results/bench.md
 BIN=build/bench/bench
@@ -19,6 +27,19 @@ mkdir -p results
 
 PYTHON=${PYTHON:-/usr/bin/python3}
 
+peers() { # reps ks: the peers table (Markdown) on stdout
+  mkdir -p "$tmp/peers"
+  "$BIN" --peers "$tmp/peers" --python "$PYTHON" --sizes 500000 --ks "$2" --reps "$1" > "$tmp/peers.csv"
+  "$PYTHON" experiments/bench/report.py peers "$tmp/peers.csv"
+}
+if [ "$QUICK" = 1 ]; then
+  echo "bench: quick: the kNN against the peers, 500k map, tile order, k = 10 and 100, 3 runs a cell" >&2
+  echo "Load average $(cut -d' ' -f1-3 /proc/loadavg) before it ran; commit $(git rev-parse --short HEAD 2> /dev/null || echo '?')."
+  echo
+  peers 3 10,100
+  exit 0
+fi
+
 cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')
 echo "bench: the paper's grid, 24 renders at 1024x768, one thread" >&2
 load_grid=$(cut -d' ' -f1-3 /proc/loadavg)
@@ -27,6 +48,10 @@ grid_line=$(tail -n 1 "$tmp/grid.txt")
 echo "bench: $grid_line" >&2
 echo "bench: throughput tables ($REPS runs per cell)" >&2
 "$BIN" --reps "$REPS" > "$tmp/main.md"
+
+echo "bench: the kNN against FLANN, cKDTree and nanoflann ($REPS runs per cell)" >&2
+load_peers=$(cut -d' ' -f1-3 /proc/loadavg)
+peers "$REPS" "$PEER_KS" > "$tmp/peers.md"
 
 echo "bench: instructions per query (callgrind)" >&2
 valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$tmp/cg.out" "$BIN" --icount > /dev/null 2> "$tmp/cg.log"
@@ -82,10 +107,26 @@ heavy() { # method: one line per run, "method render precompute total rss"
   echo
   cat "$tmp/main.md"
   echo
+  echo "## kNN against the peers: FLANN, scipy's cKDTree, nanoflann (one thread, 500k map, tile order)"
+  echo
+  echo "The same points (the 500k map's, in its frame) and the same tile-order queries as above, radius cap"
+  echo "0.05 x the photons' bounding-box diagonal, leaf size 12 for every tree. Ours: \`kd_query_knn\` with its"
+  echo "state carried from query to query. FLANN 1.9: \`KDTreeSingleIndex<L2_Simple<float>>\`, one call per batch"
+  echo "of its documented \`knnSearch\` (the neighbours beyond the cap dropped after) or \`radiusSearch\` with"
+  echo "\`max_neighbors = k\`, built without OpenMP. cKDTree (scipy $("$PYTHON" -c 'import scipy; print(scipy.__version__)')): one \`query(k=k,"
+  echo "distance_upper_bound=..., workers=1)\` over all queries, in a co-process (experiments/bench/ckdtree.py)"
+  echo "driven run by run. nanoflann: \`findNeighbors\` with a capped result set (nano.cpp). Ties: an answer that"
+  echo "differs from ours only in points at the other's boundary distance (its k-th, or the cap), within 1e-6"
+  echo "relative in double, counts as \"by ties\"; any other difference as wrong, and the bench fails."
+  echo "Load average $load_peers before it ran."
+  echo
+  cat "$tmp/peers.md"
+  echo
   echo "## Instructions per kNN query (callgrind, every 9th query of each order, about 8500 per cell)"
   echo
   echo "\"before\": the kd-tree of commit eb9e0ea on the same queries (experiments/bench/icount-before.csv);"
-  echo "\"ours now\": \`kd_query_knn\` with the state carried from query to query, as the eye pass does."
+  echo "\"ours now\": \`kd_query_knn\` with the state carried from query to query, as the eye pass does;"
+  echo "FLANN: one \`knnSearch\` call over the same queries (instructions are not time: ours runs AVX2)."
   echo
   cat "$tmp/icount.md"
   echo
