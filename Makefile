@@ -60,7 +60,7 @@ clean: ## remove the build (not results/ or reference/)
 
 stability: $(BUILD)/photonmap
 	@mkdir -p $(RESULTS)
-	$(PYTHON) scripts/stability.py --pm $(BUILD)/photonmap > $(RESULTS)/stability-extremes.md.tmp
+	$(PYTHON) -m experiments.stability --pm $(BUILD)/photonmap > $(RESULTS)/stability-extremes.md.tmp
 	mv $(RESULTS)/stability-extremes.md.tmp $(RESULTS)/stability-extremes.md
 
 # ---- the build ----

@@ -17,6 +17,6 @@ caustic:
 	  SEED_LIST="$(shell seq 1 $(CAUSTIC_SEEDS))" TAG= PM_ARGS= METHODS="conventional precomputed" \
 	  REF=$(CAUSTIC_REF_FILE) TABLE=$(CAUSTIC)-table1 RUNS_CSV=$(CAUSTIC)-runs.csv \
 	  CELLS_CSV=$(CAUSTIC)-cells.csv EQUAL_ERROR=$(CAUSTIC)-equal-error
-	@$(PYTHON) experiments/analysis/caustic.py --runs $(CAUSTIC)-runs.csv --ref $(CAUSTIC_REF_FILE) \
+	@$(PYTHON) -m experiments.analysis.caustic --runs $(CAUSTIC)-runs.csv --ref $(CAUSTIC_REF_FILE) \
 	  --window $(CAUSTIC_WINDOW) --window-at $(CAUSTIC_WINDOW_AT) --cells "$(FIG3_CELLS)" --out $(CAUSTIC) \
 	  --figure $(FIGURES)/caustic.png

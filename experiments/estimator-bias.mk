@@ -19,5 +19,5 @@ $(BIAS_DIR)/%.run.json: | $(BUILD)/photonmap
 .PHONY: estimator-bias-runs
 estimator-bias-runs: $(BIAS_RUNS)
 estimator-bias: estimator-bias-runs
-	$(PYTHON) experiments/analysis/estimator_bias.py --dir $(BIAS_DIR) --nns "$(BIAS_NNS)" --seeds $(BIAS_SEEDS) \
+	$(PYTHON) -m experiments.analysis.estimator_bias --dir $(BIAS_DIR) --nns "$(BIAS_NNS)" --seeds $(BIAS_SEEDS) \
 	  --photons $(BIAS_PHOTONS) --size $(BIAS_SIZE) --scene $(BIAS_SCENE) --out $(BIAS_OUT)

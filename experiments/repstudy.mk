@@ -18,7 +18,7 @@ rep-study:
 	@$(foreach r,$(REP_RULES),$(MAKE) --no-print-directory reproduce-table TAG=rep-$(r) PM_ARGS="$(call rep_args,$(r))" \
 	  METHODS=precomputed ESTIMATES=paper SEEDS=$(REP_SEEDS) SEED_LIST="$(wordlist 1,$(REP_SEEDS),$(SEED_LIST))" \
 	  CONV_RUNROOT=$(RUNROOT) &&) true
-	@$(PYTHON) experiments/analysis/repstudy.py --base-runs $(RUNS_CSV) \
+	@$(PYTHON) -m experiments.analysis.repstudy --base-runs $(RUNS_CSV) \
 	  $(foreach r,$(REP_RULES),--variant $(r)=$(RESULTS)/runs-rep-$(r).csv) --paper experiments/paper-table1.csv \
 	  --time $(EE_TIME) --out $(REP_STUDY) --figure $(FIGURES)/rep-study.png --bootstrap $(BOOTSTRAP) \
 	  --bootstrap-seed $(BOOTSTRAP_SEED)

@@ -30,6 +30,6 @@ for s in $RES_SIZES; do
     PHOTONS="$PHOTONS" NNS="$NNS" METHODS="$METHODS" ESTIMATES="$ESTIMATES" THREADS="$THREADS" PM="$PM"
   size_args+=(--size "$s" "$out/table-$s.csv" "$desc")
 done
-"$PYTHON" experiments/analysis/resolution.py "${size_args[@]}" --targets "$RES_TARGETS" --time "${EE_TIME:-cpu_s}" \
+"$PYTHON" -m experiments.analysis.resolution "${size_args[@]}" --targets "$RES_TARGETS" --time "${EE_TIME:-cpu_s}" \
   --grid "P_e in {$PHOTONS} x n in {$NNS} x {$METHODS} x estimates {$ESTIMATES}, seeds 1..$RES_SEEDS, threads: ${THREADS:-all}" \
   --out "$RESULTS/resolution.md"

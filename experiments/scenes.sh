@@ -21,7 +21,7 @@ for scene in $SCENES; do
     THREADS="$THREADS" PM="$PM"
   args+=(--scene "$scene" "$out/table-$name.csv" "$out/runs-$name.csv" "$out/equal-error-$name.csv" "$ref")
 done
-"$PYTHON" experiments/analysis/scenes.py "${args[@]}" --cell "$SCENES_CELL" --size "$SCENES_SIZE" \
+"$PYTHON" -m experiments.analysis.scenes "${args[@]}" --cell "$SCENES_CELL" --size "$SCENES_SIZE" \
   --ref-photons "$RES_REF_PHOTONS" --ref-nn "$RES_REF_NN" --ref-seed "$RES_REF_SEED" \
   --grid "P_e in {$PHOTONS} x n in {$NNS} x {$METHODS} x estimates {$ESTIMATES}, seeds 1..$SCENES_SEEDS, threads: ${THREADS:-all}" \
   --figures "$RESULTS/figures" --out "$RESULTS/scenes"

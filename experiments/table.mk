@@ -32,12 +32,12 @@ list-runs:
 	@printf '%s\n' $(RUN_FILES)
 reproduce-runs: $(RUN_FILES)
 reproduce-table: $(RUN_FILES)
-	@$(PYTHON) experiments/analysis/collect.py --runroot $(RUNROOT) --conv-runroot $(CONV_RUNROOT) \
+	@$(PYTHON) -m experiments.analysis.collect --runroot $(RUNROOT) --conv-runroot $(CONV_RUNROOT) \
 	  --scene $(SCENE) --width $(WIDTH) --height $(HEIGHT) --subpixels $(SUBPIXELS) --threads "$(T_ARG)" --tag "$(TAG)" \
 	  --methods "$(METHODS)" --estimates "$(ESTIMATES)" --photons "$(PHOTONS)" --nns "$(NNS)" --seeds "$(SEED_LIST)" \
 	  --ref "$(REF_FILE)" --ref-fast "$(REF_FAST_FILE)" --runs-csv $(RUNS_CSV) --cells-csv $(CELLS_CSV)
-	@$(PYTHON) experiments/analysis/table.py --runs-csv $(RUNS_CSV) --cells-csv $(CELLS_CSV) \
+	@$(PYTHON) -m experiments.analysis.table --runs-csv $(RUNS_CSV) --cells-csv $(CELLS_CSV) \
 	  --paper experiments/paper-table1.csv --out $(TABLE) --equal-error $(EQUAL_ERROR).md \
 	  --pm $(PM) --pm-args "$(PM_ARGS)" --runroot $(RUNROOT) --bootstrap $(BOOTSTRAP) --bootstrap-seed $(BOOTSTRAP_SEED)
-	@$(PYTHON) experiments/analysis/equal_error.py --runs-csv $(RUNS_CSV) --out $(EQUAL_ERROR) \
+	@$(PYTHON) -m experiments.analysis.equal_error --runs-csv $(RUNS_CSV) --out $(EQUAL_ERROR) \
 	  --targets "$(EE_TARGETS)" --time $(EE_TIME) --bootstrap $(BOOTSTRAP) --bootstrap-seed $(BOOTSTRAP_SEED) --pm $(PM)

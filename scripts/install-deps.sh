@@ -16,6 +16,7 @@ PACKAGES=(
   python3-numpy python3-scipy       # statistics of the experiments (CIs, bootstrap, fits)
   python3-pandas python3-matplotlib # tables and figures
   python3-openimageio               # EXR pixels in the analysis (OpenImageIO's Python binding)
+  python3-pytest                    # make test: the analysis package's unit tests (tests/test_analysis.py)
   slurmctld slurmd slurm-client munge  # tests/slurm.test.sh: a private single-node Slurm for make sweep-slurm
 )
 

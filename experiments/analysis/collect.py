@@ -27,14 +27,12 @@ import argparse
 import json
 import math
 import os
-import sys
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import metrics  # noqa: E402
-import report  # noqa: E402
+from experiments.analysis import metrics
+from experiments.analysis import report
 
 RUN_COLUMNS = [
     "scene", "size", "width", "height", "subpixels", "threads", "tag", "method", "estimate",

@@ -33,8 +33,7 @@ import sys
 import numpy as np
 from scipy.spatial import cKDTree
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import stats  # noqa: E402
+from experiments.analysis import stats
 
 EXACT = 1.0
 
