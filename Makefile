@@ -59,9 +59,9 @@ clean: ## remove the build (not results/ or reference/)
 	rm -rf $(BUILD)/obj $(BUILD)/san $(BUILD)/photonmap $(BUILD)/imgmetrics $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 
 stability: $(BUILD)/photonmap
-	@mkdir -p $(RESULTS)
-	$(PYTHON) -m experiments.stability --pm $(BUILD)/photonmap > $(RESULTS)/stability-extremes.md.tmp
-	mv $(RESULTS)/stability-extremes.md.tmp $(RESULTS)/stability-extremes.md
+	@mkdir -p $(STABILITY_DIR)
+	$(PYTHON) -m experiments.stability --pm $(BUILD)/photonmap > $(STABILITY_DIR)/stability-extremes.md.tmp
+	mv $(STABILITY_DIR)/stability-extremes.md.tmp $(STABILITY_DIR)/stability-extremes.md
 
 # ---- the build ----
 $(DEPS_STAMP): scripts/install-deps.sh
@@ -112,13 +112,9 @@ unit-tests: $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 # ---- rules of the experiment, benchmark, reference and fuzz targets ----
 # experiments/config.mk holds every variable they share (read first).
 include experiments/config.mk
-include experiments/table.mk
-include experiments/resolution.mk
+include experiments/study.mk
+include experiments/studies.mk
 include experiments/figures.mk
-include experiments/repstudy.mk
-include experiments/caustic.mk
-include experiments/estimator-bias.mk
-include experiments/scenes.mk
 include experiments/bench.mk
 include experiments/slurm.mk
 include reference/reference.mk

@@ -93,7 +93,7 @@ def main():
         for f in (table_csv, runs_csv, ee_csv, ref_path):
             if not os.path.exists(f):
                 report.die(f, "missing (run make scenes)")
-        table = report.read_csv(table_csv, ["method", "estimate", "photons", "nn"], "scenes.py")
+        table = report.read_csv(table_csv, ["method", "photons", "nn"], "scenes.py")
         runs = report.read_csv(runs_csv, ["method", "estimate", "photons", "nn", "seed", "status", "role", "run"], "scenes.py")
         ee = report.read_csv(ee_csv, ["estimate", "speedup_defined"], "scenes.py")
         share, speed = knn_share(table, cell_p, cell_n)

@@ -4,18 +4,18 @@
 # for the throughput tables, the same under callgrind for instructions per
 # query (beside those of the kd-tree before, icount-before.csv), a perf
 # profile of the renders, and the heaviest cells of the paper at full
-# resolution under /usr/bin/time -v; writes results/bench.md (tables from
+# resolution under /usr/bin/time -v; writes results/bench/bench.md (tables from
 # files by report.py). BENCH_REPS (5) runs per throughput cell,
 # BENCH_HEAVY_REPS (3) per heavy cell.
 set -eu
 cd "$(dirname "$0")/../.."
 REPS=${BENCH_REPS:-5}
 HREPS=${BENCH_HEAVY_REPS:-3}
-OUT=results/bench.md
+OUT=results/bench/bench.md
 BIN=build/bench/bench
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-mkdir -p results
+mkdir -p results/bench
 
 PYTHON=${PYTHON:-/usr/bin/python3}
 
