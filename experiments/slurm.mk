@@ -29,7 +29,7 @@ SLURM_MAKE = $(MAKE)
 # shell_quote TEXT: TEXT as one single-quoted shell word
 shell_quote = '$(subst ','\'',$(1))'
 sweep-slurm: all | $(SLURM_DIR)
-	@printf '%s\n' $(foreach v,$(SLURM_PASS_VARS),$(call shell_quote,$(v)=$(value $(v)))) > $(SLURM_DIR)/make-vars.tmp
+	@$(if $(strip $(SLURM_PASS_VARS)),printf '%s\n' $(foreach v,$(SLURM_PASS_VARS),$(call shell_quote,$(v)=$(value $(v)))),:) > $(SLURM_DIR)/make-vars.tmp
 	@mv $(SLURM_DIR)/make-vars.tmp $(SLURM_DIR)/make-vars
 	@SLURM_DIR=$(SLURM_DIR) REPO=$(CURDIR) MAKE_CMD="$(SLURM_MAKE)" TASKS="$(TASKS)" SWEEP="$(SWEEP)" \
 	  SBATCH_OPTS="$(SBATCH_OPTS)" bash experiments/slurm.sh
