@@ -3,7 +3,7 @@
 # nanoflann behind experiments/bench/nano.cpp) and writes results/bench.md
 # via experiments/bench/run.sh (BENCH_REPS, BENCH_HEAVY_REPS tune it).
 
-$(BUILD)/bench/nano.o: experiments/bench/nano.cpp | $(DEPS_STAMP)
+$(BUILD)/bench/nano.o: experiments/bench/nano.cpp | $(DEPS_TEST)
 	@mkdir -p $(dir $@)
 	$(CXX) -std=c++17 -O2 -g -Wall -Wextra -c $< -o $@
 

@@ -54,7 +54,7 @@ $(1)_RUN_FILES := $$($(1)_RUN_NAMES:%=$$($(1)_RUNROOT)/%.run.json)
 $(1)_REF := $$($(1)_REF)
 
 # one render (experiments/run.sh writes its files, the record last)
-$$($(1)_RUNROOT)/%.run.json: | $$(BUILD)/photonmap
+$$($(1)_RUNROOT)/%.run.json: | $$(BUILD)/photonmap $$(DEPS_TEST)
 	@PM=$$(PM) PM_ARGS="$$($(1)_PM_ARGS)" SCENE=$$($(1)_SCENE) WIDTH=$$($(1)_W) \
 	  HEIGHT=$$($(1)_H) SUBPIXELS=$$($(1)_SUBPIXELS) THREADS_ARG=$$(T_ARG) PYTHON=$$(PYTHON) \
 	  RUN_LIST="$$($(1)_RUN_NAMES)" bash experiments/run.sh $$($(1)_RUNROOT) $$*

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # experiments.test.sh: the experiment layer end to end on a tiny grid
-# (32x24, 2,000-4,000 photons, 3 seeds): build/imgmetrics; `make
+# (32x24, 2,000-4,000 photons, 3 seeds): the metrics command line; `make
 # reproduce-table` (one make target per render, progress lines, refused
 # renders as "not applicable", resume, added seeds, runs.csv / table1.csv
 # columns by name, table1.md, equal-error.md); `make resolution`. A wrapper
@@ -8,8 +8,8 @@
 # or fails (exit 1), so those paths are tested whatever the renderer does.
 cd "$(dirname "$0")/.." || exit 1
 source tests/lib.sh
-IM=build/imgmetrics
 PY=${PYTHON:-/usr/bin/python3}
+IM="$PY -m experiments.analysis.metrics"
 R=$TMP/results
 REAL_PM=$(realpath "$PM")
 ROOT=$R/runs/cornell-32x24-s2-t1
@@ -29,21 +29,21 @@ ARGS=(SIZE=32x24 "PHOTONS=2000 4000" "NNS=10 20" SEEDS=3 ESTIMATES=paper RESULTS
 # pycheck 'CODE': python with pandas as pd, numpy as np, R = the results dir
 pycheck() { R="$R" "$PY" -c "import os, math, numpy as np, pandas as pd; R = os.environ['R']; $1"; }
 
-# imgmetrics on two tiny renders
+# the metrics command line (experiments/analysis/metrics.py) on two tiny renders
 $PM render scenes/cornell.scene --width 16 --height 12 --photons 2000 --nn 10 -o "$TMP/a.exr" --quiet
 $PM render scenes/cornell.scene --width 16 --height 12 --photons 2000 --nn 10 --method precomputed -o "$TMP/b.exr" --quiet
 $PM render scenes/cornell.scene --width 8 --height 6 --photons 2000 --nn 10 -o "$TMP/c.exr" --quiet
-check "imgmetrics: identical images give 0 and inf" \
+check "metrics: identical images give 0 and inf" \
   bash -c "$IM $TMP/a.exr $TMP/a.exr | grep -q '^relmse=0 rmse=0 psnr=inf pixels=192 peak=1$'"
-check "imgmetrics: different images give a positive error, CSV form" \
+check "metrics: different images give a positive error, CSV form" \
   bash -c "$IM $TMP/b.exr $TMP/a.exr --header | awk -F, 'NR==1 && \$0==\"relmse,rmse,psnr,pixels,peak\" {h=1} NR==2 && \$1>0 && \$2>0 && \$3>0 && \$4==192 {v=1} END {exit !(h && v)}'"
-check "imgmetrics: --mask restricts the pixels" \
+check "metrics: --mask restricts the pixels" \
   bash -c "$IM $TMP/b.exr $TMP/a.exr --mask $TMP/a.exr | grep -q 'pixels=1[0-9][0-9] '"
-check "imgmetrics: --peak max uses the reference maximum" \
+check "metrics: --peak max uses the reference maximum" \
   bash -c "$IM $TMP/b.exr $TMP/a.exr --peak max | grep -qv 'peak=1$'"
-check "imgmetrics: size mismatch is an error" \
+check "metrics: size mismatch is an error" \
   expect_exit 2 "size mismatch" $IM "$TMP/a.exr" "$TMP/c.exr"
-check "imgmetrics: missing file is an error" expect_exit 2 "nonexistent" $IM "$TMP/a.exr" /nonexistent.exr
+check "metrics: missing file is an error" expect_exit 2 "nonexistent" $IM "$TMP/a.exr" /nonexistent.exr
 
 # a reference and a "fast reference" of the tiny size: two high-photon renders
 $PM render scenes/cornell.scene --width 32 --height 24 --photons 40000 --nn 100 -o "$TMP/ref.exr" --quiet
@@ -77,7 +77,7 @@ conv = ok["method"] == "conventional"
 assert (ok.loc[conv, "relmse_conv"] == 0).all() and (ok.loc[~conv, "relmse_conv"] > 0).all()
 assert (ok.loc[~conv, "representatives"] > 0).all() and (ok["photons_stored"] > 0).all()
 '
-check "runs.csv: relmse_ref of a render equals build/imgmetrics on its EXR" \
+check "runs.csv: relmse_ref of a render equals the metrics command line on its EXR" \
   bash -c "want=\$($IM $ROOT/precomputed-paper-p4000-n10/seed2.exr $TMP/ref.exr --csv | cut -d, -f1);
            got=\$(R=$R $PY -c 'import os, pandas as pd; r = pd.read_csv(os.environ[\"R\"] + \"/table1/runs.csv\");
 print(r[(r.method == \"precomputed\") & (r.photons == 4000) & (r.nn == 10) & (r.seed == 2)].relmse_ref.iloc[0])');

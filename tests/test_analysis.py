@@ -4,7 +4,7 @@ Run by pytest from the repository root (tests/analysis.test.sh, part of
 `make test`: `python3 -m pytest tests/test_analysis.py`); pytest rewrites the
 asserts, so they check under `python3 -O` too.
 Every check compares against a value computed another way (a closed form, a
-simulation with a known answer, the C tool build/imgmetrics), so each can
+simulation with a known answer, the definition computed directly), so each can
 fail. Random numbers come from fixed seeds: the outcome is deterministic.
 """
 
@@ -195,25 +195,33 @@ def test_bias_variance_counts_are_repeats():
     close(got[1], want[1], 1e-12, "variance")
 
 
-def test_relmse_matches_imgmetrics():
-    """On a real pair of renders, metrics.py's relMSE, RMSE and PSNR equal
-    build/imgmetrics' to 1e-6 (relative), and read_exr gives H x W x 3."""
+def test_metrics_command_line_matches_functions():
+    """On a real pair of renders, the command line the shell tools call
+    (python3 -m experiments.analysis.metrics) prints metrics.py's relMSE,
+    RMSE and PSNR, and these equal a direct numpy computation of the
+    definition; read_exr gives H x W x 3."""
     pm = os.environ.get("PM", os.path.join(ROOT, "build", "photonmap"))
-    im = os.path.join(ROOT, "build", "imgmetrics")
     scene = os.path.join(ROOT, "scenes", "cornell.scene")
     with tempfile.TemporaryDirectory() as d:
         a, b = os.path.join(d, "a.exr"), os.path.join(d, "b.exr")
         for path, method in ((a, "conventional"), (b, "precomputed")):
             subprocess.run([pm, "render", scene, "--width", "32", "--height", "24", "--photons", "3000", "--nn", "10",
                             "--method", method, "-o", path, "--quiet"], check=True)
-        out = subprocess.run([im, b, a, "--csv"], check=True, capture_output=True, text=True).stdout.strip()
+        out = subprocess.run(["/usr/bin/python3", "-m", "experiments.analysis.metrics", b, a, "--csv"], check=True,
+                             capture_output=True, text=True, cwd=ROOT).stdout.strip()
         c_rel, c_rmse, c_psnr = (float(v) for v in out.split(",")[:3])
         x, r = metrics.read_exr(b), metrics.read_exr(a)
         assert x.shape == (24, 32, 3), x.shape
         got = (metrics.relmse(x, r), metrics.rmse(x, r), metrics.psnr(x, r))
-        assert got[0] > 0, "the two renders should differ"
-        for g, c, name in zip(got, (c_rel, c_rmse, c_psnr), ("relmse", "rmse", "psnr")):
-            close(g, c, 1e-6 * max(1.0, abs(c)), name)
+        d2 = (x - r) ** 2
+        direct = (float((d2 / (r * r + 0.01)).sum() / d2.size), math.sqrt(d2.sum() / d2.size),
+                  10 * math.log10(1.0 / (d2.sum() / d2.size)))
+        for name, g, c, e in zip(("relMSE", "RMSE", "PSNR"), got, (c_rel, c_rmse, c_psnr), direct):
+            assert abs(g - c) <= 1e-5 * abs(g), f"{name}: function {g} vs command line {c}"
+            assert abs(g - e) <= 1e-9 * abs(e), f"{name}: function {g} vs the definition {e}"
+        same = subprocess.run(["/usr/bin/python3", "-m", "experiments.analysis.metrics", a, a], check=True,
+                              capture_output=True, text=True, cwd=ROOT).stdout.strip()
+        assert same == "relmse=0 rmse=0 psnr=inf pixels=768 peak=1", same
 
 
 def test_read_exr_missing_file():
