@@ -1,6 +1,6 @@
 # `make bench`: the performance benchmark of issue 7 (not a test). Builds
 # build/bench/bench (experiments/bench/bench.c on the renderer objects, plus
-# nanoflann behind experiments/bench/nano.cpp) and writes results/bench.md
+# nanoflann behind experiments/bench/nano.cpp) and writes results/bench/bench.md
 # via experiments/bench/run.sh (BENCH_REPS, BENCH_HEAVY_REPS tune it).
 
 $(BUILD)/bench/nano.o: experiments/bench/nano.cpp | $(DEPS_TEST)
