@@ -2,12 +2,16 @@
 # (`make help` prints the list); the rules behind the experiment and
 # reference targets live in the files included at the bottom, which share
 # the variables of experiments/config.mk. Missing Debian packages are
-# installed by scripts/install-deps.sh, once (stamp: build/.deps-stamp).
+# installed by scripts/install-deps.sh by tier, once each, when a target
+# needs the tier: build (a plain make), test (make test, the experiments,
+# bench), cluster (make test's Slurm test); stamps build/.deps-TIER.
 
 CC ?= cc
 CXX ?= c++
 BUILD := build
-DEPS_STAMP := $(BUILD)/.deps-stamp
+DEPS_STAMP := $(BUILD)/.deps-build
+DEPS_TEST := $(BUILD)/.deps-test
+DEPS_CLUSTER := $(BUILD)/.deps-cluster
 
 WARN := -Wall -Wextra -Wpedantic
 ifeq ($(CI),true)
@@ -36,13 +40,12 @@ SAN_OBJ := $(LIB_SRC:renderer/%.c=$(BUILD)/san/%.o)
 TEST_SRC := $(wildcard tests/unit/*.c)
 TEST_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/dbg/test_%.o)
 TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
-IMGMETRICS := $(BUILD)/imgmetrics
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
 .PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small fuzz sweep-slurm
-all: $(BUILD)/photonmap $(IMGMETRICS) ## build build/photonmap and build/imgmetrics
-deps: $(DEPS_STAMP) ## install the missing Debian packages (scripts/install-deps.sh, once)
-test: all unit-tests $(BUILD)/san/photonmap ## every test; ends with "N passed, N failed" (README)
+all: $(BUILD)/photonmap ## build build/photonmap
+deps: $(DEPS_STAMP) $(DEPS_TEST) $(DEPS_CLUSTER) ## install the missing Debian packages of every tier (scripts/install-deps.sh)
+test: all unit-tests $(BUILD)/san/photonmap $(DEPS_TEST) $(DEPS_CLUSTER) ## every test; ends with "N passed, N failed" (README)
 	bash tests/run.sh
 reproduce-table: ## Table 1 over SEEDS seeds, both estimates -> results/{runs,cells,table1,equal-error}.* (experiments/table.mk)
 reproduce-runs: ## only the renders of reproduce-table, one make target each (make -j; resumes)
@@ -63,17 +66,17 @@ sweep-slurm: ## a Slurm job array of make targets: TASKS=FILE or SWEEP=TARGET ->
 help: ## this list
 	@awk -F':.*## ' '/^[a-z][a-z-]*:.*## / { printf "  make %-17s %s\n", $$1, $$2 }' $(firstword $(MAKEFILE_LIST))
 clean: ## remove the build (not results/ or reference/)
-	rm -rf $(BUILD)/obj $(BUILD)/dbg $(BUILD)/san $(BUILD)/photonmap $(BUILD)/imgmetrics $(BUILD)/unit-tests $(BUILD)/unit-tests-san
+	rm -rf $(BUILD)/obj $(BUILD)/dbg $(BUILD)/san $(BUILD)/photonmap $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 
-stability: $(BUILD)/photonmap
-	@mkdir -p $(RESULTS)
-	$(PYTHON) scripts/stability.py --pm $(BUILD)/photonmap > $(RESULTS)/stability-extremes.md.tmp
-	mv $(RESULTS)/stability-extremes.md.tmp $(RESULTS)/stability-extremes.md
+stability: $(BUILD)/photonmap | $(DEPS_TEST)
+	@mkdir -p $(STABILITY_DIR)
+	$(PYTHON) -m experiments.stability --pm $(BUILD)/photonmap > $(STABILITY_DIR)/stability-extremes.md.tmp
+	mv $(STABILITY_DIR)/stability-extremes.md.tmp $(STABILITY_DIR)/stability-extremes.md
 
 # ---- the build ----
-$(DEPS_STAMP): scripts/install-deps.sh
+$(BUILD)/.deps-%: scripts/install-deps.sh
 	@mkdir -p $(BUILD)
-	bash scripts/install-deps.sh
+	bash scripts/install-deps.sh $*
 	@touch $@
 
 $(BUILD)/obj/%.o: renderer/%.c renderer/*.h renderer/*.inc | $(DEPS_STAMP)
@@ -96,10 +99,6 @@ $(BUILD)/san/test_%.o: tests/unit/%.c tests/unit/*.h renderer/*.h | $(DEPS_STAMP
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_COMMON) $(SAN_FLAGS) -Itests/unit -c $< -o $@
 
-$(BUILD)/obj/imgmetrics.o: scripts/imgmetrics.c renderer/image.h | $(DEPS_STAMP)
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_COMMON) $(CFLAGS) $(RELEASE_FLAGS) -c $< -o $@
-
 $(BUILD)/photonmap: $(LIB_OBJ) $(BUILD)/obj/main.o
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
@@ -107,9 +106,6 @@ $(BUILD)/photonmap: $(LIB_OBJ) $(BUILD)/obj/main.o
 # hostile-input tests against it too
 $(BUILD)/san/photonmap: $(SAN_OBJ) $(BUILD)/san/main.o
 	$(CC) $(SAN_FLAGS) -o $@ $^ $(LDLIBS)
-
-$(IMGMETRICS): $(BUILD)/obj/imgmetrics.o $(BUILD)/obj/image.o $(BUILD)/obj/outfile.o
-	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
 $(BUILD)/unit-tests: $(DBG_OBJ) $(TEST_OBJ)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
@@ -123,13 +119,9 @@ unit-tests: $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 # ---- rules of the experiment, benchmark, reference and fuzz targets ----
 # experiments/config.mk holds every variable they share (read first).
 include experiments/config.mk
-include experiments/table.mk
-include experiments/resolution.mk
+include experiments/study.mk
+include experiments/studies.mk
 include experiments/figures.mk
-include experiments/repstudy.mk
-include experiments/caustic.mk
-include experiments/estimator-bias.mk
-include experiments/scenes.mk
 include experiments/bench.mk
 include experiments/slurm.mk
 include reference/reference.mk

@@ -1,18 +1,18 @@
-# `make bench`: the performance benchmark of issue 7 (not a test). Builds
+# `make bench`: the performance benchmark (not a test). Builds
 # build/bench/bench (experiments/bench/bench.c on the renderer objects, plus
 # nanoflann behind experiments/bench/nano.cpp, FLANN behind flann.cpp:
-# its headers pull in lz4 for serialisation, hence -llz4) and writes results/bench.md
+# its headers pull in lz4 for serialisation, hence -llz4) and writes results/bench/bench.md
 # via experiments/bench/run.sh (BENCH_REPS, BENCH_HEAVY_REPS tune it).
 
-$(BUILD)/bench/nano.o: experiments/bench/nano.cpp | $(DEPS_STAMP)
+$(BUILD)/bench/nano.o: experiments/bench/nano.cpp | $(DEPS_TEST)
 	@mkdir -p $(dir $@)
 	$(CXX) -std=c++17 -O2 -g -Wall -Wextra -c $< -o $@
 
-$(BUILD)/bench/flann.o: experiments/bench/flann.cpp | $(DEPS_STAMP)
+$(BUILD)/bench/flann.o: experiments/bench/flann.cpp | $(DEPS_TEST)
 	@mkdir -p $(dir $@)
 	$(CXX) -std=c++17 -O2 -g -Wall -Wextra -c $< -o $@
 
-$(BUILD)/bench/bench.o: experiments/bench/bench.c renderer/*.h | $(DEPS_STAMP)
+$(BUILD)/bench/bench.o: experiments/bench/bench.c renderer/*.h | $(DEPS_TEST)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_COMMON) $(CFLAGS) -c $< -o $@
 

@@ -1,13 +1,14 @@
 # config.mk: every variable the experiment targets share, in one place
-# (included by the top Makefile before experiments/*.mk). Each can be set on
-# the command line, e.g. `make reproduce-table SIZE=256x192 SEEDS=3`.
+# (included by the top Makefile before experiments/study.mk and
+# experiments/studies.mk). Each can be set on the command line, e.g.
+# `make reproduce-table SIZE=256x192 SEEDS=3`. One name per knob: SIZE,
+# SEEDS, SCENE, PHOTONS, NNS, REF mean the same for every study target; a
+# name a target does not read is refused (below), never silently ignored.
 
 RESULTS ?= results
 SCENE ?= scenes/cornell.scene
 # image size and samples: the paper's 1024x768 with 2x2 subpixels
 SIZE ?= 1024x768
-WIDTH ?= $(word 1,$(subst x, ,$(SIZE)))
-HEIGHT ?= $(word 2,$(subst x, ,$(SIZE)))
 SUBPIXELS ?= 2
 # the paper's grid: emitted photons P_e x nearest photons n x both methods
 PHOTONS ?= 50000 100000 500000
@@ -16,79 +17,107 @@ METHODS ?= conventional precomputed
 # radiance estimates: paper = the paper's estimator (renderer default);
 # corrected = the renderer's --bias-correction
 ESTIMATES ?= paper corrected
-# every cell is rendered once per seed (--seed 1..SEEDS, or the list
-# SEED_LIST); the seeds are also the timing repeats
+# every cell is rendered once per seed (--seed 1..SEEDS); the seeds are also
+# the timing repeats
 SEEDS ?= 5
-SEED_LIST ?= $(shell seq 1 $(SEEDS))
 # threads per render: 1 as in the paper; empty: all cores (--threads 0)
 THREADS ?= 1
 # the renderer the runs use (copy build/photonmap aside to pin it during a
 # long run; a file PM.commit beside the copy is quoted as its provenance)
 PM ?= $(BUILD)/photonmap
-# a variant: extra render options PM_ARGS, runs in their own directory TAG;
-# CONV_RUNROOT is where the conventional runs that the precomputed ones are
-# compared with live (default: the same directory)
+# a variant of Table 1: extra render options PM_ARGS, runs in their own
+# directory TAG; CONV_RUNROOT is where the conventional runs that the
+# precomputed ones are compared with live (default: the same directory)
 TAG ?=
 PM_ARGS ?=
+CONV_RUNROOT ?=
 # the reference EXR of the error columns (default: the POV-Ray render of the
-# scene at SIZE in reference/, experiments/findref.sh); REF_FAST: the
+# scene at SIZE in reference/SCENE/, experiments/findref.sh); REF_FAST: the
 # fast-quality POV-Ray render whose error against the reference is the
 # reference's floor (default: found beside the default reference)
 REF ?=
 REF_FAST ?=
-# outputs
-TABLE ?= $(RESULTS)/table1$(TAG_SUFFIX)
-RUNS_CSV ?= $(RESULTS)/runs$(TAG_SUFFIX).csv
-CELLS_CSV ?= $(RESULTS)/cells$(TAG_SUFFIX).csv
-EQUAL_ERROR ?= $(RESULTS)/equal-error$(TAG_SUFFIX)
 # equal-error speed-up: relMSE targets ("auto": five inside the range both
-# methods' fronts reach), the time it compares (cpu_s: user+system CPU
-# seconds of the process, robust on a shared machine with one thread;
-# total_s: the renderer's wall clock), bootstrap resamples (also for the
-# table's ratio intervals) and the bootstrap's random seed
+# methods' fronts reach); TIME: the time every study compares (cpu_s:
+# user+system CPU seconds of the process, robust on a shared machine with
+# one thread; total_s: the renderer's wall clock); bootstrap resamples (also
+# for the table's ratio intervals) and the bootstrap's random seed
 EE_TARGETS ?= auto
-EE_TIME ?= $(if $(filter 1,$(strip $(THREADS))),cpu_s,total_s)
+TIME ?= $(if $(filter 1,$(strip $(THREADS))),cpu_s,total_s)
 BOOTSTRAP ?= 2000
 BOOTSTRAP_SEED ?= 1
 # the analysis layer runs on Debian's python3 (numpy, scipy, pandas, OIIO)
 PYTHON ?= /usr/bin/python3
 
-# derived names (not settings)
+# where each study writes (results/README.md is the index)
 TAG_SUFFIX = $(if $(strip $(TAG)),-$(strip $(TAG)))
+TABLE1_DIR = $(RESULTS)/table1
+TABLE = $(TABLE1_DIR)/table1$(TAG_SUFFIX)
+RUNS_CSV = $(TABLE1_DIR)/runs$(TAG_SUFFIX).csv
+CELLS_CSV = $(TABLE1_DIR)/cells$(TAG_SUFFIX).csv
+EQUAL_ERROR = $(TABLE1_DIR)/equal-error$(TAG_SUFFIX)
+REP_DIR = $(RESULTS)/rep-study
+REP_STUDY = $(REP_DIR)/rep-study
+CAUSTIC = $(RESULTS)/caustic/caustic
+RES_DIR = $(RESULTS)/resolution
+SCENES_DIR = $(RESULTS)/scenes
+BIAS_OUT = $(RESULTS)/estimator-bias/estimator-bias
+STABILITY_DIR = $(RESULTS)/stability
+FIGURES = $(RESULTS)/figures
+
+# derived names (not settings)
 T_ARG = $(if $(strip $(THREADS)),$(strip $(THREADS)),0)
 T_LABEL = $(if $(strip $(THREADS)),t$(strip $(THREADS)),tall)
 SCENE_NAME = $(basename $(notdir $(SCENE)))
-RUNROOT = $(RESULTS)/runs/$(SCENE_NAME)-$(WIDTH)x$(HEIGHT)-s$(SUBPIXELS)-$(T_LABEL)$(TAG_SUFFIX)
-CONV_RUNROOT ?= $(RUNROOT)
-REF_FILE = $(or $(REF),$(shell bash experiments/findref.sh $(WIDTH)x$(HEIGHT) $(SCENE)))
-REF_FAST_FILE = $(or $(REF_FAST),$(if $(REF),,$(shell bash experiments/findref.sh --fast $(WIDTH)x$(HEIGHT) $(SCENE))))
+WIDTH = $(call size_w,$(SIZE))
+HEIGHT = $(call size_h,$(SIZE))
+REF_FILE = $(or $(REF),$(shell bash experiments/findref.sh $(SIZE) $(SCENE)))
+REF_FAST_FILE = $(or $(REF_FAST),$(if $(REF),,$(shell bash experiments/findref.sh --fast $(SIZE) $(SCENE))))
 
-# REPEATS is gone: the seeds are the repeats
-ifneq ($(origin REPEATS),undefined)
-$(error REPEATS was replaced by SEEDS: every seed is a timed run (make reproduce-table SEEDS=$(REPEATS)))
-endif
+# names that are gone: each is refused with the one that replaced it
+config_renamed := REPEATS=SEEDS SEED_LIST=SEEDS WIDTH=SIZE HEIGHT=SIZE EE_TIME=TIME FIG_TIME=TIME \
+  SCENES_SIZE=SIZE SCENES_SEEDS=SEEDS CAUSTIC_SIZE=SIZE CAUSTIC_SEEDS=SEEDS CAUSTIC_PHOTONS=PHOTONS \
+  CAUSTIC_NNS=NNS CAUSTIC_SCENE=SCENE CAUSTIC_REF=REF RES_SEEDS=SEEDS REP_SEEDS=SEEDS BIAS_SEEDS=SEEDS \
+  BIAS_SIZE=SIZE BIAS_NNS=NNS BIAS_PHOTONS=PHOTONS BIAS_SCENE=SCENE BIAS_DIR=RESULTS
+$(foreach r,$(config_renamed),$(if $(filter command line environment,$(origin $(word 1,$(subst =, ,$(r))))),\
+  $(error $(word 1,$(subst =, ,$(r))) is gone: every study target reads $(word 2,$(subst =, ,$(r))) (e.g. make scenes SIZE=128x96 SEEDS=2))))
 
-# make resolution
+# make resolution: every size of RES_SIZES (SIZE given on the command line:
+# that size only), cheapest settings per relMSE target of RES_TARGETS, against
+# our converged reference per size (RES_REF=ours) or the POV-Ray one where
+# reference/ has one (RES_REF=pov); the converged reference: RES_REF_PHOTONS
+# photons, n = RES_REF_NN, --seed RES_REF_SEED (one no grid uses)
 RES_SIZES ?= 256x192 512x384 1024x768
 RES_TARGETS ?= 0.05 0.03 0.02 0.015 0.01 0.0075
 RES_REF_PHOTONS ?= 2000000
 RES_REF_NN ?= 200
-RES_SEEDS ?= $(SEEDS)
 RES_REF ?= ours
-# the reference's --seed: one no grid uses (photon i of seed s is the same
-# path whatever P_e, so a reference rendered with a grid seed would share its
-# first photons with that seed's renders and flatter their error)
 RES_REF_SEED ?= 1000000
-# where our high-photon reference renders go, one <WxH>.exr per size
-RES_REF_DIR = $(RESULTS)/runs/$(SCENE_NAME)-refhigh-p$(RES_REF_PHOTONS)-n$(RES_REF_NN)-s$(SUBPIXELS)-seed$(RES_REF_SEED)
 
 # make scenes: every scene's grid at a smaller size, against our own
-# converged render of it (RES_REF_PHOTONS, RES_REF_NN); SCENES_CELL is the
-# (P_e, n) of the difference images
+# converged render of it; SCENES_CELL is the (P_e, n) of the difference images
 SCENES ?= $(filter-out scenes/furnace.scene,$(wildcard scenes/*.scene))
-SCENES_SIZE ?= 512x384
-SCENES_SEEDS ?= 3
 SCENES_CELL ?= p100000-n50
+
+# the studies' own defaults of the common knobs: SIZE, SEEDS, SCENE, PHOTONS
+# and NNS given on the command line apply to every study target
+# (`make scenes SIZE=128x96`); without them each study uses these
+scenes_size_default := 512x384
+scenes_seeds_default := 3
+# rep-study: 3 seeds per rule (the slopes are fitted over every seed's
+# render, and a rule's cost varies little from seed to seed): about 10 minutes
+rep_seeds := 3
+# caustic: scenes/caustic.scene (the glass sphere lifted so its caustic is in view)
+caustic_scene := $(wildcard scenes/caustic.scene)
+caustic_size := 128x96
+caustic_seeds := 5
+caustic_nns := 10 100
+# estimator-bias: the analytic scene, every n, method and estimate
+bias_scene := scenes/furnace.scene
+bias_size := 48x36
+bias_seeds := 60
+bias_photons := 50000
+bias_nns := 2 3 5 10 20 50 100 200
 
 # make figures (experiments/figures.mk): drawn from the grid's TABLE.csv,
 # RUNS_CSV and CELLS_CSV (their size, seeds, reference) and the renders
@@ -97,16 +126,14 @@ SCENES_CELL ?= p100000-n50
 # seed whose images are shown; FIG3_CROP: the 1:1 crop WxH+X+Y, given for
 # FIG3_CROP_AT and scaled to the grid's size; FIG_ERROR_BLOCK: the error
 # maps' block size in pixels; FIG_REF: the reference (empty: the one in
-# CELLS_CSV); FIG_TIME: the time shown (cpu_s or total_s).
-FIGURES ?= $(RESULTS)/figures
+# CELLS_CSV). The time shown is TIME.
 FIG3_CELLS ?= 50000:10 100000:100 500000:100 50000:100 500000:10
 FIG3_PAPER_CELLS ?= 3
-FIG_SEED ?= $(firstword $(SEED_LIST))
+FIG_SEED ?= 1
 FIG3_CROP ?= 384x288+150+440
 FIG3_CROP_AT ?= 1024x768
 FIG_ERROR_BLOCK ?= 2
 FIG_REF ?=
-FIG_TIME ?= $(EE_TIME)
 # Figure 2: one precomputed render of SCENE at WIDTHxHEIGHT with
 # --dump-reps (P_e FIG2_PHOTONS, n FIG2_NN, seed FIG_SEED); the plane drawn
 # (FIG2_PLANE: the normal axis, at that coordinate's minimum: z = the back
@@ -116,46 +143,18 @@ FIG2_PHOTONS ?= 50000
 FIG2_NN ?= 10
 FIG2_PLANE ?= z
 FIG2_WINDOW ?= -0.4 0.2 1.0 1.45
-FIG2_DIR = $(RESULTS)/runs/fig2-$(SCENE_NAME)-$(WIDTH)x$(HEIGHT)-s$(SUBPIXELS)-p$(FIG2_PHOTONS)-n$(FIG2_NN)-seed$(FIG_SEED)
+FIG2_DIR = $(RESULTS)/runs/fig2-$(SCENE_NAME)-$(SIZE)-s$(SUBPIXELS)-p$(FIG2_PHOTONS)-n$(FIG2_NN)-seed$(FIG_SEED)
 
-# make rep-study (experiments/repstudy.mk): the representative rules run
-# besides the renderer's default (everyK: --rep-every K; countN: --rep-count
-# N; shared: --rep-tree shared), precomputed only, paper estimate, REP_SEEDS
-# seeds each, compared with the untagged grid's conventional renders;
-# outputs REP_STUDY.md, .csv, -cells.csv and FIGURES/rep-study.png.
+# make rep-study: the representative rules run besides the renderer's
+# default (everyK: --rep-every K; countN: --rep-count N; shared: --rep-tree
+# shared), each a variant of Table 1 (experiments/studies.mk).
 # count1100000: the fixed count that fits the paper's slopes (rep-study.md)
 REP_RULES ?= every1 every2 every8 every16 shared count1100000
-# 3 seeds per rule (the slopes are fitted over every seed's render, and a
-# rule's cost varies little from seed to seed): about 10 minutes
-REP_SEEDS ?= 3
-REP_STUDY ?= $(RESULTS)/rep-study
 
-# make caustic (experiments/caustic.mk): the Figure 3 cells' photon counts
-# and n on the caustic scene (the glass sphere lifted so its caustic is in
-# view; scenes/caustic.scene if there is one, else reference/caustic.scene)
-# at CAUSTIC_SIZE, both methods and ESTIMATES, CAUSTIC_SEEDS seeds; the
-# caustic window CAUSTIC_WINDOW given at CAUSTIC_WINDOW_AT
-# (tests/povray.test.sh); reference CAUSTIC_REF (default: the POV-Ray render
-# of that scene and size in reference/); outputs CAUSTIC.md, .csv,
-# CAUSTIC-{runs,cells,table1}.* and FIGURES/caustic.png
-CAUSTIC_SCENE ?= $(firstword $(wildcard scenes/caustic.scene reference/caustic.scene))
-CAUSTIC_SIZE ?= 128x96
-CAUSTIC_PHOTONS ?= 50000 100000 500000
-CAUSTIC_NNS ?= 10 100
-CAUSTIC_SEEDS ?= 5
+# make caustic: the caustic window CAUSTIC_WINDOW given at CAUSTIC_WINDOW_AT
+# (tests/povray.test.sh)
 CAUSTIC_WINDOW ?= 24x20+52+76
 CAUSTIC_WINDOW_AT ?= 128x96
-CAUSTIC_REF ?=
-CAUSTIC ?= $(RESULTS)/caustic
-
-# make estimator-bias: the analytic scene, every n, method and estimate
-BIAS_SCENE ?= scenes/furnace.scene
-BIAS_NNS ?= 2 3 5 10 20 50 100 200
-BIAS_SEEDS ?= 60
-BIAS_PHOTONS ?= 50000
-BIAS_SIZE ?= 48x36
-BIAS_DIR ?= $(RESULTS)/runs/estimator-bias
-BIAS_OUT ?= $(RESULTS)/estimator-bias
 
 # make bench
 BENCH_BIN := $(BUILD)/bench/bench

@@ -7,7 +7,8 @@
 #   sbatch build/slurm/sweep.sbatch
 #
 # The work is in experiments/slurm.sh; this file only hands it the make
-# variables of the command line (NAME=VALUE, one per line, as typed), so
+# variables of the command line (NAME=VALUE, one per line, as typed, written
+# by the recipe's shell, so that `make -n sweep-slurm` writes nothing), so
 # that every task expands its target exactly as this make would. Variables:
 # experiments/config.mk (TASKS, SWEEP, SLURM_DIR, SBATCH_OPTS).
 
@@ -22,7 +23,13 @@ sweep-slurm-nothing:
 $(SLURM_DIR):
 	@mkdir -p $@
 
+# the make a task runs (not written as $(MAKE) in the recipe: make would run
+# that line under -n)
+SLURM_MAKE = $(MAKE)
+# shell_quote TEXT: TEXT as one single-quoted shell word
+shell_quote = '$(subst ','\'',$(1))'
 sweep-slurm: all | $(SLURM_DIR)
-	$(file >$(SLURM_DIR)/make-vars)$(foreach v,$(SLURM_PASS_VARS),$(file >>$(SLURM_DIR)/make-vars,$(v)=$(value $(v))))
-	@SLURM_DIR=$(SLURM_DIR) REPO=$(CURDIR) MAKE_CMD="$(MAKE)" TASKS="$(TASKS)" SWEEP="$(SWEEP)" \
+	@$(if $(strip $(SLURM_PASS_VARS)),printf '%s\n' $(foreach v,$(SLURM_PASS_VARS),$(call shell_quote,$(v)=$(value $(v)))),:) > $(SLURM_DIR)/make-vars.tmp
+	@mv $(SLURM_DIR)/make-vars.tmp $(SLURM_DIR)/make-vars
+	@SLURM_DIR=$(SLURM_DIR) REPO=$(CURDIR) MAKE_CMD="$(SLURM_MAKE)" TASKS="$(TASKS)" SWEEP="$(SWEEP)" \
 	  SBATCH_OPTS="$(SBATCH_OPTS)" bash experiments/slurm.sh

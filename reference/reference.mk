@@ -1,5 +1,6 @@
 # reference.mk: `make reference` renders the POV-Ray references in
-# reference/ (see reference/README.md). Each NAME gets NAME.pov (the exported
+# reference/SCENE/ (see reference/README.md; SCENE is the first word of
+# NAME, e.g. reference/cornell/cornell-fast-128x96.*). Each NAME gets NAME.pov (the exported
 # scene), NAME.exr (linear half-float RGB) and NAME.log (versions, commands,
 # POV-Ray's own statistics). POV-Ray runs single-threaded (+WT1, bit-
 # reproducible) at 2W x 2H without antialiasing; oiiotool's box filter then
@@ -13,17 +14,18 @@ REF_DIR := reference
 REF_TMP := $(BUILD)/reference
 REF_SCENE := scenes/cornell.scene
 REF_POVRAY_FLAGS := +FE -A -J +WT1 -D -V +GS
-# ref_render NAME, SCENE, W, H, F, EXPORT-FLAGS, FIXUP: the rules for one reference,
+# ref_render NAME, SCENE, W, H, F, EXPORT-FLAGS: the rules for one reference,
 # rendered at F*W x F*H and box-filtered by F (F = 2: the renderer's default
-# 2x2 subpixels; F = 1: one centre sample per pixel); FIXUP, if any, edits the exported SDL
+# 2x2 subpixels; F = 1: one centre sample per pixel)
+# ref_path NAME: reference/SCENE/NAME (no extension)
+ref_path = $(REF_DIR)/$(firstword $(subst -, ,$(1)))/$(1)
 define ref_render
-$(REF_DIR)/$(1).pov: $(2) renderer/povray.c $(BUILD)/photonmap scripts/pov-nocaustic.sh
+$(call ref_path,$(1)).pov: $(2) renderer/povray.c $(BUILD)/photonmap
 	@mkdir -p $(REF_TMP)
 	$(BUILD)/photonmap export-pov $(2) --width $$$$(($(3) * $(5))) --height $$$$(($(4) * $(5))) $(6) -o $(REF_TMP)/$(1).pov
-	$(7)
 	@if cmp -s $(REF_TMP)/$(1).pov $$@; then echo "$$@ unchanged"; else mv $(REF_TMP)/$(1).pov $$@; fi
 
-$(REF_DIR)/$(1).exr: $(REF_DIR)/$(1).pov
+$(call ref_path,$(1)).exr: $(call ref_path,$(1)).pov
 	@mkdir -p $(REF_TMP)
 	{ echo "reference $(1): $(3)x$(4), rendered at $$$$(($(3) * $(5)))x$$$$(($(4) * $(5))) and box-downsampled by $(5)"; \
 	  echo "export: build/photonmap export-pov $(2) --width $$$$(($(3) * $(5))) --height $$$$(($(4) * $(5))) $(6)"; \
@@ -36,7 +38,7 @@ $(REF_DIR)/$(1).exr: $(REF_DIR)/$(1).pov
 	  +W$$$$(($(3) * $(5))) +H$$$$(($(4) * $(5))) $(REF_POVRAY_FLAGS) >> $(REF_TMP)/$(1).log 2>&1 || \
 	  { tail -n 20 $(REF_TMP)/$(1).log; exit 1; }
 	oiiotool $(REF_TMP)/$(1)-raw.exr --resize:filter=box $(3)x$(4) -d half -o $(REF_TMP)/$(1).exr
-	grep -v -e '^  *[0-9.]*%' -e 'Rendered [0-9]* of' -e 'cannot open the user configuration' $(REF_TMP)/$(1).log > $(REF_DIR)/$(1).log
+	grep -v -e '^  *[0-9.]*%' -e 'Rendered [0-9]* of' -e 'cannot open the user configuration' $(REF_TMP)/$(1).log > $(call ref_path,$(1)).log
 	mv $(REF_TMP)/$(1).exr $$@
 endef
 
@@ -50,10 +52,11 @@ REF_LARGE := cornell-reference-1024x768 cornell-fast-1024x768
 # sample rays and either surface is a valid hit)
 $(eval $(call ref_render,cornell-direct-129x96,$(REF_SCENE),129,96,3,--no-radiosity --no-photons,))
 $(eval $(call ref_render,cornell-fast-128x96,$(REF_SCENE),128,96,2,--quality fast,))
-# negative control: the glass caustic missing (scripts/pov-nocaustic.sh)
-$(eval $(call ref_render,cornell-nocaustic-128x96,$(REF_SCENE),128,96,2,--quality fast,\
-  bash scripts/pov-nocaustic.sh $(REF_TMP)/cornell-nocaustic-128x96.pov $(REF_SCENE) 256 192 > $(REF_TMP)/nc.pov && \
-  mv $(REF_TMP)/nc.pov $(REF_TMP)/cornell-nocaustic-128x96.pov))
+# negative control: the glass caustic missing (the glass no photon target,
+# its shadow kept by the shadow-only proxy), an option of the exporter
+# (export-pov --no-glass-caustics; its SDL is reference/cornell/cornell-nocaustic-128x96.pov)
+REF_NOCAUSTIC := --no-glass-caustics
+$(eval $(call ref_render,cornell-nocaustic-128x96,$(REF_SCENE),128,96,2,--quality fast $(REF_NOCAUSTIC),))
 $(eval $(call ref_render,cornell-fast-16x12,$(REF_SCENE),16,12,2,--quality fast,))
 $(eval $(call ref_render,cornell-direct-256x192,$(REF_SCENE),256,192,2,--no-radiosity --no-photons,))
 $(eval $(call ref_render,cornell-fast-256x192,$(REF_SCENE),256,192,2,--quality fast,))
@@ -71,9 +74,7 @@ $(eval $(call ref_render,cornell-fast-1024x768,$(REF_SCENE),1024,768,1,--quality
 REF_CAUSTIC := scenes/caustic.scene
 $(eval $(call ref_render,caustic-fast-128x96,$(REF_CAUSTIC),128,96,2,--quality fast,))
 $(eval $(call ref_render,caustic-reference-128x96,$(REF_CAUSTIC),128,96,2,--quality reference,))
-$(eval $(call ref_render,caustic-nocaustic-128x96,$(REF_CAUSTIC),128,96,2,--quality fast,\
-  bash scripts/pov-nocaustic.sh $(REF_TMP)/caustic-nocaustic-128x96.pov $(REF_CAUSTIC) 256 192 > $(REF_TMP)/nc.pov && \
-  mv $(REF_TMP)/nc.pov $(REF_TMP)/caustic-nocaustic-128x96.pov))
+$(eval $(call ref_render,caustic-nocaustic-128x96,$(REF_CAUSTIC),128,96,2,--quality fast $(REF_NOCAUSTIC),))
 
 # The scenes that stress the method (scenes/slabs, library, tworooms;
 # reference/README.md, "More scenes"): direct light only for the per-pixel
@@ -96,5 +97,5 @@ $(eval $(call ref_render,tworooms-b2-reference-128x96,scenes/tworooms.scene,128,
 REF_SMALL += $(foreach s,slabs library tworooms,$(s)-direct-129x96 $(s)-fast-128x96 $(s)-reference-128x96) \
              tworooms-b2-fast-128x96 tworooms-b2-reference-128x96
 
-reference-small: $(REF_SMALL:%=$(REF_DIR)/%.exr)
-reference: reference-small $(REF_LARGE:%=$(REF_DIR)/%.exr)
+reference-small: $(foreach n,$(REF_SMALL),$(call ref_path,$(n)).exr)
+reference: reference-small $(foreach n,$(REF_LARGE),$(call ref_path,$(n)).exr)

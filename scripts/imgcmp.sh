@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # imgcmp.sh: compare a test image with a reference image (linear EXR, same
-# size), with oiiotool for pixels and awk for the arithmetic. Modes:
+# size), with oiiotool for pixels and awk for the arithmetic of the pixel
+# and block checks; the error metrics are experiments/analysis/metrics.py's. Modes:
 #
 #   imgcmp.sh pixel TEST REF [REL [MAXBAD]]
 #       Per pixel and channel: bad when |t-r| > REL*r + 1e-4*mean(r)
@@ -13,8 +14,9 @@
 #       the percentile exceeds THRESHOLD (default 0.15), or, when
 #       IMGCMP_MEAN_TOL=T is set, when a channel-mean ratio is outside 1 +- T.
 #   imgcmp.sh stats TEST REF [MASK]
-#       Prints relMSE = mean (t-r)^2/(r^2+0.01), RMSE and PSNR (peak = max r)
-#       over all pixels, or over the pixels where MASK's first channel > 0.5.
+#       Prints relMSE, RMSE and PSNR as experiments/analysis/metrics.py
+#       defines them (its docstring), PSNR with peak = the reference's
+#       maximum, over all pixels or those where MASK has a non-zero channel.
 #
 # IMGCMP_CUT=WxH+X+Y (environment) restricts every mode to that window of
 # both images (e.g. the caustic's region).
@@ -97,21 +99,21 @@ block)
     }'
   ;;
 stats)
+  # the metrics of experiments/analysis/metrics.py (their one definition),
+  # PSNR with the reference's peak; on the IMGCMP_CUT window if set
   mask=${1:-}
-  if [ -n "$mask" ]; then
-    [ "$(size "$mask")" = "$st" ] || die "mask size differs: $mask"
-    masked() { dump "$mask"; }
-  else
-    masked() { dump "$ref_img" | awk '{ print $1, $2, 1, 1, 1 }'; }
-  fi
-  paste -d' ' <(dump "$test_img") <(dump "$ref_img") <(masked) | awk '
-    $13 > 0.5 { n++; for (c = 0; c < 3; c++) { t = $(3 + c); r = $(8 + c); d = t - r
-                 rel += d * d / (r * r + 0.01); se += d * d; if (r > peak) peak = r } }
-    END {
-      if (n == 0) { print "no pixels in the mask"; exit 2 }
-      mse = se / (3 * n); rmse = sqrt(mse); psnr = (mse > 0) ? 10 * log(peak * peak / mse) / log(10) : 99
-      printf "stats: pixels %d relMSE %.6g RMSE %.6g PSNR %.2f dB\n", n, rel / (3 * n), rmse, psnr
-    }'
+  if [ -n "$mask" ]; then [ "$(size "$mask")" = "$st" ] || die "mask size differs: $mask"; fi
+  cut() { # IMAGE -> a float copy (of the window) in WORK
+    local out="$WORK/s$NDUMP.$RANDOM.exr" c=(); NDUMP=$((NDUMP + 1))
+    [ -n "${IMGCMP_CUT:-}" ] && c=(--cut "$IMGCMP_CUT" --origin +0+0)
+    oiiotool -i "$1" "${c[@]}" -d float -o "$out" 2>/dev/null || die "$1: oiiotool failed"
+    echo "$out"
+  }
+  args=("$(cut "$test_img")" "$(cut "$ref_img")" --peak max --csv)
+  [ -n "$mask" ] && args+=(--mask "$(cut "$mask")")
+  line=$(cd "$(dirname "$0")/.." && "${PYTHON:-/usr/bin/python3}" -m experiments.analysis.metrics "${args[@]}") || exit 2
+  IFS=, read -r rel rmse psnr n _ <<< "$line"
+  printf 'stats: pixels %d relMSE %s RMSE %s PSNR %.2f dB\n' "$n" "$rel" "$rmse" "$psnr"
   ;;
 *) die "unknown mode '$mode' (pixel, block or stats)" ;;
 esac

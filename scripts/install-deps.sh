@@ -1,34 +1,57 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages photonmap needs, only those missing.
-# Idempotent; `make` runs it once (stamp: build/.deps-stamp).
+# Installs the Debian 12 packages photonmap needs, by tier, only those
+# missing; idempotent. The Makefile runs each tier once, when a target
+# needs it, and stamps it (build/.deps-TIER):
+#   build    the compiler, OpenEXR and libpng: a plain `make`
+#   test     what `make test`, the experiments and `make bench` add: clang and
+#            its sanitizer/libFuzzer runtimes, POV-Ray, OpenImageIO, Python
+#            with numpy/scipy/pandas/matplotlib/OIIO/pytest, valgrind, perf,
+#            /usr/bin/time, nanoflann and FLANN (make bench)
+#   cluster  a private single-node Slurm (tests/slurm.test.sh)
+#
+#   bash scripts/install-deps.sh [build] [test] [cluster]    (no argument: all three)
+# Exit status: 0, 1 when packages are missing and cannot be installed (not
+# root, no sudo), 2 on an unknown tier.
 set -euo pipefail
 
-PACKAGES=(
-  build-essential clang pkg-config
-  libopenexr-dev libpng-dev         # EXR via OpenEXR's C API, PNG previews
-  openimageio-tools                 # idiff, oiiotool: image diffs and composites
-  povray                            # POV-Ray 3.7: the independent reference
-  gnuplot-nox                       # plots
-  libnanoflann-dev                  # benchmark comparison (C++ header-only)
-  libflann-dev                      # benchmark comparison: FLANN (KDTreeSingleIndex)
-  libclang-rt-14-dev                # sanitizer and libFuzzer runtimes for clang
-  time                              # /usr/bin/time: CPU seconds of every table cell
-  valgrind linux-perf python3       # make bench: instruction counts, profile, JSON
-  python3-numpy python3-scipy       # statistics of the experiments (CIs, bootstrap, fits)
-  python3-pandas python3-matplotlib # tables and figures
-  python3-openimageio               # EXR pixels in the analysis (OpenImageIO's Python binding)
-  slurmctld slurmd slurm-client munge  # tests/slurm.test.sh: a private single-node Slurm for make sweep-slurm
-)
+tier_packages() { # TIER: its packages, one word each
+  case $1 in
+    build) echo build-essential pkg-config \
+                libopenexr-dev libpng-dev ;;       # EXR via OpenEXR's C API, PNG previews
+    test) echo clang libclang-rt-14-dev \
+               openimageio-tools \
+               povray \
+               time \
+               valgrind linux-perf libnanoflann-dev libflann-dev \
+               python3 python3-numpy python3-scipy python3-pandas python3-matplotlib \
+               python3-openimageio python3-pytest ;;
+    # clang + runtimes: the CI's second compiler, the sanitizer build, libFuzzer;
+    # oiiotool/idiff: image diffs; POV-Ray 3.7: the independent reference;
+    # /usr/bin/time: CPU seconds of every render; valgrind, perf, nanoflann:
+    # make bench; Python: the analysis package and its pytest tests
+    cluster) echo slurmctld slurmd slurm-client munge ;;
+    *) echo "install-deps: unknown tier '$1' (build, test or cluster)" >&2; return 2 ;;
+  esac
+}
+
+tiers=("$@")
+[ ${#tiers[@]} -gt 0 ] || tiers=(build test cluster)
+packages=()
+for t in "${tiers[@]}"; do
+  words=$(tier_packages "$t") || exit 2
+  read -r -a w <<< "$words"
+  packages+=("${w[@]}")
+done
 
 missing=()
-for p in "${PACKAGES[@]}"; do
+for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if [ ${#missing[@]} -eq 0 ]; then
-  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  echo "install-deps: ${tiers[*]}: all ${#packages[@]} packages present"
   exit 0
 fi
-echo "install-deps: installing ${missing[*]}"
+echo "install-deps: ${tiers[*]}: installing ${missing[*]}"
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then
   if command -v sudo >/dev/null 2>&1; then SUDO=sudo; else

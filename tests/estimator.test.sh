@@ -13,9 +13,9 @@ cd "$(dirname "$0")/.."
 R=$TMP/results
 NNS="3 5 10"
 SEEDS=8
-make -s -j2 estimator-bias-runs RESULTS="$R" BIAS_NNS="$NNS" BIAS_SEEDS=$SEEDS BIAS_PHOTONS=40000 BIAS_SIZE=48x36 \
+make -s -j2 estimator-bias-runs RESULTS="$R" NNS="$NNS" SEEDS=$SEEDS PHOTONS=40000 SIZE=48x36 \
   > "$TMP/runs.log" 2>&1 || { echo "renders failed:"; tail -n 20 "$TMP/runs.log"; }
-${PYTHON:-/usr/bin/python3} experiments/analysis/estimator_bias.py --dir "$R/runs/estimator-bias" --nns "$NNS" \
+${PYTHON:-/usr/bin/python3} -m experiments.analysis.estimator_bias --dir "$R/runs/estimator-bias" --nns "$NNS" \
   --seeds $SEEDS --photons 40000 --check > "$TMP/check.log" 2>&1
 while read -r verdict rest; do
   case $verdict in

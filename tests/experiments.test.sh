@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # experiments.test.sh: the experiment layer end to end on a tiny grid
-# (32x24, 2,000-4,000 photons, 3 seeds): build/imgmetrics; `make
+# (32x24, 2,000-4,000 photons, 3 seeds): the metrics command line; `make
 # reproduce-table` (one make target per render, progress lines, refused
 # renders as "not applicable", resume, added seeds, runs.csv / table1.csv
 # columns by name, table1.md, equal-error.md); `make resolution`. A wrapper
@@ -8,8 +8,8 @@
 # or fails (exit 1), so those paths are tested whatever the renderer does.
 cd "$(dirname "$0")/.." || exit 1
 source tests/lib.sh
-IM=build/imgmetrics
 PY=${PYTHON:-/usr/bin/python3}
+IM="$PY -m experiments.analysis.metrics"
 R=$TMP/results
 REAL_PM=$(realpath "$PM")
 ROOT=$R/runs/cornell-32x24-s2-t1
@@ -29,21 +29,21 @@ ARGS=(SIZE=32x24 "PHOTONS=2000 4000" "NNS=10 20" SEEDS=3 ESTIMATES=paper RESULTS
 # pycheck 'CODE': python with pandas as pd, numpy as np, R = the results dir
 pycheck() { R="$R" "$PY" -c "import os, math, numpy as np, pandas as pd; R = os.environ['R']; $1"; }
 
-# imgmetrics on two tiny renders
+# the metrics command line (experiments/analysis/metrics.py) on two tiny renders
 $PM render scenes/cornell.scene --width 16 --height 12 --photons 2000 --nn 10 -o "$TMP/a.exr" --quiet
 $PM render scenes/cornell.scene --width 16 --height 12 --photons 2000 --nn 10 --method precomputed -o "$TMP/b.exr" --quiet
 $PM render scenes/cornell.scene --width 8 --height 6 --photons 2000 --nn 10 -o "$TMP/c.exr" --quiet
-check "imgmetrics: identical images give 0 and inf" \
+check "metrics: identical images give 0 and inf" \
   bash -c "$IM $TMP/a.exr $TMP/a.exr | grep -q '^relmse=0 rmse=0 psnr=inf pixels=192 peak=1$'"
-check "imgmetrics: different images give a positive error, CSV form" \
+check "metrics: different images give a positive error, CSV form" \
   bash -c "$IM $TMP/b.exr $TMP/a.exr --header | awk -F, 'NR==1 && \$0==\"relmse,rmse,psnr,pixels,peak\" {h=1} NR==2 && \$1>0 && \$2>0 && \$3>0 && \$4==192 {v=1} END {exit !(h && v)}'"
-check "imgmetrics: --mask restricts the pixels" \
+check "metrics: --mask restricts the pixels" \
   bash -c "$IM $TMP/b.exr $TMP/a.exr --mask $TMP/a.exr | grep -q 'pixels=1[0-9][0-9] '"
-check "imgmetrics: --peak max uses the reference maximum" \
+check "metrics: --peak max uses the reference maximum" \
   bash -c "$IM $TMP/b.exr $TMP/a.exr --peak max | grep -qv 'peak=1$'"
-check "imgmetrics: size mismatch is an error" \
+check "metrics: size mismatch is an error" \
   expect_exit 2 "size mismatch" $IM "$TMP/a.exr" "$TMP/c.exr"
-check "imgmetrics: missing file is an error" expect_exit 2 "nonexistent" $IM "$TMP/a.exr" /nonexistent.exr
+check "metrics: missing file is an error" expect_exit 2 "nonexistent" $IM "$TMP/a.exr" /nonexistent.exr
 
 # a reference and a "fast reference" of the tiny size: two high-photon renders
 $PM render scenes/cornell.scene --width 32 --height 24 --photons 40000 --nn 100 -o "$TMP/ref.exr" --quiet
@@ -61,7 +61,7 @@ check "reproduce-table: one directory per cell, one record per render, no tempor
 check "reproduce-table: each render has its own seed, corrected renders add --bias-correction only" \
   bash -c "grep -q -- '--nn 10 --seed 3 ' $TMP/pm.log && ! grep -q -- '--bias-correction' $TMP/pm.log"
 check "runs.csv: one row per render, the columns by name, refused renders not applicable" pycheck '
-r = pd.read_csv(f"{R}/runs.csv")
+r = pd.read_csv(f"{R}/table1/runs.csv")
 need = ["scene", "size", "subpixels", "threads", "tag", "method", "estimate", "photons", "nn", "seed", "rep_every",
         "trace_s", "build_s", "precompute_s", "render_s", "total_s", "cpu_s", "photons_stored", "representatives",
         "empty_estimates", "relmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "exit", "status"]
@@ -77,13 +77,13 @@ conv = ok["method"] == "conventional"
 assert (ok.loc[conv, "relmse_conv"] == 0).all() and (ok.loc[~conv, "relmse_conv"] > 0).all()
 assert (ok.loc[~conv, "representatives"] > 0).all() and (ok["photons_stored"] > 0).all()
 '
-check "runs.csv: relmse_ref of a render equals build/imgmetrics on its EXR" \
+check "runs.csv: relmse_ref of a render equals the metrics command line on its EXR" \
   bash -c "want=\$($IM $ROOT/precomputed-paper-p4000-n10/seed2.exr $TMP/ref.exr --csv | cut -d, -f1);
-           got=\$(R=$R $PY -c 'import os, pandas as pd; r = pd.read_csv(os.environ[\"R\"] + \"/runs.csv\");
+           got=\$(R=$R $PY -c 'import os, pandas as pd; r = pd.read_csv(os.environ[\"R\"] + \"/table1/runs.csv\");
 print(r[(r.method == \"precomputed\") & (r.photons == 4000) & (r.nn == 10) & (r.seed == 2)].relmse_ref.iloc[0])');
            awk -v a=\"\$want\" -v b=\"\$got\" 'BEGIN { d = a - b; exit !(d < 1e-6 && d > -1e-6 && a > 0) }'"
 check "table1.csv: a row per (P_e, n, method), error columns by name, bias + variance = mean" pycheck '
-t = pd.read_csv(f"{R}/table1.csv")
+t = pd.read_csv(f"{R}/table1/table1.csv")
 need = ["photons", "nn", "method", "paper_s", "paper_ratio_percent", "total_median_s", "total_min_s", "total_max_s",
         "cpu_median_s", "trace_median_s", "build_median_s", "precompute_median_s", "render_median_s",
         "ratio_percent", "ratio_ci95_lo", "ratio_ci95_hi", "cpu_ratio_percent", "relmse_ref_mean", "relmse_ref_ci95",
@@ -104,22 +104,22 @@ assert (p["relmse_conv_mean"] > 0).all() and t["paper_s"].isna().all()
 '
 check "table1.csv: the reference floor is the fast reference's relMSE" \
   bash -c "want=\$($IM $TMP/fast.exr $TMP/ref.exr --csv | cut -d, -f1);
-           got=\$(R=$R $PY -c 'import os, pandas as pd; print(pd.read_csv(os.environ[\"R\"] + \"/table1.csv\").relmse_ref_floor.iloc[0])');
+           got=\$(R=$R $PY -c 'import os, pandas as pd; print(pd.read_csv(os.environ[\"R\"] + \"/table1/table1.csv\").relmse_ref_floor.iloc[0])');
            awk -v a=\"\$want\" -v b=\"\$got\" 'BEGIN { d = a - b; exit !(d < 1e-6 && d > -1e-6 && a > 0) }'"
 check "table1.md: provenance, the tables, the refusal, no nan" \
-  bash -c "grep -q 'Machine: .*threads per render: 1' $R/table1.md && grep -q 'Commit: ' $R/table1.md &&
-           grep -q 'load average at the start of the renders' $R/table1.md && grep -q 'Seeds: 1 2 3' $R/table1.md &&
-           grep -q '^| 4000 | 10 | n/a | n/a | n/a | [0-9.]* ([0-9.]*-[0-9.]*) | [0-9.]* (' $R/table1.md &&
-           grep -q '^| 2000 | 10 | precomputed | 3 | [0-9.e-]* ± [0-9.e-]* | [0-9.e-]*\\( ≤floor\\)\\? | [0-9.e-]* | [0-9.e-]* ± ' $R/table1.md &&
-           grep -q '^| 2000 | 20 | precomputed | 0 | not applicable' $R/table1.md &&
-           grep -q 'test refusal: precomputed with n=20' $R/table1.md && grep -q '^## What the intervals allow us to say' $R/table1.md &&
-           grep -q 'Reference floor: relMSE of' $R/table1.md && ! grep -qi 'nan' $R/table1.md"
+  bash -c "grep -q 'Machine: .*threads per render: 1' $R/table1/table1.md && grep -q 'Commit: ' $R/table1/table1.md &&
+           grep -q 'load average at the start of the renders' $R/table1/table1.md && grep -q 'Seeds: 1 2 3' $R/table1/table1.md &&
+           grep -q '^| 4000 | 10 | n/a | n/a | n/a | [0-9.]* ([0-9.]*-[0-9.]*) | [0-9.]* (' $R/table1/table1.md &&
+           grep -q '^| 2000 | 10 | precomputed | 3 | [0-9.e-]* ± [0-9.e-]* | [0-9.e-]*\\( ≤floor\\)\\? | [0-9.e-]* | [0-9.e-]* ± ' $R/table1/table1.md &&
+           grep -q '^| 2000 | 20 | precomputed | 0 | not applicable' $R/table1/table1.md &&
+           grep -q 'test refusal: precomputed with n=20' $R/table1/table1.md && grep -q '^## What the intervals allow us to say' $R/table1/table1.md &&
+           grep -q 'Reference floor: relMSE of' $R/table1/table1.md && ! grep -qi 'nan' $R/table1/table1.md"
 check "equal-error: Markdown with fronts and targets, CSV by name" pycheck '
-e = pd.read_csv(f"{R}/equal-error.csv")
+e = pd.read_csv(f"{R}/table1/equal-error.csv")
 need = ["estimate", "relmse_target", "conventional_s", "precomputed_s", "speedup", "speedup_ci95_lo", "speedup_ci95_hi"]
 assert not [c for c in need if c not in e.columns], e.columns
 assert len(e) == 2 and (e["estimate"] == "paper").all() and list(e["relmse_target"]) == [0.1, 0.05], e
-md = open(f"{R}/equal-error.md").read()
+md = open(f"{R}/table1/equal-error.md").read()
 assert "# Speed-up at equal error" in md and "## paper estimate" in md and "| relMSE target |" in md, md
 assert "| 0.1 |" in md and "| 0.05 |" in md and "EE_TARGETS=0.1 0.05" in md, md
 assert "nan" not in md.lower()
@@ -136,7 +136,7 @@ check "reproduce-table: resumes only the missing render" \
 make -s reproduce-table "${ARGS[@]}" SEEDS=4 > "$TMP/grid4.log" 2>&1
 check "reproduce-table: SEEDS=4 adds the fourth seed's renders only" \
   bash -c "[ \$(grep -c '^run .* seed 4: ' $TMP/grid4.log) -eq 8 ] && [ \$(grep -c '^run ' $TMP/grid4.log) -eq 8 ] &&
-           grep -q 'Seeds: 1 2 3 4' $R/table1.md"
+           grep -q 'Seeds: 1 2 3 4' $R/table1/table1.md"
 make -s reproduce-table "${ARGS[@]}" SEEDS=5 FAIL_NN=10 > "$TMP/grid5.log" 2>&1; rc=$?
 check "reproduce-table: a failing render (exit 1) stops make and records nothing" \
   bash -c "[ $rc -ne 0 ] && grep -q 'failed (exit 1)' $TMP/grid5.log && ! ls $ROOT/conventional-paper-p2000-n10/seed5.* 2>/dev/null | grep -q ."
@@ -145,7 +145,7 @@ check "reproduce-table: list-runs names every render's target" \
   bash -c "[ \$(wc -l < $TMP/list.txt) -eq 24 ] &&
            head -n 1 $TMP/list.txt | grep -q 'runs/cornell-32x24-s2-t1/conventional-paper-p2000-n10/seed1.run.json$'"
 check "reproduce-table: REPEATS is refused with the new name" \
-  expect_exit 2 "REPEATS was replaced by SEEDS" make -s reproduce-table "${ARGS[@]}" REPEATS=2
+  expect_exit 2 "REPEATS is gone: every study target reads SEEDS" make -s reproduce-table "${ARGS[@]}" REPEATS=2
 check "reproduce-table: a missing reference named by REF is an error" \
   bash -c "! make -s reproduce-table ${ARGS[*]} REF=$TMP/missing.exr > $TMP/grid6.log 2>&1 && grep -q 'reference .*missing.exr not found' $TMP/grid6.log"
 make -s reproduce-runs "${ARGS[@]}" PM="$PM" ESTIMATES=corrected PHOTONS=2000 NNS=10 SEEDS=1 > "$TMP/corr.log" 2>&1
@@ -156,15 +156,15 @@ check "reproduce-runs: a corrected render runs with --bias-correction, done or n
 make -s reproduce-table "${ARGS[@]}" TAG=v PM_ARGS="--rep-every 2" METHODS=precomputed CONV_RUNROOT="$ROOT" \
   PHOTONS=4000 NNS=10 SEEDS=2 > "$TMP/variant.log" 2>&1
 check "reproduce-table: a variant (TAG, PM_ARGS) in its own directory, compared with CONV_RUNROOT's conventional renders" pycheck '
-r = pd.read_csv(f"{R}/runs-v.csv")
+r = pd.read_csv(f"{R}/table1/runs-v.csv")
 assert sorted(set(r["role"])) == ["comparison", "grid"] and (r.loc[r["role"] == "grid", "tag"] == "v").all(), r
 assert (r.loc[r["role"] == "comparison", "method"] == "conventional").all() and (r["status"] == "ok").all()
 assert (r.loc[r["role"] == "grid", "rep_every"] == 2).all() and (r.loc[r["role"] == "grid", "relmse_conv"] > 0).all()
 assert all(os.path.isdir(p) for p in r.loc[r["role"] == "grid", "run"].map(os.path.dirname)), r["run"]
 assert all("/cornell-32x24-s2-t1-v/" in p for p in r.loc[r["role"] == "grid", "run"])
-t = pd.read_csv(f"{R}/table1-v.csv")
+t = pd.read_csv(f"{R}/table1/table1-v.csv")
 assert len(t) == 1 and t["conv_cpu_median_s"].iloc[0] >= 0 and t["ratio_percent"].iloc[0] > 0, t
-assert os.path.isfile(f"{R}/equal-error-v.md") and os.path.isfile(f"{R}/table1-v.md")
+assert os.path.isfile(f"{R}/table1/equal-error-v.md") and os.path.isfile(f"{R}/table1/table1-v.md")
 '
 # both estimates: a renderer that takes --bias-correction by dropping it (so
 # the corrected images equal the paper's) and refuses it with n = 20
@@ -180,7 +180,7 @@ make -s reproduce-table "${ARGS[@]}" PM="$TMP/pm2" RESULTS="$TMP/r2" "ESTIMATES=
   > "$TMP/est.log" 2>&1
 check "reproduce-table: both estimates, the corrected columns with the suffix _corrected" pycheck '
 R = R.replace("/results", "/r2")
-t = pd.read_csv(f"{R}/table1.csv")
+t = pd.read_csv(f"{R}/table1/table1.csv")
 need = [c + "_corrected" for c in ("relmse_ref_mean", "relmse_ref_ci95", "bias_ref", "variance_ref", "relmse_conv_mean",
                                    "relmse_conv_ci95", "total_median_s")]
 assert not [c for c in need if c not in t.columns], t.columns
@@ -188,25 +188,26 @@ a, b = t[t.nn == 10], t[t.nn == 20]
 assert len(a) == 2 and np.allclose(a.relmse_ref_mean_corrected, a.relmse_ref_mean, rtol=1e-9), t
 assert np.allclose(a.bias_ref_corrected, a.bias_ref, rtol=1e-9) and b.relmse_ref_mean_corrected.isna().all()
 assert (b.seeds_refused_corrected == 2).all() and (b.seeds == 2).all()
-r = pd.read_csv(f"{R}/runs.csv")
+r = pd.read_csv(f"{R}/table1/runs.csv")
 assert len(r) == 16 and (r.status == "refused").sum() == 4
-md = open(f"{R}/table1.md").read()
+md = open(f"{R}/table1/table1.md").read()
 assert "## Error against the reference: corrected estimate" in md and "no --bias-correction with n=20" in md
-assert "corrected vs paper estimate, conventional" in md and "## corrected estimate" in open(f"{R}/equal-error.md").read()
+assert "corrected vs paper estimate, conventional" in md and "## corrected estimate" in open(f"{R}/table1/equal-error.md").read()
 '
 
-make -s resolution "${ARGS[@]}" PM="$PM" SEEDS=2 RES_SIZES="16x12 32x24" RES_REF_PHOTONS=5000 RES_REF_NN=20 \
+make -s resolution "PHOTONS=2000 4000" "NNS=10 20" ESTIMATES=paper RESULTS="$R" BOOTSTRAP=200 "EE_TARGETS=0.1 0.05" \
+  PM="$PM" SEEDS=2 RES_SIZES="16x12 32x24" RES_REF_PHOTONS=5000 RES_REF_NN=20 \
   RES_TARGETS="1 0.000001" > "$TMP/res.log" 2>&1
 check "resolution: table with one row per target and a column per size" \
-  bash -c "grep -q '^| 1 | [a-z]*\./paper, P_e=[24]k, n=[0-9]*: .* | [a-z]*\./paper, P_e=[24]k' $R/resolution.md &&
-           grep -q '^| 1.00e-06 | none in grid | none in grid |$' $R/resolution.md && [ -s $R/resolution/table-16x12.csv ]"
+  bash -c "grep -q '^| 1 | [a-z]*\./paper, P_e=[24]k, n=[0-9]*: .* | [a-z]*\./paper, P_e=[24]k' $R/resolution/resolution.md &&
+           grep -q '^| 1.00e-06 | none in grid | none in grid |$' $R/resolution/resolution.md && [ -s $R/resolution/table-16x12.csv ]"
 # the cross-scene study on two scenes, tiny
-make -s scenes RESULTS="$TMP/sc" SCENES="scenes/cornell.scene scenes/slabs.scene" SCENES_SIZE=32x24 PHOTONS=2000 \
-  NNS="10 20" SCENES_SEEDS=2 RES_REF_PHOTONS=20000 RES_REF_NN=20 SCENES_CELL=p2000-n20 > "$TMP/sc.log" 2>&1
+make -s scenes RESULTS="$TMP/sc" SCENES="scenes/cornell.scene scenes/slabs.scene" SIZE=32x24 PHOTONS=2000 \
+  NNS="10 20" SEEDS=2 RES_REF_PHOTONS=20000 RES_REF_NN=20 SCENES_CELL=p2000-n20 > "$TMP/sc.log" 2>&1
 scenes_ok() {
-  [ -s "$TMP/sc/figures/scenes.png" ] && grep -q '^| cornell | ' "$TMP/sc/scenes.md" && grep -q '^| slabs | ' "$TMP/sc/scenes.md" &&
+  [ -s "$TMP/sc/figures/scenes.png" ] && grep -q '^| cornell | ' "$TMP/sc/scenes/scenes.md" && grep -q '^| slabs | ' "$TMP/sc/scenes/scenes.md" &&
   [ -s "$TMP/sc/scenes/table-slabs.csv" ] && [ -s "$TMP/sc/scenes/equal-error-cornell.csv" ] &&
-  "${PYTHON:-/usr/bin/python3}" -c 'import pandas as pd, sys; d = pd.read_csv(sys.argv[1]); assert list(d.scene) == ["cornell", "slabs"], d; assert (d.diff_seeds == 2).all(), d' "$TMP/sc/scenes.csv"
+  "${PYTHON:-/usr/bin/python3}" -c 'import pandas as pd, sys; d = pd.read_csv(sys.argv[1]); assert list(d.scene) == ["cornell", "slabs"], d; assert (d.diff_seeds == 2).all(), d' "$TMP/sc/scenes/scenes.csv"
 }
 check "scenes: one row per scene, its tables, the difference figure" scenes_ok
 finish

@@ -11,12 +11,14 @@ PY=${PYTHON:-/usr/bin/python3}
 R=$TMP/results
 ARGS=(SIZE=64x48 "PHOTONS=2000 4000" "NNS=10 20" SEEDS=2 RESULTS="$R" PM="$PM" REF="$TMP/ref.exr" BOOTSTRAP=100
       "FIG3_CELLS=2000:10 4000:20 2000:20 4000:10" FIG3_PAPER_CELLS=2 FIG2_PHOTONS=4000 FIG2_NN=10
-      "REP_RULES=every2 count500 shared" REP_SEEDS=2 CAUSTIC_SIZE=32x24 "CAUSTIC_PHOTONS=2000 4000"
-      "CAUSTIC_NNS=10 20" CAUSTIC_SEEDS=2 CAUSTIC_REF="$TMP/caustic-ref.exr")
+      "REP_RULES=every2 count500 shared")
+# the caustic study: its scene and size, the same knobs
+CARGS=(SIZE=32x24 "PHOTONS=2000 4000" "NNS=10 20" SEEDS=2 RESULTS="$R" PM="$PM" REF="$TMP/caustic-ref.exr" BOOTSTRAP=100
+       "FIG3_CELLS=2000:10 4000:20 2000:20 4000:10")
 
 # references of the tiny sizes: high-photon renders
 $PM render scenes/cornell.scene --width 64 --height 48 --photons 40000 --nn 100 -o "$TMP/ref.exr" --quiet
-CS=$(ls scenes/caustic.scene reference/caustic.scene 2>/dev/null | head -n 1)
+CS=scenes/caustic.scene
 $PM render "$CS" --width 32 --height 24 --photons 40000 --nn 100 -o "$TMP/caustic-ref.exr" --quiet
 
 # pngs_ok FILE...: each is a PNG wider than 300 pixels whose pixels are not all one colour
@@ -54,21 +56,21 @@ check "figures: a Figure 3 cell outside the grid: exit non-zero naming it" \
 
 make -s rep-study "${ARGS[@]}" > "$TMP/rep.log" 2>&1; rc=$?
 check "rep-study: exit 0, the report, its CSVs and its figure" \
-  bash -c "[ $rc -eq 0 ] || { tail -n 20 $TMP/rep.log; exit 1; }; [ -s $R/rep-study.md ] && [ -s $R/rep-study.csv ] &&
-           [ -s $R/rep-study-cells.csv ] && [ -s $R/figures/rep-study.png ]"
+  bash -c "[ $rc -eq 0 ] || { tail -n 20 $TMP/rep.log; exit 1; }; [ -s $R/rep-study/rep-study.md ] && [ -s $R/rep-study/rep-study.csv ] &&
+           [ -s $R/rep-study/rep-study-cells.csv ] && [ -s $R/figures/rep-study.png ]"
 check "rep-study: each rule rendered as its own variant (precomputed, paper estimate)" \
-  bash -c "for t in every2 count500 shared; do [ -s $R/runs-rep-\$t.csv ] && [ -s $R/table1-rep-\$t.md ] || exit 1; done &&
+  bash -c "for t in every2 count500 shared; do [ -s $R/rep-study/runs-rep-\$t.csv ] && [ -s $R/rep-study/table1-rep-\$t.md ] || exit 1; done &&
            ! ls -d $R/runs/cornell-64x48-s2-t1-rep-every2/conventional-* 2>/dev/null | grep -q . &&
            ls -d $R/runs/cornell-64x48-s2-t1-rep-shared/precomputed-paper-p2000-n10 >/dev/null"
 check "rep-study: the PNG has content" pngs_ok "$R/figures/rep-study.png"
 check "rep-study.md: the sections, a row per rule, the paper's slopes, no nan" \
-  bash -c "grep -q '^## Which rule reproduces the paper' $R/rep-study.md && grep -q '^| \*\*paper\*\* ' $R/rep-study.md &&
-           grep -q '^| every 4th (default) |' $R/rep-study.md && grep -q '^| every 2nd |' $R/rep-study.md &&
-           grep -q '^| count 500 |' $R/rep-study.md && grep -q '^| shared tree |' $R/rep-study.md &&
-           grep -q 'Note:.* 64x48' $R/rep-study.md && ! grep -qiw 'nan' $R/rep-study.md"
+  bash -c "grep -q '^## Which rule reproduces the paper' $R/rep-study/rep-study.md && grep -q '^| \*\*paper\*\* ' $R/rep-study/rep-study.md &&
+           grep -q '^| every 4th (default) |' $R/rep-study/rep-study.md && grep -q '^| every 2nd |' $R/rep-study/rep-study.md &&
+           grep -q '^| count 500 |' $R/rep-study/rep-study.md && grep -q '^| shared tree |' $R/rep-study/rep-study.md &&
+           grep -q 'Note:.* 64x48' $R/rep-study/rep-study.md && ! grep -qiw 'nan' $R/rep-study/rep-study.md"
 check "rep-study.csv: a fit per rule and P_e, with the paper's slope ratio by name" "$PY" -c "
 import pandas as pd
-f = pd.read_csv('$R/rep-study.csv')
+f = pd.read_csv('$R/rep-study/rep-study.csv')
 need = ['rule', 'photons', 'reps', 'b_prec', 'b_prec_half', 'b_conv', 'slope_ratio', 'slope_ratio_lo', 'slope_ratio_hi',
         'paper_slope_ratio', 'z']
 assert not [c for c in need if c not in f.columns], f.columns
@@ -81,18 +83,18 @@ make -s rep-study "${ARGS[@]}" REP_RULES=every0 > "$TMP/badrule.log" 2>&1; rc=$?
 check "rep-study: an unknown rule is refused naming it" \
   bash -c "[ $rc -ne 0 ] && grep -q \"rule 'every0'\" $TMP/badrule.log"
 
-make -s caustic "${ARGS[@]}" > "$TMP/caustic.log" 2>&1; rc=$?
+make -s caustic "${CARGS[@]}" > "$TMP/caustic.log" 2>&1; rc=$?
 check "caustic: exit 0, report, CSV, its own runs and the figure" \
-  bash -c "[ $rc -eq 0 ] || { tail -n 20 $TMP/caustic.log; exit 1; }; [ -s $R/caustic.md ] && [ -s $R/caustic.csv ] &&
-           [ -s $R/caustic-runs.csv ] && [ -s $R/figures/caustic.png ] && ls -d $R/runs/caustic-32x24-s2-t1 >/dev/null"
+  bash -c "[ $rc -eq 0 ] || { tail -n 20 $TMP/caustic.log; exit 1; }; [ -s $R/caustic/caustic.md ] && [ -s $R/caustic/caustic.csv ] &&
+           [ -s $R/caustic/caustic-runs.csv ] && [ -s $R/figures/caustic.png ] && ls -d $R/runs/caustic-32x24-s2-t1 >/dev/null"
 check "caustic: the PNG has content" pngs_ok "$R/figures/caustic.png"
 check "caustic.md: the window, both estimates, a row per cell, no nan" \
-  bash -c "grep -q 'Caustic window: \`24x20+52+76\` at 128x96' $R/caustic.md && grep -q '6x5 pixels' $R/caustic.md &&
-           grep -q '^## paper estimate' $R/caustic.md && grep -q '^## corrected estimate' $R/caustic.md &&
-           [ \$(grep -c '^| [24]k | [12]0 | 2 |' $R/caustic.md) -eq 8 ] && ! grep -qiw 'nan' $R/caustic.md"
+  bash -c "grep -q 'Caustic window: \`24x20+52+76\` at 128x96' $R/caustic/caustic.md && grep -q '6x5 pixels' $R/caustic/caustic.md &&
+           grep -q '^## paper estimate' $R/caustic/caustic.md && grep -q '^## corrected estimate' $R/caustic/caustic.md &&
+           [ \$(grep -c '^| [24]k | [12]0 | 2 |' $R/caustic/caustic.md) -eq 8 ] && ! grep -qiw 'nan' $R/caustic/caustic.md"
 check "caustic.csv: window metrics by name, the conventional against itself is 0" "$PY" -c "
 import pandas as pd
-c = pd.read_csv('$R/caustic.csv')
+c = pd.read_csv('$R/caustic/caustic.csv')
 need = ['estimate', 'photons', 'nn', 'method', 'seeds', 'win_relmse_ref_mean', 'win_relmse_ref_ci95',
         'win_peak_ratio_mean', 'win_relmse_conv_mean', 'relmse_ref_mean']
 assert not [k for k in need if k not in c.columns], c.columns

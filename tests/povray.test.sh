@@ -57,26 +57,26 @@ check "export-pov: unwritable output exits 1" expect_exit 1 "/nonexistent-dir/a.
 # The committed references were rendered from exactly what export-pov writes now.
 same_export() { # name, W, H, flags...
   local name=$1 w=$2 h=$3; shift 3
-  $PM export-pov $SCENE --width "$w" --height "$h" "$@" -o "$TMP/$name.pov" && cmp "$TMP/$name.pov" "$REF/$name.pov"
+  $PM export-pov $SCENE --width "$w" --height "$h" "$@" -o "$TMP/$name.pov" && cmp "$TMP/$name.pov" "$REF/${name%%-*}/$name.pov"
 }
-check "export-pov reproduces $REF/cornell-direct-129x96.pov" same_export cornell-direct-129x96 387 288 --no-radiosity --no-photons
-check "export-pov reproduces $REF/cornell-fast-128x96.pov" same_export cornell-fast-128x96 256 192 --quality fast
-check "export-pov reproduces $REF/cornell-reference-1024x768.pov" same_export cornell-reference-1024x768 1024 768 --quality reference
+check "export-pov reproduces $REF/cornell/cornell-direct-129x96.pov" same_export cornell-direct-129x96 387 288 --no-radiosity --no-photons
+check "export-pov reproduces $REF/cornell/cornell-fast-128x96.pov" same_export cornell-fast-128x96 256 192 --quality fast
+check "export-pov reproduces $REF/cornell/cornell-reference-1024x768.pov" same_export cornell-reference-1024x768 1024 768 --quality reference
 
 # --- POV-Ray reproduces its committed renders --------------------------------
 pov_rerender() { # name, raw W, raw H, W, H
   local name=$1
-  nice povray +I"$REF/$name.pov" +O"$TMP/$name-raw.exr" +W"$2" +H"$3" +FE -A -J +WT1 -D -V +GS >"$TMP/$name.povlog" 2>&1 ||
+  nice povray +I"$REF/${name%%-*}/$name.pov" +O"$TMP/$name-raw.exr" +W"$2" +H"$3" +FE -A -J +WT1 -D -V +GS >"$TMP/$name.povlog" 2>&1 ||
     { tail -n 5 "$TMP/$name.povlog"; return 1; }
   oiiotool "$TMP/$name-raw.exr" --resize:filter=box "$4x$5" -d half -o "$TMP/$name.exr" &&
-  idiff -fail 0 -warn 0 "$TMP/$name.exr" "$REF/$name.exr"
+  idiff -fail 0 -warn 0 "$TMP/$name.exr" "$REF/${name%%-*}/$name.exr"
 }
 check "POV-Ray re-renders cornell-direct-129x96 bit-identically" pov_rerender cornell-direct-129x96 387 288 129 96
 check "POV-Ray re-renders cornell-fast-16x12 (radiosity, photons) bit-identically" pov_rerender cornell-fast-16x12 32 24 16 12
 
 # --- direct light only, per pixel -------------------------------------------
 $PM render $SCENE "${DIRECT[@]}" -o "$TMP/direct.exr"
-direct_cmp() { "${CMP[@]}" pixel "$1" "$REF/cornell-direct-129x96.exr" "$DIRECT_REL" "$DIRECT_MAXBAD"; }
+direct_cmp() { "${CMP[@]}" pixel "$1" "$REF/cornell/cornell-direct-129x96.exr" "$DIRECT_REL" "$DIRECT_MAXBAD"; }
 check "direct light: ours (shadow rays) = POV-Ray per pixel" direct_cmp "$TMP/direct.exr"
 
 sed "$GREEN_WALL" $SCENE > "$TMP/green.scene"
@@ -90,7 +90,7 @@ $PM render "$TMP/diffmirror.scene" "${DIRECT[@]}" -o "$TMP/direct-diffmirror.exr
 # POV-Ray's own behaviour without photons: direct light passes through glass
 glass_lets_light_through() {
   awk '/shadow-only proxy/ { skip = 1 } !skip { print } skip && /^}/ { skip = 0 }' \
-    "$REF/cornell-direct-129x96.pov" > "$TMP/noproxy.pov" &&
+    "$REF/cornell/cornell-direct-129x96.pov" > "$TMP/noproxy.pov" &&
   povray +I"$TMP/noproxy.pov" +O"$TMP/noproxy-raw.exr" +W387 +H288 +FE -A -J +WT1 -D -V +GS >/dev/null 2>&1 &&
   oiiotool "$TMP/noproxy-raw.exr" --resize:filter=box 129x96 -o "$TMP/direct-noshadow.exr"
 }
@@ -102,7 +102,7 @@ check "direct control: mirror wall diffuse fails" fails direct_cmp "$TMP/direct-
 check "direct control: glass not shadowing fails" fails direct_cmp "$TMP/direct-noshadow.exr"
 
 # --- the full image, block metric --------------------------------------------
-full_cmp() { "${CMP[@]}" block "$1" "$REF/cornell-fast-128x96.exr" "${BLOCKS[@]}" "$BLOCK_THR"; }
+full_cmp() { "${CMP[@]}" block "$1" "$REF/cornell/cornell-fast-128x96.exr" "${BLOCKS[@]}" "$BLOCK_THR"; }
 $PM render $SCENE "${FULL[@]}" --direct photons -o "$TMP/full-photons.exr"
 $PM render $SCENE "${FULL[@]}" --direct shadow-rays -o "$TMP/full-shadow.exr"
 check "full image (--direct photons) vs POV-Ray: block metric" full_cmp "$TMP/full-photons.exr"
@@ -122,18 +122,18 @@ check "full control: mirror wall diffuse fails" fails full_cmp "$TMP/full-diffmi
 # with and without it differ by 2.7% at p99, below the noise), so the caustic
 # is checked in scenes/caustic.scene, in the window around it.
 caustic_cmp() {
-  IMGCMP_CUT=$CAUSTIC_CUT "${CMP[@]}" block "$1" "$REF/caustic-fast-128x96.exr" "${CAUSTIC_BLOCKS[@]}" "$BLOCK_THR"
+  IMGCMP_CUT=$CAUSTIC_CUT "${CMP[@]}" block "$1" "$REF/caustic/caustic-fast-128x96.exr" "${CAUSTIC_BLOCKS[@]}" "$BLOCK_THR"
 }
 $PM render scenes/caustic.scene "${FULL[@]}" --direct photons -o "$TMP/caustic-photons.exr"
 $PM render scenes/caustic.scene "${FULL[@]}" --direct shadow-rays -o "$TMP/caustic-shadow.exr"
 check "caustic (--direct photons) vs POV-Ray: block metric in its window" caustic_cmp "$TMP/caustic-photons.exr"
 check "caustic (--direct shadow-rays) vs POV-Ray: block metric in its window" caustic_cmp "$TMP/caustic-shadow.exr"
-check "caustic control: glass caustic missing (POV-Ray without it) fails" fails caustic_cmp "$REF/caustic-nocaustic-128x96.exr"
+check "caustic control: glass caustic missing (POV-Ray without it) fails" fails caustic_cmp "$REF/caustic/caustic-nocaustic-128x96.exr"
 oiiotool "$TMP/caustic-photons.exr" --mulc 0.8 -o "$TMP/caustic-x08.exr"
 check "caustic control: brightness x0.8 fails" fails caustic_cmp "$TMP/caustic-x08.exr"
 # The whole caustic-scene image against POV-Ray's reference quality (its fast
 # preset has an irradiance-cache artifact on the ceiling in this scene).
-caustic_full_cmp() { "${CMP[@]}" block "$1" "$REF/caustic-reference-128x96.exr" "${BLOCKS[@]}" "$BLOCK_THR"; }
+caustic_full_cmp() { "${CMP[@]}" block "$1" "$REF/caustic/caustic-reference-128x96.exr" "${BLOCKS[@]}" "$BLOCK_THR"; }
 check "caustic scene (--direct photons) vs POV-Ray reference: block metric" caustic_full_cmp "$TMP/caustic-photons.exr"
 check "caustic scene (--direct shadow-rays) vs POV-Ray reference: block metric" caustic_full_cmp "$TMP/caustic-shadow.exr"
 check "caustic scene control: brightness x0.8 fails" fails caustic_full_cmp "$TMP/caustic-x08.exr"

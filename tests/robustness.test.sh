@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # robustness.test.sh: the image depends only on what the scene is, not on where
 # it sits or its scale.
-#   - the quick sweeps of scripts/stability.py: the room scaled by 1e-30 and
+#   - the quick sweeps of experiments/stability.py: the room scaled by 1e-30 and
 #     1e14, moved by 1e12, a far sphere at 1e15 (each must equal the
 #     baseline), and the limits refused with exit 2 (too far for double
 #     precision, radiance beyond either end of the float range); then the same
@@ -19,7 +19,7 @@ cd "$(dirname "$0")/.."
 . tests/lib.sh
 PY=${PYTHON:-/usr/bin/python3}
 
-"$PY" scripts/stability.py --quick --pm "$PM" > "$TMP/quick.md" 2> "$TMP/quick.err"
+"$PY" -m experiments.stability --quick --pm "$PM" > "$TMP/quick.md" 2> "$TMP/quick.err"
 while IFS= read -r line; do
   name=$(printf '%s' "$line" | cut -d'|' -f2 | sed 's/^ *//; s/ *$//')
   verdict=$(printf '%s' "$line" | awk -F'|' '{ print $(NF-1) }' | tr -d ' ')
@@ -27,7 +27,7 @@ while IFS= read -r line; do
   OBSERVED=$observed VERDICT=$verdict check "stability: $name" bash -c '[ "$VERDICT" = ok ] || { echo "observed: $OBSERVED"; false; }'
 done < <(grep -E '^\| .* \| (ok|FAIL) \|$' "$TMP/quick.md")
 check "stability: the quick sweep ran its 8 cases" test "$(grep -cE '\| (ok|FAIL) \|$' "$TMP/quick.md")" -eq 8
-controls() { "$PY" scripts/stability.py --controls --pm "$PM" > "$TMP/controls.md" 2>&1; }
+controls() { "$PY" -m experiments.stability --controls --pm "$PM" > "$TMP/controls.md" 2>&1; }
 check "stability controls: every verdict fails against a wrong expectation" controls
 
 # --- signals during the EXR write -------------------------------------------

@@ -26,27 +26,27 @@ for s in slabs library; do
 done
 same_export() { # name, scene, W, H, flags...: export-pov writes the committed NAME.pov
   local name=$1 scene=$2 w=$3 h=$4; shift 4
-  $PM export-pov "$scene" --width "$w" --height "$h" "$@" -o "$TMP/$name.pov" && cmp "$TMP/$name.pov" "$R/$name.pov"
+  $PM export-pov "$scene" --width "$w" --height "$h" "$@" -o "$TMP/$name.pov" && cmp "$TMP/$name.pov" "$R/${name%%-*}/$name.pov"
 }
 THIN=--rect-thickness\ 1e-7
 for s in slabs library tworooms; do
-  check "export-pov reproduces $R/$s-direct-129x96.pov" same_export $s-direct-129x96 scenes/$s.scene 387 288 --no-radiosity --no-photons $THIN
-  check "export-pov reproduces $R/$s-reference-128x96.pov" same_export $s-reference-128x96 scenes/$s.scene 256 192 --quality reference $THIN
+  check "export-pov reproduces $R/$s/$s-direct-129x96.pov" same_export $s-direct-129x96 scenes/$s.scene 387 288 --no-radiosity --no-photons $THIN
+  check "export-pov reproduces $R/$s/$s-reference-128x96.pov" same_export $s-reference-128x96 scenes/$s.scene 256 192 --quality reference $THIN
 done
-check "export-pov reproduces $R/tworooms-b2-reference-128x96.pov" \
+check "export-pov reproduces $R/tworooms/tworooms-b2-reference-128x96.pov" \
   same_export tworooms-b2-reference-128x96 scenes/tworooms.scene 256 192 --quality reference --bounces 2 $THIN
-check "export-pov reproduces $R/caustic-reference-128x96.pov" same_export caustic-reference-128x96 scenes/caustic.scene 256 192 --quality reference
+check "export-pov reproduces $R/caustic/caustic-reference-128x96.pov" same_export caustic-reference-128x96 scenes/caustic.scene 256 192 --quality reference
 
 # --- direct light only, per pixel ---------------------------------------------
 for s in slabs library tworooms; do
   $PM render scenes/$s.scene "${DIRECT[@]}" -o "$TMP/$s-direct.exr"
-  check "$s: direct light = POV-Ray per pixel" "${CMP[@]}" pixel "$TMP/$s-direct.exr" $R/$s-direct-129x96.exr "$DIRECT_REL" "$DIRECT_MAXBAD"
+  check "$s: direct light = POV-Ray per pixel" "${CMP[@]}" pixel "$TMP/$s-direct.exr" $R/$s/$s-direct-129x96.exr "$DIRECT_REL" "$DIRECT_MAXBAD"
 done
 oiiotool "$TMP/slabs-direct.exr" --mulc 0.99 -o "$TMP/slabs-direct-x099.exr"
-check "direct control: slabs x0.99 fails" fails "${CMP[@]}" pixel "$TMP/slabs-direct-x099.exr" $R/slabs-direct-129x96.exr "$DIRECT_REL" "$DIRECT_MAXBAD"
+check "direct control: slabs x0.99 fails" fails "${CMP[@]}" pixel "$TMP/slabs-direct-x099.exr" $R/slabs/slabs-direct-129x96.exr "$DIRECT_REL" "$DIRECT_MAXBAD"
 grep -v "$SLABS_NO_BLINDS" scenes/slabs.scene > "$TMP/slabs-noblinds.scene"
 $PM render "$TMP/slabs-noblinds.scene" "${DIRECT[@]}" -o "$TMP/slabs-noblinds-direct.exr"
-check "direct control: slabs without its blinds fails" fails "${CMP[@]}" pixel "$TMP/slabs-noblinds-direct.exr" $R/slabs-direct-129x96.exr "$DIRECT_REL" "$DIRECT_MAXBAD"
+check "direct control: slabs without its blinds fails" fails "${CMP[@]}" pixel "$TMP/slabs-noblinds-direct.exr" $R/slabs/slabs-direct-129x96.exr "$DIRECT_REL" "$DIRECT_MAXBAD"
 
 # --- the full images ------------------------------------------------------------
 full() { # ref, blocks W H, threshold, image
@@ -56,7 +56,7 @@ no_escape() { grep -q '"photons_escaped": 0,' "$1"; }
 
 # thin geometry: the precomputed estimate (its normal test), 2M photons (at
 # 500k the thin-geometry bias alone reaches p99 0.27: reference/README.md)
-slabs_cmp() { full $R/slabs-reference-128x96.exr "${SLABS_BLOCKS[@]}" $SLABS_THR "$1"; }
+slabs_cmp() { full $R/slabs/slabs-reference-128x96.exr "${SLABS_BLOCKS[@]}" $SLABS_THR "$1"; }
 $PM render scenes/slabs.scene "${SLABS[@]}" --method precomputed --quiet -o "$TMP/slabs.exr" --stats "$TMP/slabs.json"
 check "slabs (precomputed) vs POV-Ray reference: block metric, channel means" slabs_cmp "$TMP/slabs.exr"
 check "slabs: closed room, no photon escapes" no_escape "$TMP/slabs.json"
@@ -67,7 +67,7 @@ check "slabs control: brightness x0.8 fails" fails slabs_cmp "$TMP/slabs-x08.exr
 
 # indirect light: two bounces against POV-Ray's two (the conventional
 # estimate: the precomputation of 2M photons would double the test's time)
-tworooms_cmp() { full $R/tworooms-b2-reference-128x96.exr "${TWOROOMS_BLOCKS[@]}" $TWOROOMS_THR "$1"; }
+tworooms_cmp() { full $R/tworooms/tworooms-b2-reference-128x96.exr "${TWOROOMS_BLOCKS[@]}" $TWOROOMS_THR "$1"; }
 $PM render scenes/tworooms.scene "${TWOROOMS[@]}" --quiet -o "$TMP/tworooms.exr" --stats "$TMP/tworooms.json"
 check "tworooms (2 bounces) vs POV-Ray reference: block metric, channel means" tworooms_cmp "$TMP/tworooms.exr"
 check "tworooms: closed rooms, no photon escapes" no_escape "$TMP/tworooms.json"
@@ -77,7 +77,7 @@ $PM render scenes/tworooms.scene "${TWOROOMS[@]}" --photon-depth 2 --quiet -o "$
 check "tworooms control: one bounce instead of two fails" fails tworooms_cmp "$TMP/tworooms-depth2.exr"
 
 # many objects: through the BVH
-library_cmp() { full $R/library-reference-128x96.exr "${LIBRARY_BLOCKS[@]}" $LIBRARY_THR "$1"; }
+library_cmp() { full $R/library/library-reference-128x96.exr "${LIBRARY_BLOCKS[@]}" $LIBRARY_THR "$1"; }
 $PM render scenes/library.scene "${LIBRARY[@]}" --quiet -o "$TMP/library.exr" --stats "$TMP/library.json"
 check "library vs POV-Ray reference: block metric, channel means" library_cmp "$TMP/library.exr"
 check "library: closed room, no photon escapes" no_escape "$TMP/library.json"

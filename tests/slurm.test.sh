@@ -192,10 +192,10 @@ fi
 stop_cluster
 
 # --- the task file and its errors -----------------------------------------------
-printf '# two targets\n\n  build/photonmap\t\nbuild/imgmetrics\n' > "$TMP/tasks.txt"
+printf '# two targets\n\n  build/photonmap\t\nbuild/obj/image.o\n' > "$TMP/tasks.txt"
 tasks_file() {
   make -s sweep-slurm TASKS="$TMP/tasks.txt" SLURM_DIR="$TMP/tjob" > /dev/null &&
-  diff <(printf 'build/photonmap\nbuild/imgmetrics\n') "$TMP/tjob/tasks" && grep -qx '#SBATCH --array=1-2' "$TMP/tjob/sweep.sbatch" &&
+  diff <(printf 'build/photonmap\nbuild/obj/image.o\n') "$TMP/tjob/tasks" && grep -qx '#SBATCH --array=1-2' "$TMP/tjob/sweep.sbatch" &&
   [ ! -s "$TMP/tjob/make-vars" ]
 }
 check "sweep-slurm TASKS=FILE: comments and blanks skipped, no variables" tasks_file

@@ -20,18 +20,16 @@ larger excess in the window). Per cell and method: mean over seeds with its
 import argparse
 import math
 import os
-import sys
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import metrics  # noqa: E402
-import plotting  # noqa: E402
-import report  # noqa: E402
-import stats  # noqa: E402
-from plotting import kilo, plt  # noqa: E402
-from report import fmt, fmt_pm  # noqa: E402
+from experiments.analysis import metrics
+from experiments.analysis import plotting
+from experiments.analysis import report
+from experiments.analysis import stats
+from experiments.analysis.plotting import kilo, plt
+from experiments.analysis.report import fmt_pm
 
 WHERE = "caustic.py"
 METRICS = ("win_relmse_ref", "win_peak_ratio", "relmse_ref", "win_relmse_conv", "win_excess", "img_excess")
@@ -273,13 +271,8 @@ def main():
     ap.add_argument("--out", required=True, help="output stem: STEM.md and STEM.csv")
     ap.add_argument("--figure", required=True)
     args = ap.parse_args()
-    if not os.path.isfile(args.runs):
-        report.die(WHERE, f"{args.runs}: missing")
-    runs = pd.read_csv(args.runs)
-    missing = [c for c in ("method", "estimate", "photons", "nn", "seed", "status", "role", "run", "relmse_ref",
-                           "scene", "size", "subpixels") if c not in runs.columns]
-    if missing:
-        report.die(WHERE, f"{args.runs}: no column(s) {', '.join(missing)}")
+    runs = report.read_csv(args.runs, ["method", "estimate", "photons", "nn", "seed", "status", "role", "run",
+                                       "relmse_ref", "scene", "size", "subpixels"], WHERE)
     runs = runs[(runs["status"] == "ok") & (runs["role"] == "grid")]
     if runs.empty:
         report.die(WHERE, f"{args.runs}: no ok render")

@@ -24,17 +24,14 @@ reference floor (the fast POV-Ray render against the reference).
 """
 
 import argparse
-import json
 import math
 import os
-import sys
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import metrics  # noqa: E402
-import report  # noqa: E402
+from experiments.analysis import metrics
+from experiments.analysis import report, runs as layout
 
 RUN_COLUMNS = [
     "scene", "size", "width", "height", "subpixels", "threads", "tag", "method", "estimate",
@@ -50,36 +47,31 @@ CELL_COLUMNS = [
 ]
 
 
-def cell_name(method, estimate, photons, nn):
-    """The directory name of a cell under the run root."""
-    return f"{method}-{estimate}-p{photons}-n{nn}"
-
-
 def load_json(path):
     """The JSON object in PATH; exits naming the file when it is not JSON."""
     try:
-        with open(path, encoding="utf-8") as f:
-            return json.load(f)
-    except (OSError, json.JSONDecodeError) as e:
-        report.die("collect.py", f"{path}: {e}")
+        return layout.load_json(path)
+    except layout.RunError as e:
+        report.die("collect.py", str(e))
 
 
 def read_run(root, method, estimate, photons, nn, seed):
     """The numbers of one render from its files (no image metrics yet):
     a dict with the runs.csv fields, status ok / refused / missing."""
-    base = os.path.join(root, cell_name(method, estimate, photons, nn), f"seed{seed}")
+    base = layout.run_base(root, method, estimate, photons, nn, seed)
     row = {"method": method, "estimate": estimate, "photons": photons, "nn": nn, "seed": seed,
-           "run": base, "status": "missing", "exit": math.nan, "message": ""}
-    if not os.path.isfile(base + ".run.json"):
+           "run": base, "status": layout.MISSING, "exit": math.nan, "message": ""}
+    try:
+        status, rec = layout.read_record(base)
+    except layout.RunError as e:
+        report.die("collect.py", str(e))
+    if status == layout.MISSING:
         return row
-    rec = load_json(base + ".run.json")
-    for key in ("exit", "loadavg_1min", "cpu_s", "user_s", "sys_s"):
-        if key not in rec:
-            report.die("collect.py", f"{base}.run.json: no '{key}'")
+    for key in layout.RECORD_KEYS:
         row[key] = math.nan if rec[key] is None else rec[key]
     row["message"] = rec.get("message", "")
-    if rec["exit"] != 0:
-        row["status"] = "refused"
+    if status == layout.REFUSED:
+        row["status"] = status
         return row
     st = load_json(base + ".stats.json")
     try:
@@ -93,7 +85,7 @@ def read_run(root, method, estimate, photons, nn, seed):
         report.die("collect.py", f"{base}.stats.json: no {e}")
     if not os.path.isfile(base + ".exr"):
         report.die("collect.py", f"{base}.exr: missing although {base}.run.json says the render succeeded")
-    row["status"] = "ok"
+    row["status"] = layout.OK
     return row
 
 

@@ -16,19 +16,16 @@ of the resamples where the value is defined.
 import argparse
 import math
 import os
-import sys
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import report  # noqa: E402
-import stats  # noqa: E402
-from report import fmt, fmt_count, fmt_interval  # noqa: E402
+from experiments.analysis import report
+from experiments.analysis import stats
+from experiments.analysis.report import fmt, fmt_count, fmt_interval
 
 METHODS = ("conventional", "precomputed")
-TIME_LABEL = {"cpu_s": "CPU seconds of the process (user + system, /usr/bin/time)",
-              "total_s": "wall-clock seconds of the render (the stats JSON's time_s.total)"}
+TIME_LABEL = report.TIME_LABEL
 
 
 def cell_samples(runs, estimate, method, time_col):
@@ -214,15 +211,9 @@ def main():
     ap.add_argument("--bootstrap-seed", type=int, default=1)
     ap.add_argument("--pm", default="build/photonmap")
     args = ap.parse_args()
-    try:
-        runs = pd.read_csv(args.runs_csv)
-    except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError) as e:
-        report.die("equal_error.py", f"{args.runs_csv}: {e}")
     need = ["role", "status", "estimate", "method", "photons", "nn", "seed", "relmse_ref", args.time,
             "size", "subpixels", "threads", "loadavg_1min"]
-    missing = [c for c in need if c not in runs.columns]
-    if missing:
-        report.die("equal_error.py", f"{args.runs_csv}: no column(s) {', '.join(missing)}")
+    runs = report.read_csv(args.runs_csv, need, "equal_error.py")
     try:
         targets = [float(x) for x in args.targets.split()] if args.targets.strip() not in ("", "auto") else []
     except ValueError:

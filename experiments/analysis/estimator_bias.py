@@ -33,8 +33,7 @@ import sys
 import numpy as np
 from scipy.spatial import cKDTree
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import stats  # noqa: E402
+from experiments.analysis import runs as layout, stats
 
 EXACT = 1.0
 
@@ -59,12 +58,12 @@ def load(directory, method, estimate, photons, n, seeds):
     none was rendered."""
     values = []
     for s in range(1, seeds + 1):
-        base = os.path.join(directory, f"{method}-{estimate}-p{photons}-n{n}", f"seed{s}")
-        if not os.path.exists(base + ".run.json"):
+        base = layout.run_base(directory, method, estimate, photons, n, s)
+        status, _ = layout.read_record(base)
+        if status == layout.MISSING:
             continue
-        with open(base + ".run.json") as f:
-            if json.load(f)["exit"] == 2:
-                return None
+        if status == layout.REFUSED:
+            return None
         with open(base + ".stats.json") as f:
             values.append(float(np.mean(json.load(f)["mean_radiance"])) / EXACT)
     return values

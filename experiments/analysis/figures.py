@@ -30,18 +30,16 @@ import argparse
 import math
 import os
 import re
-import sys
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import metrics  # noqa: E402
-import plotting  # noqa: E402
-import report  # noqa: E402
-import stats  # noqa: E402
-from plotting import kilo, plt  # noqa: E402
-from report import fmt, isnum  # noqa: E402
+from experiments.analysis import metrics
+from experiments.analysis import plotting
+from experiments.analysis import report
+from experiments.analysis import stats
+from experiments.analysis.plotting import kilo, plt
+from experiments.analysis.report import fmt, isnum
 
 WHERE = "figures.py"
 TABLE_NEED = ["photons", "nn", "method", "seeds", "cpu_median_s", "cpu_min_s", "cpu_max_s", "total_median_s",
@@ -54,17 +52,8 @@ TABLE_NEED = ["photons", "nn", "method", "seeds", "cpu_median_s", "cpu_min_s", "
 # ---- inputs
 
 def read_csv(path, need, what):
-    """A CSV with the columns NEED checked by name; exits naming PATH."""
-    if not os.path.isfile(path):
-        report.die(WHERE, f"{path}: missing ({what})")
-    try:
-        f = pd.read_csv(path, comment="#")
-    except (pd.errors.ParserError, pd.errors.EmptyDataError) as e:
-        report.die(WHERE, f"{path}: {e}")
-    missing = [c for c in need if c not in f.columns]
-    if missing:
-        report.die(WHERE, f"{path}: no column(s) {', '.join(missing)}")
-    return f
+    """report.read_csv for this script ('#' lines are comments)."""
+    return report.read_csv(path, need, WHERE, what, comment="#")
 
 
 def read_image(path, what):
@@ -670,7 +659,7 @@ def main():
     ap.add_argument("--normal-cos", type=float, default=0.9)
     ap.add_argument("--scene", default="scenes/cornell.scene")
     ap.add_argument("--rep-study-cells", default="", help="rep-study-cells.csv (optional)")
-    ap.add_argument("--time", default="cpu_s", choices=["cpu_s", "total_s"])
+    ap.add_argument("--time", default="cpu_s", choices=sorted(report.TIME_LABEL))
     ap.add_argument("--out", required=True, help="output directory")
     ap.add_argument("--only", default="", help="draw only these figures (space-separated names)")
     args = ap.parse_args()

@@ -1,20 +1,33 @@
-"""Image error metrics: the one implementation the analysis layer uses.
+"""Image error metrics: the one implementation of relMSE, RMSE and PSNR.
 
 Owns reading a linear RGB EXR into a float64 array, windows of an image
 (a region given as WxH+X+Y at one size, scaled to another), the per-image
-metrics (relMSE, RMSE, PSNR, the peak ratio of the brightest light) and the split of a cell's error over seeds into a bias
-and a variance term in the relMSE weighting. Every number about images in
-runs.csv, cells.csv and the tables comes from here. (build/imgmetrics, the C
-tool of the shell tests, computes the same relMSE, RMSE and PSNR;
-tests/analysis_test.py checks that the two agree on a real pair.)
+metrics (relMSE, RMSE, PSNR, the peak ratio of the brightest light) and the
+split of a cell's error over seeds into a bias and a variance term in the
+relMSE weighting. Every number about images in runs.csv, cells.csv, the
+tables and the shell tools comes from here: the shell calls this module
+(`python3 -m experiments.analysis.metrics TEST.exr REF.exr`, and
+scripts/imgcmp.sh stats); reports quote DEFINITION below instead of
+restating it.
 
-Conventions, x = test, r = reference, over every pixel and RGB channel:
+DEFINITION, x = test, r = reference, over every pixel and RGB channel (or
+only the pixels where a mask image has a non-zero channel):
   relMSE = mean((x - r)^2 / (r^2 + 0.01))
   RMSE   = sqrt(mean((x - r)^2))
   PSNR   = 10 log10(peak^2 / MSE) dB, peak 1 (linear radiance, 1.0 = white)
+           or, asked for, the reference's largest value over those pixels;
+           inf when the images are equal
+
+Command line (exit 0; 2 on a usage error, an unreadable file or a size
+mismatch):
+  python3 -m experiments.analysis.metrics TEST.exr REF.exr [--mask MASK.exr] [--peak 1|max] [--csv|--header]
+prints "relmse=... rmse=... psnr=... pixels=N peak=P" (%.6g), or with --csv
+the values alone in that order, --header first the CSV header line.
 """
 
+import argparse
 import math
+import sys
 
 import numpy as np
 
@@ -169,3 +182,51 @@ def bias_variance(images, r):
     """(bias, variance) of a cell's seed IMAGES against reference R: the
     terms of bias_variance_from_gram, from the images."""
     return bias_variance_from_gram(weighted_gram(images, r))
+
+
+def masked_values(x, r, mask=None):
+    """(x, r) restricted to the pixels where MASK (same H x W) has a
+    non-zero channel, as (N, 3) arrays; raises ValueError on a size
+    mismatch or a mask that selects no pixel."""
+    _check_same_shape(x, r)
+    if mask is None:
+        return x.reshape(-1, 3), r.reshape(-1, 3)
+    if mask.shape[:2] != x.shape[:2]:
+        raise ValueError(f"image size mismatch: mask {mask.shape} vs {x.shape}")
+    sel = np.any(mask != 0, axis=2)
+    if not sel.any():
+        raise ValueError("the mask selects no pixel")
+    return x[sel], r[sel]
+
+
+def main(argv=None):
+    """The command line of the module docstring; returns the exit status."""
+    ap = argparse.ArgumentParser(prog="python3 -m experiments.analysis.metrics",
+                                 description="relMSE, RMSE and PSNR of TEST against REF (metrics.py's definition)")
+    ap.add_argument("test")
+    ap.add_argument("ref")
+    ap.add_argument("--mask")
+    ap.add_argument("--peak", choices=["1", "max"], default="1")
+    ap.add_argument("--csv", action="store_true")
+    ap.add_argument("--header", action="store_true")
+    a = ap.parse_args(argv)
+    try:
+        x, r = read_exr(a.test), read_exr(a.ref)
+        x, r = masked_values(x, r, read_exr(a.mask) if a.mask else None)
+    except ValueError as e:
+        print(f"metrics: {e}", file=sys.stderr)
+        return 2
+    peak = float(r.max()) if a.peak == "max" else 1.0
+    vals = (relmse(x, r), rmse(x, r), psnr(x, r, peak))
+    f = ["%.6g" % v for v in vals]
+    if a.csv or a.header:
+        if a.header:
+            print("relmse,rmse,psnr,pixels,peak")
+        print(f"{f[0]},{f[1]},{f[2]},{len(x)},{peak:.6g}")
+    else:
+        print(f"relmse={f[0]} rmse={f[1]} psnr={f[2]} pixels={len(x)} peak={peak:.6g}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

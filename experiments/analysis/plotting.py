@@ -10,12 +10,12 @@ run directory, seeds, size), the display transform of linear radiance
 
 import os
 
-import matplotlib
+import matplotlib.pyplot as plt
+import matplotlib.ticker
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import matplotlib.ticker  # noqa: E402
-import numpy as np  # noqa: E402
+# files only, never a window: pyplot's backend is chosen before any figure
+plt.switch_backend("Agg")
 
 plt.rcParams.update({
     "font.size": 10, "axes.titlesize": 10.5, "axes.labelsize": 10, "legend.fontsize": 8.5,

@@ -4,7 +4,9 @@ Owns what every generated Markdown file states about where its numbers come
 from (machine, cores, load average, commit, pinned renderer) and how a value,
 an interval or a missing value is printed, so that table1.md,
 equal-error.md and resolution.md say these things the same way. Also the
-error exit every analysis script uses.
+error exit every analysis script uses, the one CSV reader (columns checked
+by name) and the one name of the time a study compares (TIME_LABEL: cpu_s
+or total_s, the make variable TIME and every script's --time).
 """
 
 import datetime
@@ -13,11 +15,33 @@ import os
 import subprocess
 import sys
 
+import pandas as pd
+
+# the time a study compares: the runs.csv column and what it is
+TIME_LABEL = {"cpu_s": "CPU seconds of the process (user + system, /usr/bin/time)",
+              "total_s": "wall-clock seconds of the render (the stats JSON's time_s.total)"}
+
 
 def die(where, what):
     """Print 'WHERE: WHAT' on stderr and exit 1."""
     print(f"{where}: {what}", file=sys.stderr)
     sys.exit(1)
+
+
+def read_csv(path, need, where, hint="", comment=None):
+    """The CSV at PATH as a pandas frame, its columns NEED checked by name.
+    On a missing or unreadable file or a missing column: exits 1 with
+    'WHERE: PATH: ...' (HINT says what makes the file)."""
+    if not os.path.isfile(path):
+        die(where, f"{path}: missing" + (f" ({hint})" if hint else ""))
+    try:
+        frame = pd.read_csv(path, comment=comment)
+    except (OSError, UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError) as e:
+        die(where, f"{path}: {e}")
+    missing = [c for c in need if c not in frame.columns]
+    if missing:
+        die(where, f"{path}: no column(s) {', '.join(missing)}")
+    return frame
 
 
 def isnum(x):

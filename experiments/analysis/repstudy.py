@@ -37,18 +37,16 @@ import argparse
 import math
 import os
 import re
-import sys
 
 import numpy as np
 import pandas as pd
 from scipy import optimize
 from scipy import stats as sps
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import plotting  # noqa: E402
-import report  # noqa: E402
-import stats  # noqa: E402
-from report import fmt, fmt_interval  # noqa: E402
+from experiments.analysis import plotting
+from experiments.analysis import report
+from experiments.analysis import stats
+from experiments.analysis.report import fmt, fmt_interval
 
 NEED = ["method", "estimate", "photons", "nn", "seed", "status", "role", "rep_every", "representatives",
         "photons_stored", "cpu_s", "total_s", "relmse_ref", "relmse_conv", "precompute_s", "render_s", "size"]
@@ -78,13 +76,7 @@ def parse_rule(name):
 
 def read_runs(path):
     """A runs.csv with the columns this script needs, checked by name."""
-    try:
-        f = pd.read_csv(path)
-    except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError) as e:
-        report.die("repstudy.py", f"{path}: {e}")
-    missing = [c for c in NEED if c not in f.columns]
-    if missing:
-        report.die("repstudy.py", f"{path}: no column(s) {', '.join(missing)}")
+    f = report.read_csv(path, NEED, "repstudy.py")
     if "rep_count" not in f.columns:
         f["rep_count"] = 0
     f["rep_count"] = f["rep_count"].fillna(0)
@@ -557,7 +549,7 @@ def main():
     ap.add_argument("--variant", action="append", default=[], metavar="RULE=RUNS.csv",
                     help="a rule (everyK, countN, shared) and its runs-TAG.csv; repeatable")
     ap.add_argument("--paper", required=True)
-    ap.add_argument("--time", default="cpu_s", choices=["cpu_s", "total_s"])
+    ap.add_argument("--time", default="cpu_s", choices=sorted(report.TIME_LABEL))
     ap.add_argument("--out", required=True, help="output stem: STEM.md, STEM.csv, STEM-cells.csv")
     ap.add_argument("--figure", required=True)
     ap.add_argument("--bootstrap", type=int, default=2000)
@@ -571,10 +563,8 @@ def main():
         name, path = v.split("=", 1)
         variants.append((parse_rule(name), read_runs(path), path))
         paths.append(path)
-    try:
-        paper = pd.read_csv(args.paper, comment="#")
-    except (OSError, pd.errors.ParserError) as e:
-        report.die("repstudy.py", f"{args.paper}: {e}")
+    paper = report.read_csv(args.paper, ["emitted_kphotons", "nn", "conventional_s", "proposed_s"], "repstudy.py",
+                            comment="#")
     res = analyse(base, variants, paper, args.time, np.random.default_rng(args.bootstrap_seed), args.bootstrap)
     report.write_csv_atomic(res["fits"], args.out + ".csv", "%.6g")
     report.write_csv_atomic(res["cells"], args.out + "-cells.csv", "%.6g")

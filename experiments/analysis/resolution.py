@@ -13,14 +13,12 @@ Cheapest: the smallest median time over seeds (CPU or wall, as chosen).
 import argparse
 import math
 import os
-import sys
 
-import pandas as pd
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import report  # noqa: E402
-from report import fmt, isnum  # noqa: E402
+from experiments.analysis import report
+from experiments.analysis.report import fmt, isnum
 
+# the table1.csv column of each time of report.TIME_LABEL
 TIME_COLUMN = {"cpu_s": "cpu_median_s", "total_s": "total_median_s"}
 
 
@@ -72,14 +70,8 @@ def main():
         report.die("resolution.py", f"--targets '{args.targets}': not numbers")
     sizes = []
     for size, path, refdesc in args.size:
-        try:
-            table = pd.read_csv(path)
-        except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError) as e:
-            report.die("resolution.py", f"{path}: {e}")
         need = ["method", "photons", "nn", TIME_COLUMN[args.time], "relmse_ref_mean", "relmse_ref_ci95"]
-        missing = [c for c in need if c not in table.columns]
-        if missing:
-            report.die("resolution.py", f"{path}: no column(s) {', '.join(missing)}")
+        table = report.read_csv(path, need, "resolution.py")
         sizes.append((size, path, refdesc, candidates(table, args.time)))
 
     out = ["# Cheapest settings per output resolution", "",

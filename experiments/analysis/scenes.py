@@ -17,17 +17,15 @@ scenes.png; numbers come from the CSVs named in the footer and the table.
 
 import argparse
 import os
-import sys
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import metrics  # noqa: E402
-import plotting  # noqa: E402
-import report  # noqa: E402
-from plotting import plt  # noqa: E402
-from report import fmt, fmt_ci  # noqa: E402
+from experiments.analysis import metrics
+from experiments.analysis import plotting
+from experiments.analysis import report
+from experiments.analysis.plotting import plt
+from experiments.analysis.report import fmt, fmt_ci
 
 
 def knn_share(table, photons, nn):
@@ -95,7 +93,9 @@ def main():
         for f in (table_csv, runs_csv, ee_csv, ref_path):
             if not os.path.exists(f):
                 report.die(f, "missing (run make scenes)")
-        table, runs, ee = pd.read_csv(table_csv), pd.read_csv(runs_csv), pd.read_csv(ee_csv)
+        table = report.read_csv(table_csv, ["method", "photons", "nn"], "scenes.py")
+        runs = report.read_csv(runs_csv, ["method", "estimate", "photons", "nn", "seed", "status", "role", "run"], "scenes.py")
+        ee = report.read_csv(ee_csv, ["estimate", "speedup_defined"], "scenes.py")
         share, speed = knn_share(table, cell_p, cell_n)
         shares = [knn_share(table, p, n)[0] for p, n in table[["photons", "nn"]].drop_duplicates().itertuples(index=False)]
         ref = metrics.read_exr(ref_path)

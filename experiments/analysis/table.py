@@ -16,15 +16,13 @@ their 95% intervals are disjoint.
 import argparse
 import math
 import os
-import sys
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import report  # noqa: E402
-import stats  # noqa: E402
-from report import fmt, fmt_ci, fmt_pm, fmt_range, isnum  # noqa: E402
+from experiments.analysis import report
+from experiments.analysis import stats
+from experiments.analysis.report import fmt, fmt_ci, fmt_pm, fmt_range, isnum
 
 PHASES = ("trace", "build", "precompute", "render")
 
@@ -42,14 +40,7 @@ def read_inputs(runs_csv, cells_csv, paper_csv):
                        (cells_csv, ["method", "estimate", "photons", "nn", "bias_ref", "variance_ref",
                                     "relmse_ref_floor", "ref", "ref_fast"]),
                        (paper_csv, ["emitted_kphotons", "nn", "conventional_s", "proposed_s", "ratio_percent"])):
-        try:
-            f = pd.read_csv(path, comment="#", keep_default_na=True)
-        except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError) as e:
-            report.die("table.py", f"{path}: {e}")
-        missing = [c for c in need if c not in f.columns]
-        if missing:
-            report.die("table.py", f"{path}: no column(s) {', '.join(missing)}")
-        frames.append(f)
+        frames.append(report.read_csv(path, need, "table.py", comment="#"))
     runs, cells, paper = frames
     runs["message"] = runs["message"].fillna("")
     return runs, cells, paper

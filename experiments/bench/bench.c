@@ -1,4 +1,4 @@
-/* bench: the performance harness of issue 7 (not a test). Builds the real
+/* bench: the performance harness (not a test). Builds the real
  * photon maps of a scene, takes the eye pass's diffuse hit points as kNN
  * queries (16x16-tile order and shuffled), and times our kd-tree against
  * nanoflann side by side in one process; then the representative lookup,

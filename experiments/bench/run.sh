@@ -4,14 +4,14 @@
 # for the throughput tables, the same under callgrind for instructions per
 # query (beside those of the kd-tree before, icount-before.csv), a perf
 # profile of the renders, and the heaviest cells of the paper at full
-# resolution under /usr/bin/time -v; writes results/bench.md (tables from
+# resolution under /usr/bin/time -v; writes results/bench/bench.md (tables from
 # files by report.py), with the kNN against FLANN, scipy's cKDTree and
 # nanoflann (bench --peers, k = BENCH_PEER_KS). BENCH_REPS (5) runs per
 # throughput cell, BENCH_HEAVY_REPS (3) per heavy cell.
 #
 #   run.sh --quick   (`make bench-quick`, about a minute): only the peers
 #                    table at k = 10 and 100, 3 runs a cell, on stdout;
-#                    results/bench.md is left as it is.
+#                    results/bench/bench.md is left as it is.
 set -eu
 cd "$(dirname "$0")/../.."
 QUICK=0
@@ -19,11 +19,11 @@ if [ "${1:-}" = "--quick" ]; then QUICK=1; fi
 REPS=${BENCH_REPS:-5}
 PEER_KS=${BENCH_PEER_KS:-1,10,100}
 HREPS=${BENCH_HEAVY_REPS:-3}
-OUT=results/bench.md
+OUT=results/bench/bench.md
 BIN=build/bench/bench
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-mkdir -p results
+mkdir -p results/bench
 
 PYTHON=${PYTHON:-/usr/bin/python3}
 

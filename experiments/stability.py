@@ -16,7 +16,7 @@ Prints a Markdown table (case, command, expected, observed, verdict) on
 stdout, with --quick only the cases `make test` runs. Exits 1 when any
 verdict is FAIL.
 
-  /usr/bin/python3 scripts/stability.py [--quick] [--pm build/photonmap] > table.md
+  /usr/bin/python3 -m experiments.stability [--quick] [--pm build/photonmap] > table.md
 """
 import argparse
 import filecmp
@@ -29,8 +29,7 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments", "analysis"))
-import stats  # noqa: E402  (the one t-interval of the analysis layer)
+from experiments.analysis import stats
 
 CORNELL = "scenes/cornell.scene"
 FURNACE = "scenes/furnace.scene"
@@ -148,7 +147,8 @@ class Runner:
 
 def run(r, quick):
     base_rc, base_st, base_exr, _ = r.render(CORNELL, BASE)
-    assert base_rc == 0, "the baseline render failed"
+    if base_rc != 0:
+        raise RuntimeError(f"the baseline render failed (exit {base_rc})")
     base = float(np.mean(base_st["mean_radiance"]))
     r.add("baseline: the Cornell room", "`" + " ".join(BASE) + "`", "exit 0, finite", f"mean L {base:.6g}",
           base_st["nonfinite_pixels"] == 0)

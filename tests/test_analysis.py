@@ -1,45 +1,24 @@
-#!/usr/bin/python3
 """Unit tests of the experiment analysis layer (experiments/analysis/).
 
-Run by tests/analysis.test.sh (part of `make test`). Prints one "ok" or
-"FAIL" line per check and "N passed, N failed" last; exits 1 on a failure.
+Run by pytest from the repository root (tests/analysis.test.sh, part of
+`make test`: `python3 -m pytest tests/test_analysis.py`); pytest rewrites the
+asserts, so they check under `python3 -O` too.
 Every check compares against a value computed another way (a closed form, a
-simulation with a known answer, the C tool build/imgmetrics), so each can
+simulation with a known answer, the definition computed directly), so each can
 fail. Random numbers come from fixed seeds: the outcome is deterministic.
 """
 
 import math
 import os
 import subprocess
-import sys
 import tempfile
-import traceback
 
 import numpy as np
 import pandas as pd
 
+from experiments.analysis import equal_error, metrics, stats
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "experiments", "analysis"))
-import equal_error  # noqa: E402
-import metrics  # noqa: E402
-import stats  # noqa: E402
-
-
-def run_checks(checks):
-    """Run every (name, function) in CHECKS; a check passes when its
-    function returns without an exception. Returns (passed, failed)."""
-    passed = failed = 0
-    for name, fn in checks:
-        try:
-            fn()
-            passed += 1
-            print(f"ok   {name}")
-        except Exception:  # noqa: BLE001 - every failure is reported the same way
-            failed += 1
-            print(f"FAIL {name}")
-            for line in traceback.format_exc().splitlines()[-6:]:
-                print(f"     {line}")
-    return passed, failed
 
 
 def close(a, b, tol, what=""):
@@ -49,7 +28,7 @@ def close(a, b, tol, what=""):
 
 # ---- stats: intervals over seeds
 
-def t_interval_coverage():
+def test_t_interval_coverage():
     """The 95% t-interval of 5 normal draws covers the true mean in about 95%
     of 4000 trials (a z-interval would cover about 88%: this fails then)."""
     rng = np.random.default_rng(7)
@@ -62,7 +41,7 @@ def t_interval_coverage():
     assert 0.935 <= cover <= 0.965, f"coverage {cover}"
 
 
-def t_interval_edges():
+def test_t_interval_edges():
     """One value: no half-width; NaN values are dropped; the known value for
     (1, 2, 3): mean 2, half-width t(0.975, 2) * 1 / sqrt(3) = 2.4841."""
     m, h = stats.t_interval([4.0])
@@ -73,12 +52,12 @@ def t_interval_edges():
     assert all(math.isnan(x) for x in stats.t_interval([]))
 
 
-def median_range_known():
+def test_median_range_known():
     """Median with min and max, NaN ignored."""
     assert stats.median_range([3.0, 1.0, float("nan"), 2.0, 10.0]) == (2.5, 1.0, 10.0)
 
 
-def percentile_interval_known():
+def test_percentile_interval_known():
     """The 2.5% and 97.5% quantiles of 0..1000 are 25 and 975; the share of
     finite samples is reported."""
     lo, hi, d = stats.percentile_interval(np.append(np.arange(1001.0), [np.nan] * 1001))
@@ -87,7 +66,7 @@ def percentile_interval_known():
     close(d, 0.5, 1e-12, "defined")
 
 
-def median_ratio_known():
+def test_median_ratio_known():
     """median(a)/median(b) and an interval that contains it; constant
     samples give a degenerate interval at the ratio."""
     rng = np.random.default_rng(1)
@@ -98,7 +77,7 @@ def median_ratio_known():
     assert math.isnan(stats.median_ratio([1.0], [0.0], rng, 10)[0])
 
 
-def intervals_overlap_known():
+def test_intervals_overlap_known():
     """Disjoint intervals do not overlap; touching and unknown ones do."""
     assert not stats.intervals_overlap((1, 2), (3, 4))
     assert stats.intervals_overlap((1, 3), (3, 4))
@@ -107,7 +86,7 @@ def intervals_overlap_known():
 
 # ---- stats: fronts and interpolation
 
-def pareto_front_known():
+def test_pareto_front_known():
     """Dominated cells and cells with a tied time but a larger error are not
     on the front; the front is ordered by time."""
     t = [1.0, 2.0, 2.0, 3.0, 4.0, 0.5]
@@ -115,7 +94,7 @@ def pareto_front_known():
     assert stats.pareto_front(t, e) == [0, 2, 4], stats.pareto_front(t, e)
 
 
-def interpolation_power_law():
+def test_interpolation_power_law():
     """Cells on a power law t = 3 e^-1.5 lie on a straight line in log-log,
     so the interpolated time at any error between them is the law's."""
     e = np.array([0.2, 0.1, 0.05, 0.01])
@@ -125,7 +104,7 @@ def interpolation_power_law():
     close(stats.front_time_at_error(list(t) + [1000.0], list(e) + [0.5], 0.07), 3.0 * 0.07 ** -1.5, 1e-6, "front")
 
 
-def interpolation_outside_is_undefined():
+def test_interpolation_outside_is_undefined():
     """A target below the front's smallest error or above its largest is
     not extrapolated."""
     e = np.array([0.2, 0.1])
@@ -137,7 +116,7 @@ def interpolation_outside_is_undefined():
 
 # ---- metrics
 
-def relmse_known():
+def test_relmse_known():
     """relMSE of identical images is 0 and PSNR inf; x = 2, r = 1 gives
     relMSE 1/1.01, RMSE 1, PSNR 0 dB; a size mismatch is an error."""
     r = np.full((4, 5, 3), 1.0)
@@ -170,7 +149,7 @@ def synthetic_cell(rng, seeds, bias_scale, sigma_scale):
     return [r + b + sigma * rng.standard_normal(r.shape) for _ in range(seeds)], r
 
 
-def bias_variance_recovers_truth():
+def test_bias_variance_recovers_truth():
     """Over 400 synthetic cells of 4 seeds whose noise is far larger than
     their bias (fresh noise, the same truth), the mean bias and variance
     estimates match the true terms within 4 standard errors; the plain
@@ -192,7 +171,7 @@ def bias_variance_recovers_truth():
     assert abs(np.mean(naive) - true_b) > 20 * se_b, "the uncorrected estimator should be far off"
 
 
-def bias_variance_identity_and_definition():
+def test_bias_variance_identity_and_definition():
     """bias + variance equals the mean over seeds of relMSE, and both equal
     the per-pixel definition written out here (mean image, ddof-1 variance)."""
     imgs, r = synthetic_cell(np.random.default_rng(5), 5, 0.05, 0.05)
@@ -206,7 +185,7 @@ def bias_variance_identity_and_definition():
     assert all(math.isnan(x) for x in metrics.bias_variance(imgs[:1], r))
 
 
-def bias_variance_counts_are_repeats():
+def test_bias_variance_counts_are_repeats():
     """Weighting seeds by bootstrap counts equals repeating the images."""
     imgs, r = synthetic_cell(np.random.default_rng(6), 3, 0.05, 0.05)
     g = metrics.weighted_gram(imgs, r)
@@ -216,28 +195,36 @@ def bias_variance_counts_are_repeats():
     close(got[1], want[1], 1e-12, "variance")
 
 
-def relmse_matches_imgmetrics():
-    """On a real pair of renders, metrics.py's relMSE, RMSE and PSNR equal
-    build/imgmetrics' to 1e-6 (relative), and read_exr gives H x W x 3."""
+def test_metrics_command_line_matches_functions():
+    """On a real pair of renders, the command line the shell tools call
+    (python3 -m experiments.analysis.metrics) prints metrics.py's relMSE,
+    RMSE and PSNR, and these equal a direct numpy computation of the
+    definition; read_exr gives H x W x 3."""
     pm = os.environ.get("PM", os.path.join(ROOT, "build", "photonmap"))
-    im = os.path.join(ROOT, "build", "imgmetrics")
     scene = os.path.join(ROOT, "scenes", "cornell.scene")
     with tempfile.TemporaryDirectory() as d:
         a, b = os.path.join(d, "a.exr"), os.path.join(d, "b.exr")
         for path, method in ((a, "conventional"), (b, "precomputed")):
             subprocess.run([pm, "render", scene, "--width", "32", "--height", "24", "--photons", "3000", "--nn", "10",
                             "--method", method, "-o", path, "--quiet"], check=True)
-        out = subprocess.run([im, b, a, "--csv"], check=True, capture_output=True, text=True).stdout.strip()
+        out = subprocess.run(["/usr/bin/python3", "-m", "experiments.analysis.metrics", b, a, "--csv"], check=True,
+                             capture_output=True, text=True, cwd=ROOT).stdout.strip()
         c_rel, c_rmse, c_psnr = (float(v) for v in out.split(",")[:3])
         x, r = metrics.read_exr(b), metrics.read_exr(a)
         assert x.shape == (24, 32, 3), x.shape
         got = (metrics.relmse(x, r), metrics.rmse(x, r), metrics.psnr(x, r))
-        assert got[0] > 0, "the two renders should differ"
-        for g, c, name in zip(got, (c_rel, c_rmse, c_psnr), ("relmse", "rmse", "psnr")):
-            close(g, c, 1e-6 * max(1.0, abs(c)), name)
+        d2 = (x - r) ** 2
+        direct = (float((d2 / (r * r + 0.01)).sum() / d2.size), math.sqrt(d2.sum() / d2.size),
+                  10 * math.log10(1.0 / (d2.sum() / d2.size)))
+        for name, g, c, e in zip(("relMSE", "RMSE", "PSNR"), got, (c_rel, c_rmse, c_psnr), direct):
+            assert abs(g - c) <= 1e-5 * abs(g), f"{name}: function {g} vs command line {c}"
+            assert abs(g - e) <= 1e-9 * abs(e), f"{name}: function {g} vs the definition {e}"
+        same = subprocess.run(["/usr/bin/python3", "-m", "experiments.analysis.metrics", a, a], check=True,
+                              capture_output=True, text=True, cwd=ROOT).stdout.strip()
+        assert same == "relmse=0 rmse=0 psnr=inf pixels=768 peak=1", same
 
 
-def read_exr_missing_file():
+def test_read_exr_missing_file():
     """A missing file is a ValueError that names it."""
     try:
         metrics.read_exr("/nonexistent/x.exr")
@@ -265,7 +252,7 @@ def synthetic_runs(speedup, seeds=5, noise=0.02):
     return pd.DataFrame(rows)
 
 
-def equal_error_recovers_speedup():
+def test_equal_error_recovers_speedup():
     """With precomputed exactly 3x faster at every error, the speed-up at
     each automatic target is 3 within 5%, its interval contains 3, and the
     targets lie inside both fronts' error range."""
@@ -277,7 +264,7 @@ def equal_error_recovers_speedup():
         assert r["speedup_ci95_lo"] <= 3.0 <= r["speedup_ci95_hi"], r
 
 
-def equal_error_no_common_range():
+def test_equal_error_no_common_range():
     """Fronts that reach no common error give no target; explicit targets
     outside a front give undefined times."""
     runs = synthetic_runs(2.0)
@@ -290,7 +277,7 @@ def equal_error_no_common_range():
 
 # ---- stats: the cost model's fit and the ratio of two slopes
 
-def linear_fit_known():
+def test_linear_fit_known():
     """An exact line gives its coefficients and zero standard errors; the
     standard errors of a noisy line agree with the closed form (numpy's
     polyfit covariance with the N-2 scaling)."""
@@ -316,7 +303,7 @@ def linear_fit_known():
     assert math.isnan(stats.linear_fit([1, 1, 1], [1, 2, 3])["b"])
 
 
-def linear_fit_coverage():
+def test_linear_fit_coverage():
     """The 95% interval of the slope covers the true slope in about 95% of
     2000 noisy lines of 4 points (the paper's fits: 2 degrees of freedom)."""
     rng = np.random.default_rng(11)
@@ -328,7 +315,7 @@ def linear_fit_coverage():
     close(hits / 2000, 0.95, 0.015, "coverage")
 
 
-def fieller_known():
+def test_fieller_known():
     """Fieller's interval: exact without noise in the denominator (num/den
     +- t se_num/den); covers the true ratio of two noisy independent
     estimates in about 95% of trials; unbounded (nan) when the denominator
@@ -353,7 +340,7 @@ def fieller_known():
     close(stats.ratio_se(0.0, 0.5, 2.0, 1.0), 0.25, 1e-12, "num 0")
 
 
-def window_scaling():
+def test_window_scaling():
     """The caustic window 24x20+52+76 at 128x96 is 96x80+208+304 at 512x384
     and the same pixels at 128x96; a window that leaves the image, or a
     malformed one, is an error."""
@@ -370,7 +357,7 @@ def window_scaling():
         raise AssertionError(f"{bad} accepted")
 
 
-def peak_ratio_known():
+def test_peak_ratio_known():
     """A copy keeps its peak (1); a box-blurred spot keeps less (about the
     blurred mean over the spot); a uniform scale is the scale."""
     r = np.full((20, 24, 3), 0.1)
@@ -384,7 +371,7 @@ def peak_ratio_known():
     assert pr < 0.7
 
 
-def rank_known():
+def test_rank_known():
     """stats.rank: disjoint intervals rank, touching or overlapping ones do
     not, a nan end is unknown."""
     assert stats.rank((1, 2), (3, 4)) == "lower"
@@ -392,21 +379,3 @@ def rank_known():
     assert stats.rank((1, 3), (3, 4)) == "overlap"  # closed intervals: touching is overlapping
     assert stats.rank((1, 5), (2, 3)) == "overlap"
     assert stats.rank((math.nan, 2), (3, 4)) == "unknown"
-
-
-def main():
-    """Run every check; exit 1 when one fails."""
-    checks = [(f.__name__.replace("_", " "), f) for f in (
-        t_interval_coverage, t_interval_edges, median_range_known, percentile_interval_known, median_ratio_known,
-        intervals_overlap_known, pareto_front_known, interpolation_power_law, interpolation_outside_is_undefined,
-        relmse_known, bias_variance_recovers_truth, bias_variance_identity_and_definition,
-        bias_variance_counts_are_repeats, relmse_matches_imgmetrics, read_exr_missing_file,
-        equal_error_recovers_speedup, equal_error_no_common_range, linear_fit_known, linear_fit_coverage,
-        fieller_known, window_scaling, peak_ratio_known, rank_known)]
-    passed, failed = run_checks(checks)
-    print(f"{passed} passed, {failed} failed")
-    sys.exit(1 if failed else 0)
-
-
-if __name__ == "__main__":
-    main()

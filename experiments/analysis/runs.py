@@ -1,0 +1,62 @@
+"""The run layout, read side: where one render of a study keeps its files
+and what its record (seed<k>.run.json) says.
+
+A study's renders live under a run root (RESULTS/runs/<scene>-<W>x<H>-s<S>-
+t<T>[-TAG], named by the make function run_root of experiments/study.mk),
+one directory per cell <method>-<estimate>-p<P_e>-n<n>, one set of files per
+seed: seed<k>.exr, seed<k>.stats.json, seed<k>.err and, written last by
+experiments/run.sh, seed<k>.run.json. experiments/README.md ("The run
+layout") states the same; this module and run.sh are its only code.
+
+The one rule of a record's status: exit 0 is "ok", exit 2 is "refused" (the
+renderer rejected the combination: not applicable), no record is "missing";
+run.sh records nothing else, so any other exit is an error of the files.
+"""
+
+import json
+import os
+
+OK, REFUSED, MISSING = "ok", "refused", "missing"
+EXIT_STATUS = {0: OK, 2: REFUSED}
+RECORD_KEYS = ("exit", "loadavg_1min", "cpu_s", "user_s", "sys_s")
+
+
+class RunError(Exception):
+    """A run's files contradict the layout (unreadable or incomplete record)."""
+
+
+def cell_name(method, estimate, photons, nn):
+    """The directory name of a cell under the run root."""
+    return f"{method}-{estimate}-p{photons}-n{nn}"
+
+
+def run_base(root, method, estimate, photons, nn, seed):
+    """The path of one render's files without their extensions."""
+    return os.path.join(root, cell_name(method, estimate, photons, nn), f"seed{seed}")
+
+
+def load_json(path):
+    """The JSON object in PATH; raises RunError naming the file when it is
+    unreadable or not JSON."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            return json.load(f)
+    except (OSError, json.JSONDecodeError) as e:
+        raise RunError(f"{path}: {e}") from e
+
+
+def read_record(base):
+    """(status, record) of the render at BASE: (MISSING, None) without a
+    record, else OK or REFUSED by the record's exit and the record (a dict
+    with RECORD_KEYS). Raises RunError on a record without those keys or
+    with another exit status."""
+    path = base + ".run.json"
+    if not os.path.isfile(path):
+        return MISSING, None
+    rec = load_json(path)
+    for key in RECORD_KEYS:
+        if key not in rec:
+            raise RunError(f"{path}: no '{key}'")
+    if rec["exit"] not in EXIT_STATUS:
+        raise RunError(f"{path}: exit {rec['exit']} (run.sh records only 0 and 2)")
+    return EXIT_STATUS[rec["exit"]], rec

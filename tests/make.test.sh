@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# make.test.sh: the make interface of the study targets, without rendering:
+# a dry run (make -n) of every target of `make help` works and writes
+# nothing; every study reads the same knobs (SIZE, SEEDS, SCENE, ...) and a
+# name it does not read is refused, not ignored; a study without a reference
+# stops before any render saying what to give. Ends with "N passed, N failed".
+cd "$(dirname "$0")/.." || exit 1
+source tests/lib.sh
+unset MAKEFLAGS MFLAGS MAKELEVEL
+R=$TMP/results
+
+# every target `make help` lists, dry: exit 0, nothing written under RESULTS or SLURM_DIR
+targets=$(make -s help | awk '$1 == "make" { print $2 }')
+check "make help lists the study targets" bash -c "for t in reproduce-table rep-study caustic resolution scenes estimator-bias sweep-slurm; do
+  printf '%s\n' $(echo $targets) | grep -qx \$t || { echo \"\$t missing\"; exit 1; }; done"
+for t in $targets; do
+  [ "$t" = sweep-slurm ] && continue
+  check "make -n $t: exit 0" make -n "$t" RESULTS="$R"
+done
+check "make -n sweep-slurm SWEEP=reproduce-runs: exit 0, writes nothing" \
+  bash -c "make -n sweep-slurm SWEEP=reproduce-runs SLURM_DIR=$TMP/dry RESULTS=$R > $TMP/dry.log 2>&1 && [ ! -e $TMP/dry ]"
+check "make -n wrote nothing under RESULTS" test ! -e "$R"
+
+# one name per knob: a study honours SIZE, SEEDS, SCENE, PHOTONS, NNS given on the command line
+dry() { make -n "$@" RESULTS="$R" 2>&1; }
+check "scenes SIZE=40x30 SEEDS=1: renders at 40x30, seed 1 only" \
+  bash -c "out=\$(make -n scenes SIZE=40x30 SEEDS=1 SCENES=scenes/cornell.scene RESULTS=$R PHOTONS=2000 NNS=10 2>&1) &&
+           grep -q 'WIDTH=40 HEIGHT=30' <<< \"\$out\" && grep -q 'cornell-40x30-s2-t1 conventional-paper-p2000-n10/seed1' <<< \"\$out\" &&
+           ! grep -q 'seed2' <<< \"\$out\""
+check "caustic SIZE=40x30 SEEDS=2 NNS=10: the caustic scene at 40x30" \
+  bash -c "dry() { make -n caustic SIZE=40x30 SEEDS=2 NNS=10 PHOTONS=2000 REF=reference/caustic/caustic-reference-128x96.exr RESULTS=$R 2>&1; };
+           out=\$(dry) && grep -q 'runs/caustic-40x30-s2-t1 precomputed-paper-p2000-n10/seed2' <<< \"\$out\" && ! grep -q 'seed3' <<< \"\$out\""
+check "estimator-bias SEEDS=2 NNS=5: those seeds and n only" \
+  bash -c "out=\$(make -n estimator-bias SEEDS=2 NNS=5 RESULTS=$R 2>&1) && grep -q 'estimator-bias conventional-paper-p50000-n5/seed2' <<< \"\$out\" &&
+           ! grep -q -- '-n10/' <<< \"\$out\" && ! grep -q 'seed3' <<< \"\$out\""
+check "resolution SIZE=40x30: that size only" \
+  bash -c "out=\$(make -n resolution SIZE=40x30 SEEDS=1 PHOTONS=2000 NNS=10 RESULTS=$R 2>&1) && grep -q 'refhigh.*/40x30.exr' <<< \"\$out\" &&
+           ! grep -q '256x192' <<< \"\$out\""
+for old in SCENES_SIZE=128x96 SCENES_SEEDS=2 CAUSTIC_SIZE=64x48 CAUSTIC_SEEDS=2 BIAS_SEEDS=3 REP_SEEDS=2 RES_SEEDS=2 EE_TIME=total_s WIDTH=64; do
+  check "a name no target reads is refused: $old" expect_exit 2 "${old%%=*} is gone: every study target reads" make -n scenes "$old"
+done
+check "scenes refuses SCENE= (it runs every scene of SCENES)" expect_exit 2 "give SCENES=" make -n scenes SCENE=scenes/slabs.scene
+check "resolution refuses REF= (it takes RES_REF=ours or pov)" expect_exit 2 "RES_REF" make -n resolution REF=x.exr
+check "SIZE=0x0 and SEEDS=abc are refused" bash -c "
+  ! make -n reproduce-runs SIZE=0x0 > $TMP/s.log 2>&1 && grep -q 'SIZE=0x0: not WxH' $TMP/s.log &&
+  ! make -n reproduce-runs SEEDS=abc > $TMP/e.log 2>&1 && grep -q 'SEEDS=abc: a positive number' $TMP/e.log"
+
+# a scene without a reference: stop before rendering, say what to give
+cp scenes/cornell.scene "$TMP/my.scene"
+make reproduce-table SCENE="$TMP/my.scene" SIZE=32x24 PHOTONS=2000 NNS=10 SEEDS=1 RESULTS="$R" > "$TMP/noref.log" 2>&1; rc=$?
+check "reproduce-table without a reference: exit non-zero, says REF= or make scenes, renders nothing" \
+  bash -c "[ $rc -ne 0 ] && grep -q 'no reference' $TMP/noref.log && grep -q 'give REF=' $TMP/noref.log &&
+           grep -q 'make scenes SCENES=' $TMP/noref.log && [ ! -e $R/runs ]"
+make -n reproduce-table SCENE="$TMP/my.scene" SIZE=32x24 REF="$TMP/my.exr" RESULTS="$R" > "$TMP/ref.log" 2>&1; rc=$?
+check "reproduce-table with REF=: runs (dry)" bash -c "[ $rc -eq 0 ] && grep -q 'runs/my-32x24-s2-t1 ' $TMP/ref.log"
+finish
