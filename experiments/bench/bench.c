@@ -639,10 +639,10 @@ int main(int argc, char **argv)
     }
     if (peers_dir) {
         uint32_t pe = sizes[nsizes - 1];
-        photons_params pp = {pe, cfg.seed, cfg.photon_depth, 1, cfg.rep_every, 0};
+        photons_params pp = {pe, cfg.seed, cfg.photon_depth, 1};
         photons_list list;
         photons_map map;
-        if (photons_trace(sc, &pp, 1, NULL, &list) || photons_build_map(&list, 0, &map)) {
+        if (photons_trace(sc, &pp, 1, NULL, &list) || photons_build_map(&list, 0, &map, NULL)) {
             fprintf(stderr, "bench: out of memory\n");
             return 1;
         }
@@ -651,11 +651,8 @@ int main(int argc, char **argv)
             fprintf(stderr, "bench: out of memory\n");
             return 1;
         }
-        for (uint32_t i = 0; i < map.count; i++) {
-            pos[3 * (size_t)i] = map.tree.x[i];
-            pos[3 * (size_t)i + 1] = map.tree.y[i];
-            pos[3 * (size_t)i + 2] = map.tree.z[i];
-        }
+        for (uint32_t i = 0; i < map.count; i++)
+            kd_point(&map.tree, i, pos + 3 * (size_t)i);
         for (uint32_t i = 0; i < tiles.n; i++) {
             const float *w = tiles.p + 3 * (size_t)i;
             photons_map_point(&map, vec_make(w[0], w[1], w[2]), q + 3 * (size_t)i);
@@ -702,11 +699,8 @@ int main(int argc, char **argv)
         /* both trees hold the map's points (its frame); the queries and the
          * radius cap move into that frame too */
         float *pos = malloc(sizeof(float) * 3 * stored);
-        for (uint32_t i = 0; i < stored; i++) {
-            pos[3 * (size_t)i] = map.tree.x[i];
-            pos[3 * (size_t)i + 1] = map.tree.y[i];
-            pos[3 * (size_t)i + 2] = map.tree.z[i];
-        }
+        for (uint32_t i = 0; i < stored; i++)
+            kd_point(&map.tree, i, pos + 3 * (size_t)i);
         double max_r = render_max_radius(sc, &cfg, &map);
         est_gather gather = est_gather_make(&map, cfg.nn, max_r, 0);
         float max_d2 = (float)gather.max_r2;
