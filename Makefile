@@ -45,19 +45,19 @@ TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 .PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small fuzz sweep-slurm
 all: $(BUILD)/photonmap ## build build/photonmap
 deps: $(DEPS_STAMP) $(DEPS_TEST) $(DEPS_CLUSTER) ## install the missing Debian packages of every tier (scripts/install-deps.sh)
-test: all unit-tests $(BUILD)/san/photonmap $(DEPS_TEST) $(DEPS_CLUSTER) ## every test; ends with "N passed, N failed" (README)
+test: all unit-tests $(BUILD)/san/photonmap $(DEPS_TEST) $(DEPS_CLUSTER) ## every test; ends with "N passed, N failed, N skipped" (README)
 	bash tests/run.sh
-reproduce-table: ## Table 1 over SEEDS seeds, both estimates -> results/{runs,cells,table1,equal-error}.* (experiments/table.mk)
+reproduce-table: ## Table 1 over SEEDS seeds, both estimates -> results/table1/ (experiments/studies.mk)
 reproduce-runs: ## only the renders of reproduce-table, one make target each (make -j; resumes)
 list-runs: ## print the target of every render of reproduce-table, one per line (for a job array)
 figures: ## Figures 2 and 3 at 1:1, error maps, trade-off, time ratio and phases -> results/figures/ (after reproduce-table)
-rep-study: ## representative rules (REP_RULES) against the paper's cost pattern -> results/rep-study.md, figures/rep-study.png
-caustic: ## the Fig. 3 cells on the caustic scene, caustic-window error over seeds -> results/caustic.md, figures/caustic.png
-resolution: ## cheapest settings per output size -> results/resolution.md
-estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias.md
-scenes: ## the grid on every scene: equal-error speed-up, kNN share, where the error lies -> results/scenes.md
-stability: ## every extreme with its expected value and verdict -> results/stability-extremes.md
-bench: ## kNN (against FLANN, cKDTree, nanoflann), lookup and eye-pass benchmarks -> results/bench.md
+rep-study: ## representative rules (REP_RULES) against the paper's cost pattern -> results/rep-study/, figures/rep-study.png
+caustic: ## the Fig. 3 cells on the caustic scene, caustic-window error over seeds -> results/caustic/, figures/caustic.png
+resolution: ## cheapest settings per output size -> results/resolution/
+estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias/
+scenes: ## the grid on every scene: equal-error speed-up, kNN share, where the error lies -> results/scenes/
+stability: ## every extreme with its expected value and verdict -> results/stability/stability-extremes.md
+bench: ## kNN (against FLANN, cKDTree, nanoflann), lookup and eye-pass benchmarks -> results/bench/bench.md
 bench-quick: ## only the kNN against FLANN, cKDTree and nanoflann, about a minute, on stdout
 reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one
