@@ -149,11 +149,15 @@ photons_zero() { # P_e = 0 is allowed: a black image (documented in --help)
 check "cli: --photons 0 gives the documented black image" photons_zero
 
 # ---- outputs ----
+# a device through a link of the right extension (a name without it is
+# refused for its extension first)
 for dev in /dev/full /dev/null; do
+  ln -sf "$dev" "$TMP/dev-$(basename $dev).exr"
   check "output: $dev is refused, not replaced" \
-    bash -c "rc=0; $PM render scenes/cornell.scene ${FAST[*]} -o $dev 2>$TMP/dev.err || rc=\$?; [ \$rc -eq 1 ] && grep -q '^photonmap: $dev: not a regular file' $TMP/dev.err && [ -c $dev ]"
+    bash -c "rc=0; $PM render scenes/cornell.scene ${FAST[*]} -o $TMP/dev-$(basename $dev).exr 2>$TMP/dev.err || rc=\$?; [ \$rc -eq 1 ] && grep -q '^photonmap: $TMP/dev-$(basename $dev).exr: not a regular file' $TMP/dev.err && [ -c $dev ]"
 done
-check "output: a directory as output is refused up front" expect_exit 1 "^photonmap: $TMP: not a regular file" $PM render scenes/cornell.scene "${FAST[@]}" -o "$TMP"
+mkdir -p "$TMP/dir.exr"
+check "output: a directory as output is refused up front" expect_exit 1 "^photonmap: $TMP/dir.exr: not a regular file" $PM render scenes/cornell.scene "${FAST[@]}" -o "$TMP/dir.exr"
 echo x > "$TMP/plain"
 check "output: a path under a regular file" expect_exit 1 "^photonmap: $TMP/plain/a.exr: cannot write" $PM render scenes/cornell.scene "${FAST[@]}" -o "$TMP/plain/a.exr"
 
