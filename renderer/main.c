@@ -86,7 +86,8 @@ static const cli_option render_options[] = {
     {.name = "--rep-tree", .kind = CLI_CHOICE, .offset = RC(rep_tree), .choices = rep_tree_names,
      .help = "precomputed: the representatives' own kd-tree, or the photon tree by flag"},
     {.name = "--max-radius", .kind = CLI_REAL, .metavar = "R", .offset = RC(max_radius), .rlo = 1e-30, .rhi = 1e30,
-     .help = "search radius cap in scene units",
+     .help = "search radius cap in scene units (r is floored at 1e-3 of it, or of the photons' extent when the cap "
+             "is larger: a cap beyond the photons finds what a cap at their extent finds)",
      .default_text = CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT " x the diagonal of the photons' bounding box"},
     {.name = "--direct", .kind = CLI_CHOICE, .offset = RC(direct), .choices = direct_names,
      .help = "direct light from the photon map (the paper) or by shadow rays"},
@@ -254,6 +255,17 @@ static void refusal_reason(const render_args *a, const stats_run *st, char *why,
                  "scene's size (radiance ~ power / size^2); scale the power down. No image written "
                  "(--allow-nonfinite keeps it)",
                  st->nonfinite_pixels, (double)FLT_MAX);
+    else if (st->peak_radiance > 0.0 && st->peak_radiance < FLT_MIN && a->cfg.max_radius > 0.0 &&
+             st->photons_extent > 0.0 && a->cfg.max_radius > st->photons_extent)
+        /* a cap beyond the photons: an estimate with fewer than n photons in
+         * range spreads them over the cap's disc, whatever the light */
+        snprintf(why, len,
+                 "the image's largest radiance, %.3g, is below the smallest normal float (%g): --max-radius %g is "
+                 "%.3g times the photons' extent (%.3g), and an estimate with fewer than n = %u photons within it "
+                 "spreads them over a disc of that radius (radiance ~ 1 / R^2); lower --max-radius or raise "
+                 "--photons. No image written (--allow-nonfinite keeps it)",
+                 st->peak_radiance, (double)FLT_MIN, a->cfg.max_radius, a->cfg.max_radius / st->photons_extent,
+                 st->photons_extent, a->cfg.nn);
     else if (st->peak_radiance > 0.0 && st->peak_radiance < FLT_MIN)
         snprintf(why, len,
                  "the image's largest radiance, %.3g, is below the smallest normal float (%g): the light is too "
@@ -269,7 +281,7 @@ static void refusal_reason(const render_args *a, const stats_run *st, char *why,
  * (after printing why). */
 static pm_status write_outputs(const render_args *a, unsigned threads, const render_result *r)
 {
-    char err[1024], why[512];
+    char err[1024], why[1024];
     pm_status exit_code = PM_OK;
     const image *img = &r->img;
     const stats_run *st = &r->st;

@@ -80,6 +80,7 @@ static pm_status step_build(render_state *rs)
     rs->st->bytes_photon_map = photons_map_bytes(&rs->map) + reps_sites_bytes(&rs->reps);
     rs->max_radius = render_max_radius(rs->sc, rs->cfg, &rs->map);
     rs->st->max_radius = rs->max_radius;
+    rs->st->photons_extent = rs->map.extent;
     return PM_OK;
 }
 

@@ -27,6 +27,8 @@ typedef struct {
     double peak_radiance;         /* the largest channel value of any pixel, before its conversion to float
                                      (NaN is not counted: nonfinite_pixels) */
     double max_radius;            /* search radius cap used, scene units */
+    double photons_extent;        /* diagonal of the stored photons' bounding box, scene units (0: fewer than
+                                     two places) */
     uint64_t bytes_photon_map;    /* photon map (tree + payload) */
     uint64_t bytes_representatives;
 } stats_run;

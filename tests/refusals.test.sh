@@ -63,6 +63,10 @@ max_radius_top() { # method
 check "--max-radius 1e30, conventional: renders, the image of a cap of 1e3" max_radius_top conventional
 check "--max-radius 1e30, precomputed: renders, the image of a cap of 1e3 (not black)" max_radius_top precomputed
 
+check "--max-radius 1e30 with fewer photons than n: refused naming the cap, not the light" \
+  expect_exit 2 "below the smallest normal float .*: --max-radius 1e\+30 is .* times the photons' extent" \
+  $PM render scenes/cornell.scene --photons 5 --nn 50 --width 8 --height 8 --quiet --max-radius 1e30 -o "$TMP/cap5.exr"
+
 # ---- a far camera: the refusal names the camera ----
 sed 's/^camera position 0 1 2.4 /camera position 0 1 1e15 /' scenes/cornell.scene > "$TMP/farcam.scene"
 check "control: the far-camera scene moved the camera" grep -q '^camera position 0 1 1e15 ' "$TMP/farcam.scene"
