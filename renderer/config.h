@@ -60,6 +60,14 @@ typedef struct {
  * branch whose throughput falls below this is dropped (bias < this). */
 #define CONFIG_EYE_MIN_THROUGHPUT 1e-4
 
+/* Warnings on stderr (main.c), for renders that run but are likely not
+ * what was meant: more than this share of the emitted photons left the
+ * scene (the project's scenes are closed rooms and lose none), or more eye
+ * paths than this share of the camera's samples were cut at the eye-depth
+ * limit (a camera among mirrors: those paths are black). */
+#define CONFIG_WARN_ESCAPED_SHARE 0.01
+#define CONFIG_WARN_DEPTH_LIMIT_SHARE 0.1
+
 /* Limits that the command line enforces (user errors beyond them exit 2). */
 #define CONFIG_MAX_PHOTONS 2000000000ull
 #define CONFIG_MIN_NN 2u

@@ -45,7 +45,12 @@ void est_scratch_delete(est_scratch *s, unsigned threads)
 est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius, int corrected)
 {
     double r = max_radius / m->scale;
-    est_gather g = {nn, r * r, corrected, m->count > 0 ? (double)m->stored / (double)m->count : 1.0};
+    /* the floor's reference: the cap, or the photons' extent when smaller
+     * (the same product as the cap's square, so a cap within the extent
+     * gives the floor bit for bit as it always did) */
+    double f = (m->extent > 0.0 && m->extent < max_radius ? m->extent : max_radius) / m->scale;
+    est_gather g = {nn, r * r, f * f * (EST_MIN_RADIUS_FRAC * EST_MIN_RADIUS_FRAC), corrected,
+                    m->count > 0 ? (double)m->stored / (double)m->count : 1.0};
     return g;
 }
 
@@ -71,9 +76,8 @@ vec3 est_irradiance_at(const photons_map *m, const float q[3], vec3 n, const est
         }
     }
     double r2 = k < g->nn ? g->max_r2 : (double)r2f;
-    double floor2 = g->max_r2 * (EST_MIN_RADIUS_FRAC * EST_MIN_RADIUS_FRAC);
-    if (r2 < floor2)
-        r2 = floor2;
+    if (r2 < g->min_r2)
+        r2 = g->min_r2;
     double inv = g->boost / (VEC_PI * r2);
     return vec_make(sum[0] * inv, sum[1] * inv, sum[2] * inv);
 }

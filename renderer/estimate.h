@@ -9,7 +9,11 @@
  * Conventions (documented in README): r^2 is the squared distance to the
  * farthest of the n photons found; when fewer than n photons lie within the
  * maximum radius R, r = R (the disc's density); r is clamped below at
- * R * EST_MIN_RADIUS_FRAC so coincident photons give a large finite value.
+ * EST_MIN_RADIUS_FRAC of R, or of the photons' extent (photons_map.extent)
+ * when R is larger (a cap beyond the extent finds the same photons; were
+ * the floor 1e-3 of a cap of 1e30, every estimate would spread its photons
+ * over r = 1e27 and the image would go black), so coincident photons give a
+ * large finite value.
  * No photon in range, or no agreeing representative in range, gives E = 0.
  * Radii here are in the photon map's frame (photons.h). */
 #ifndef PM_ESTIMATE_H
@@ -33,6 +37,7 @@
 typedef struct {
     uint32_t nn;
     double max_r2;
+    double min_r2; /* the floor of r^2, map frame */
     int corrected;
     double boost;
 } est_gather;

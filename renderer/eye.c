@@ -3,6 +3,7 @@
 
 #include <assert.h>
 #include <float.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -15,8 +16,9 @@
 #define EYE_TILE 16u
 
 typedef struct {
-    uint64_t samples, depth_hits, empty, underflow;
-    char pad[128 - 4 * sizeof(uint64_t)]; /* one per thread: no two threads' counters share a cache line */
+    uint64_t samples, depth_hits, empty, underflow, flushed;
+    double peak; /* the largest channel value of any pixel, before the conversion to float */
+    char pad[128 - 5 * sizeof(uint64_t) - sizeof(double)]; /* one per thread: no two threads' counters share a cache line */
 } eye_counts;
 
 typedef struct {
@@ -129,9 +131,13 @@ static void eye_tile(uint64_t tile, unsigned thread, void *arg)
             px[1] = (float)(sum.y * inv);
             px[2] = (float)(sum.z * inv);
             /* a radiance the float cannot hold but as 0 or a subnormal */
-            c->counts[thread].underflow += (sum.x > 0.0 && !(px[0] >= FLT_MIN)) ||
-                                           (sum.y > 0.0 && !(px[1] >= FLT_MIN)) ||
-                                           (sum.z > 0.0 && !(px[2] >= FLT_MIN));
+            int flushed = (sum.x > 0.0 && !(px[0] >= FLT_MIN)) + (sum.y > 0.0 && !(px[1] >= FLT_MIN)) +
+                          (sum.z > 0.0 && !(px[2] >= FLT_MIN));
+            c->counts[thread].underflow += flushed > 0;
+            c->counts[thread].flushed += (uint64_t)flushed;
+            double peak = fmax(sum.x, fmax(sum.y, sum.z)) * inv;
+            if (peak > c->counts[thread].peak)
+                c->counts[thread].peak = peak;
         }
     }
     c->counts[thread].samples += (uint64_t)(x1 - x0) * (y1 - y0) * S * S;
@@ -170,6 +176,8 @@ pm_status eye_render(const eye_input *in, unsigned threads, int show_progress, i
             st->eye_depth_limit_hits += c.counts[t].depth_hits;
             st->empty_estimates += c.counts[t].empty;
             st->underflow_pixels += c.counts[t].underflow;
+            st->flushed_values += c.counts[t].flushed;
+            st->peak_radiance = fmax(st->peak_radiance, c.counts[t].peak);
         }
         st->nonfinite_pixels = image_count_nonfinite(out);
         image_mean(out, st->mean_radiance);

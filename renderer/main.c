@@ -7,6 +7,7 @@
  * file, with file:line:col, or an image whose radiance leaves the float
  * range). */
 #include <assert.h>
+#include <ctype.h>
 #include <errno.h>
 #include <float.h>
 #include <inttypes.h>
@@ -35,6 +36,7 @@ typedef struct {
     const char *exr, *png, *stats;
     double exposure;
     int quiet;
+    int no_output; /* --no-output: a render for its times only, no file */
 } render_args;
 
 static const char *const method_names[] = {"conventional", "precomputed", NULL};
@@ -84,7 +86,8 @@ static const cli_option render_options[] = {
     {.name = "--rep-tree", .kind = CLI_CHOICE, .offset = RC(rep_tree), .choices = rep_tree_names,
      .help = "precomputed: the representatives' own kd-tree, or the photon tree by flag"},
     {.name = "--max-radius", .kind = CLI_REAL, .metavar = "R", .offset = RC(max_radius), .rlo = 1e-30, .rhi = 1e30,
-     .help = "search radius cap in scene units",
+     .help = "search radius cap in scene units (r is floored at 1e-3 of it, or of the photons' extent when the cap "
+             "is larger: a cap beyond the photons finds what a cap at their extent finds)",
      .default_text = CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT " x the diagonal of the photons' bounding box"},
     {.name = "--direct", .kind = CLI_CHOICE, .offset = RC(direct), .choices = direct_names,
      .help = "direct light from the photon map (the paper) or by shadow rays"},
@@ -112,6 +115,9 @@ static const cli_option render_options[] = {
              "otherwise exit 2, no image)"},
     {.name = "--quiet", .kind = CLI_FLAG, .offset = RO(quiet), .flag_value = 1,
      .help = "no progress bar and no summary line"},
+    {.name = "--no-output", .kind = CLI_FLAG, .offset = RO(no_output), .flag_value = 1,
+     .help = "write no file, only the summary line's times (benchmarks); without it a render needs -o, --png, "
+             "--stats or --dump-reps"},
 };
 #undef RO
 #undef RC
@@ -138,6 +144,42 @@ static uint64_t physical_memory(void)
 {
     long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
     return pages > 0 && size > 0 ? (uint64_t)pages * (uint64_t)size : 0;
+}
+
+/* 1 when path ends in ext (".exr"), ignoring case, else 0. */
+static int has_extension(const char *path, const char *ext)
+{
+    size_t n = strlen(path), e = strlen(ext);
+    if (n <= e)
+        return 0;
+    for (size_t i = 0; i < e; i++)
+        if (tolower((unsigned char)path[n - e + i]) != ext[i])
+            return 0;
+    return 1;
+}
+
+/* Refuses an output whose name's extension is not its format's, and a
+ * render that writes nothing unless --no-output says so (and --no-output
+ * with an output). Returns PM_OK, or PM_ERR_INPUT after printing why. */
+static pm_status check_outputs(const render_args *a, const char *const *paths, const char *const *names,
+                               const char *const *exts, const char *const *formats, int n)
+{
+    int any = 0;
+    for (int i = 0; i < n; i++) {
+        if (!paths[i])
+            continue;
+        any = 1;
+        if (!has_extension(paths[i], exts[i]))
+            return cli_error(&render_command, "%s: '%s' does not end in %s: %s writes %s", names[i], paths[i], exts[i],
+                             names[i], formats[i]);
+    }
+    if (any && a->no_output)
+        return cli_error(&render_command, "--no-output contradicts the output options given");
+    if (!any && !a->no_output)
+        return cli_error(&render_command,
+                         "no output: give -o FILE.exr, --png FILE.png, --stats FILE.json or --dump-reps FILE.csv, or "
+                         "--no-output for a render whose times are all that is wanted");
+    return PM_OK;
 }
 
 /* Claims every output path now, so that an unwritable one fails before the
@@ -194,38 +236,73 @@ static pm_status write_reps(const char *path, const render_result *r)
     return PM_ERR_IO;
 }
 
-/* Writes what a finished render produced. Returns PM_OK; PM_ERR_INPUT
- * when the image's radiance leaves the float range (no image written);
- * PM_ERR_IO when a file could not be written (after printing why). */
+/* Why the image of a finished render cannot be written, into why (the
+ * message's text after "SCENE: "), or "" when it can: a pixel beyond the
+ * largest float, or an image whose largest radiance is below the smallest
+ * normal float (no pixel of it could be stored but as 0 or a subnormal).
+ * Single channels that underflow next to representable ones are no reason:
+ * they are stored as 0 or subnormal and counted (flushed_values). */
+static void refusal_reason(const render_args *a, const stats_run *st, char *why, size_t len)
+{
+    why[0] = '\0';
+    if (a->cfg.allow_nonfinite)
+        return;
+    /* radiance scales as power / size^2: a scene whose radiance leaves the
+     * float range of the image is refused rather than written wrong */
+    if (st->nonfinite_pixels > 0)
+        snprintf(why, len,
+                 "%" PRIu64 " pixels' radiance is beyond the largest float (%g): the light is too strong for the "
+                 "scene's size (radiance ~ power / size^2); scale the power down. No image written "
+                 "(--allow-nonfinite keeps it)",
+                 st->nonfinite_pixels, (double)FLT_MAX);
+    else if (st->peak_radiance > 0.0 && st->peak_radiance < FLT_MIN && a->cfg.max_radius > 0.0 &&
+             st->photons_extent > 0.0 && a->cfg.max_radius > st->photons_extent)
+        /* a cap beyond the photons: an estimate with fewer than n photons in
+         * range spreads them over the cap's disc, whatever the light */
+        snprintf(why, len,
+                 "the image's largest radiance, %.3g, is below the smallest normal float (%g): --max-radius %g is "
+                 "%.3g times the photons' extent (%.3g), and an estimate with fewer than n = %u photons within it "
+                 "spreads them over a disc of that radius (radiance ~ 1 / R^2); lower --max-radius or raise "
+                 "--photons. No image written (--allow-nonfinite keeps it)",
+                 st->peak_radiance, (double)FLT_MIN, a->cfg.max_radius, a->cfg.max_radius / st->photons_extent,
+                 st->photons_extent, a->cfg.nn);
+    else if (st->peak_radiance > 0.0 && st->peak_radiance < FLT_MIN)
+        snprintf(why, len,
+                 "the image's largest radiance, %.3g, is below the smallest normal float (%g): the light is too "
+                 "weak for the scene's size (radiance ~ power / size^2); scale the power up. No image written "
+                 "(--allow-nonfinite keeps it)",
+                 st->peak_radiance, (double)FLT_MIN);
+}
+
+/* Writes what a finished render produced: the stats (with the refusal,
+ * if any), then the image unless it is refused. Returns PM_OK;
+ * PM_ERR_INPUT when the image's radiance leaves the float range (no image
+ * written, after printing why); PM_ERR_IO when a file could not be written
+ * (after printing why). */
 static pm_status write_outputs(const render_args *a, unsigned threads, const render_result *r)
 {
-    char err[1024];
+    char err[1024], why[1024];
     pm_status exit_code = PM_OK;
     const image *img = &r->img;
     const stats_run *st = &r->st;
+    refusal_reason(a, st, why, sizeof why);
     if (a->stats) {
         outfile f;
-        if (outfile_begin(&f, a->stats, 1, err, sizeof err) ||
-            stats_write_json(f.f, a->scene, &a->cfg, threads, st) || outfile_commit(&f, err, sizeof err)) {
+        pm_status rc = outfile_begin(&f, a->stats, 1, err, sizeof err);
+        if (rc == PM_OK && stats_write_json(f.f, a->scene, &a->cfg, threads, st, why[0] ? why : NULL)) {
+            snprintf(err, sizeof err, "%s: write error", a->stats);
+            outfile_abort(&f);
+            rc = PM_ERR_IO;
+        } else if (rc == PM_OK) {
+            rc = outfile_commit(&f, err, sizeof err);
+        }
+        if (rc) {
             fprintf(stderr, "photonmap: %s\n", err);
             exit_code = PM_ERR_IO;
         }
     }
-    if ((st->nonfinite_pixels > 0 || st->underflow_pixels > 0) && !a->cfg.allow_nonfinite) {
-        /* radiance scales as power / size^2: a scene whose radiance leaves
-         * the float range of the image is refused rather than written wrong */
-        if (st->nonfinite_pixels > 0)
-            fprintf(stderr,
-                    "%s: %" PRIu64 " pixels' radiance is beyond the largest float (%g): the light is too strong for "
-                    "the scene's size (radiance ~ power / size^2); scale the power down. No image written "
-                    "(--allow-nonfinite keeps it)\n",
-                    a->scene, st->nonfinite_pixels, (double)FLT_MAX);
-        else
-            fprintf(stderr,
-                    "%s: %" PRIu64 " pixels' radiance is below the smallest normal float (%g): the light is too weak "
-                    "for the scene's size (radiance ~ power / size^2); scale the power up. No image written "
-                    "(--allow-nonfinite keeps it)\n",
-                    a->scene, st->underflow_pixels, (double)FLT_MIN);
+    if (why[0]) {
+        fprintf(stderr, "%s: %s\n", a->scene, why);
         return PM_ERR_INPUT;
     }
     if (a->exr && image_write_exr(img, a->exr, err, sizeof err)) {
@@ -239,6 +316,48 @@ static pm_status write_outputs(const render_args *a, unsigned threads, const ren
     return exit_code;
 }
 
+/* Warns on stderr about a closed shape (an opaque sphere) around the
+ * camera or the light but not both: no light path joins them, and the
+ * image is black (a furnace, camera and light in one sphere, is fine). */
+static void warn_camera(const char *path, const scene *sc)
+{
+    vec3 c = sc->camera.position;
+    int i = scene_sphere_between(sc, c, sc->light.position);
+    if (i < 0)
+        return;
+    const shape *s = &sc->shapes[i];
+    int cam_in = vec_len2(vec_sub(c, s->center)) < s->radius * s->radius;
+    fprintf(stderr,
+            "%s: warning: the %s (%g %g %g) is inside the opaque sphere of centre (%g %g %g) and radius %g (shape "
+            "%d of the scene) and the %s is not: no light reaches the camera through it\n",
+            path, cam_in ? "camera" : "light", cam_in ? c.x : sc->light.position.x,
+            cam_in ? c.y : sc->light.position.y, cam_in ? c.z : sc->light.position.z, s->center.x, s->center.y,
+            s->center.z, s->radius, i + 1, cam_in ? "light" : "camera");
+}
+
+/* Warns on stderr about what a finished render measured that is likely
+ * not what was meant: photons lost through an open scene, eye paths cut at
+ * the depth limit (config.h has the thresholds). */
+static void warn_run(const char *path, const config_render *cfg, const stats_run *st)
+{
+    if (st->photons_emitted > 0 &&
+        (double)st->photons_escaped > CONFIG_WARN_ESCAPED_SHARE * (double)st->photons_emitted)
+        fprintf(stderr,
+                "%s: warning: %.1f%% of the emitted photons (%" PRIu64 " of %" PRIu64 ") left the scene without "
+                "hitting anything: is it open, or the light outside it? (above %g%%; the project's scenes are closed "
+                "and lose none)\n",
+                path, 100.0 * (double)st->photons_escaped / (double)st->photons_emitted, st->photons_escaped,
+                st->photons_emitted, 100.0 * CONFIG_WARN_ESCAPED_SHARE);
+    if (st->samples > 0 && (double)st->eye_depth_limit_hits > CONFIG_WARN_DEPTH_LIMIT_SHARE * (double)st->samples)
+        fprintf(stderr,
+                "%s: warning: %" PRIu64 " eye paths were cut at the eye-depth limit (--eye-depth %u), %.1f%% of the "
+                "%" PRIu64 " samples (above %g%%): those paths are black; a camera between mirrors, or a depth too "
+                "low?\n",
+                path, st->eye_depth_limit_hits, cfg->eye_depth,
+                100.0 * (double)st->eye_depth_limit_hits / (double)st->samples, st->samples,
+                100.0 * CONFIG_WARN_DEPTH_LIMIT_SHARE);
+}
+
 /* `photonmap render`. Returns the first failure's status (printed). */
 static pm_status cmd_render(int argc, char **argv)
 {
@@ -247,6 +366,10 @@ static pm_status cmd_render(int argc, char **argv)
     if (rc != PM_OK)
         return rc;
     const config_render *cfg = &a.cfg;
+    const char *paths[4] = {a.exr, a.png, a.stats, cfg->dump_reps};
+    const char *names[4] = {"-o", "--png", "--stats", "--dump-reps"};
+    const char *exts[4] = {".exr", ".png", ".json", ".csv"};
+    const char *formats[4] = {"OpenEXR", "PNG", "JSON", "CSV"};
     const char *why = config_check(cfg);
     if (why)
         return cli_error(&render_command, "%s", why);
@@ -256,9 +379,12 @@ static pm_status cmd_render(int argc, char **argv)
     scene *sc = NULL;
     if ((rc = load_scene(a.scene, &sc)))
         return rc;
+    if ((rc = check_outputs(&a, paths, names, exts, formats, 4))) {
+        scene_free(sc);
+        return rc;
+    }
+    warn_camera(a.scene, sc);
     char err[1024];
-    const char *paths[4] = {a.exr, a.png, a.stats, cfg->dump_reps};
-    const char *names[4] = {"-o", "--png", "--stats", "--dump-reps"};
     if ((rc = render_prepare(sc, cfg, err, sizeof err))) {
         fprintf(stderr, "photonmap: %s: %s\n", a.scene, err);
         scene_free(sc);
@@ -284,6 +410,7 @@ static pm_status cmd_render(int argc, char **argv)
         scene_free(sc);
         return rc;
     }
+    warn_run(a.scene, cfg, &res.st);
     /* the representatives first: when they cannot be written, nothing else is */
     if (cfg->dump_reps && (rc = write_reps(cfg->dump_reps, &res))) {
         render_result_free(&res);

@@ -80,13 +80,17 @@ static pm_status step_build(render_state *rs)
     rs->st->bytes_photon_map = photons_map_bytes(&rs->map) + reps_sites_bytes(&rs->reps);
     rs->max_radius = render_max_radius(rs->sc, rs->cfg, &rs->map);
     rs->st->max_radius = rs->max_radius;
+    rs->st->photons_extent = rs->map.extent;
     return PM_OK;
 }
 
 /* Refuses a scene whose lit part is too small for double precision where it
- * sits: the photons' bounding box (the scene's, without photons) must span
- * at least RENDER_MIN_RELATIVE_EXTENT of its distance from the origin.
- * Returns PM_OK, or PM_ERR_INPUT with the reason in err. */
+ * is computed: the photons' bounding box (the scene's, without photons)
+ * must span at least RENDER_MIN_RELATIVE_EXTENT of its own distance from
+ * the origin, and of the camera's (the eye rays start there, and a hit
+ * point carries the rounding of its ray's origin and length). The message
+ * names which of the two limits. Returns PM_OK, or PM_ERR_INPUT with the
+ * reason in err. */
 static pm_status check_precision(const render_state *rs, char *err, size_t errlen)
 {
     const scene *sc = rs->sc;
@@ -97,14 +101,22 @@ static pm_status check_precision(const render_state *rs, char *err, size_t errle
         extent = sc->scale;
         far = fmax(vec_max_abs(sc->bounds_lo), vec_max_abs(sc->bounds_hi));
     }
-    far = fmax(far, vec_max_abs(sc->camera.position));
-    if (extent >= RENDER_MIN_RELATIVE_EXTENT * far)
+    double cam = vec_max_abs(sc->camera.position);
+    if (extent >= RENDER_MIN_RELATIVE_EXTENT * fmax(far, cam))
         return PM_OK;
-    snprintf(err, errlen,
-             "the lit part of the scene spans %.3g units but lies %.3g from the origin, where doubles are %.2g "
-             "apart; renders are exact to 0.5%% only while the span is at least 2^-38 (%.2g) of that distance: "
-             "move the scene toward the origin",
-             extent, far, far * DBL_EPSILON, RENDER_MIN_RELATIVE_EXTENT);
+    if (far >= cam)
+        snprintf(err, errlen,
+                 "the lit part of the scene spans %.3g units but lies %.3g from the origin, where doubles are %.2g "
+                 "apart; renders are exact to 0.5%% only while the span is at least 2^-38 (%.2g) of that distance: "
+                 "move the scene toward the origin",
+                 extent, far, far * DBL_EPSILON, RENDER_MIN_RELATIVE_EXTENT);
+    else
+        snprintf(err, errlen,
+                 "the camera lies %.3g from the origin, where doubles are %.2g apart: the eye rays start there, "
+                 "and their hits on the lit part of the scene (%.3g units across, %.3g from the origin) carry that "
+                 "rounding; renders are exact to 0.5%% only while the lit part spans at least 2^-38 (%.2g) of the "
+                 "camera's distance from the origin: move the camera closer to the origin and the scene",
+                 cam, cam * DBL_EPSILON, extent, far, RENDER_MIN_RELATIVE_EXTENT);
     return PM_ERR_INPUT;
 }
 

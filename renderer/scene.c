@@ -625,6 +625,20 @@ pm_status scene_load(const char *path, scene **out, char *err, size_t errlen)
     return rc;
 }
 
+int scene_sphere_between(const scene *s, vec3 a, vec3 b)
+{
+    for (size_t i = 0; i < s->nshapes; i++) {
+        const shape *sh = &s->shapes[i];
+        if (sh->kind != SHAPE_SPHERE || s->materials[sh->material].kind == MATERIAL_GLASS)
+            continue;
+        double r2 = sh->radius * sh->radius;
+        int in_a = vec_len2(vec_sub(a, sh->center)) < r2, in_b = vec_len2(vec_sub(b, sh->center)) < r2;
+        if (in_a != in_b)
+            return (int)i;
+    }
+    return -1;
+}
+
 void scene_free(scene *s)
 {
     if (!s)

@@ -59,6 +59,11 @@ pm_status scene_load(const char *path, scene **out, char *err, size_t errlen);
 pm_status scene_set_accel(scene *s, scene_accel mode);
 /* Frees a scene; NULL is fine. */
 void scene_free(scene *s);
+/* The index of the first opaque (not glass) sphere of s that encloses
+ * exactly one of the points a and b (spheres are the model's one closed
+ * shape: rectangles enclose nothing by themselves), so that no light path
+ * joins them, or -1 when none does; never fails. */
+int scene_sphere_between(const scene *s, vec3 a, vec3 b);
 
 /* A ray's hit: the shape, where, and the normal facing the side the ray
  * came from. */

@@ -52,9 +52,15 @@ static void json_number(FILE *f, double x)
 }
 
 pm_status stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, unsigned threads,
-                     const stats_run *st)
+                           const stats_run *st, const char *refused)
 {
-    fprintf(f, "{\n  \"scene\": ");
+    fprintf(f, "{\n  \"status\": \"%s\",\n", refused ? "refused" : "ok");
+    if (refused) {
+        fputs("  \"reason\": ", f);
+        json_string(f, refused);
+        fputs(",\n", f);
+    }
+    fputs("  \"scene\": ", f);
     json_string(f, scene_path);
     fprintf(f, ",\n  \"method\": \"%s\",\n", config_method_name(cfg->method));
     fprintf(f, "  \"direct\": \"%s\",\n", config_direct_name(cfg->direct));
@@ -87,6 +93,7 @@ pm_status stats_write_json(FILE *f, const char *scene_path, const config_render 
         fputs(c < 2 ? ", " : "],\n", f);
     }
     fprintf(f, "  \"underflow_pixels\": %llu,\n", (unsigned long long)st->underflow_pixels);
+    fprintf(f, "  \"flushed_values\": %llu,\n", (unsigned long long)st->flushed_values);
     fprintf(f, "  \"nonfinite_pixels\": %llu\n}\n", (unsigned long long)st->nonfinite_pixels);
     return ferror(f) ? PM_ERR_IO : PM_OK;
 }

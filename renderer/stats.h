@@ -21,17 +21,24 @@ typedef struct {
     uint64_t empty_estimates;     /* diffuse hits with no photon / no agreeing representative in range */
     double mean_radiance[3];      /* over all pixels, per channel (linear, as in the image) */
     uint64_t nonfinite_pixels;
-    uint64_t underflow_pixels;    /* a non-zero radiance below the smallest normal float (stored as 0 or subnormal) */
+    uint64_t underflow_pixels;    /* pixels with a channel whose non-zero radiance is below the smallest normal
+                                     float (stored as 0 or subnormal) */
+    uint64_t flushed_values;      /* such channel values, over all pixels (up to 3 per pixel) */
+    double peak_radiance;         /* the largest channel value of any pixel, before its conversion to float
+                                     (NaN is not counted: nonfinite_pixels) */
     double max_radius;            /* search radius cap used, scene units */
+    double photons_extent;        /* diagonal of the stored photons' bounding box, scene units (0: fewer than
+                                     two places) */
     uint64_t bytes_photon_map;    /* photon map (tree + payload) */
     uint64_t bytes_representatives;
 } stats_run;
 
 /* Monotonic time in nanoseconds. */
 int64_t stats_now_ns(void);
-/* Writes the run as one JSON object to f. Returns PM_OK, or PM_ERR_IO on a
- * write error. */
+/* Writes the run as one JSON object to f: "status" is "ok", or "refused"
+ * with the reason in "reason" when `refused` is not NULL (the run made no
+ * image). Returns PM_OK, or PM_ERR_IO on a write error. */
 pm_status stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, unsigned threads,
-                     const stats_run *st);
+                           const stats_run *st, const char *refused);
 
 #endif

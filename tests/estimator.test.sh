@@ -29,7 +29,7 @@ S=scenes/furnace.scene
 check "--nn 1 refused: no finite mean" expect_exit 2 "--nn: expected an integer in \[2," $PM render $S --nn 1
 check "precomputed --nn 2 refused (paper estimate), saying why" \
   expect_exit 2 "no finite mean .* --bias-correction" $PM render $S --method precomputed --nn 2
-check "precomputed --nn 2 --bias-correction runs" $PM render $S --method precomputed --nn 2 --bias-correction \
+check "precomputed --nn 2 --bias-correction runs" $PM render $S --method precomputed --nn 2 --bias-correction --no-output \
   --photons 2000 --width 8 --height 6 --quiet
 check "--bias-correction with --rep-every 1 refused" \
   expect_exit 2 "rep-every 1 leaves none" $PM render $S --method precomputed --bias-correction --rep-every 1

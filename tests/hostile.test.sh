@@ -148,12 +148,113 @@ photons_zero() { # P_e = 0 is allowed: a black image (documented in --help)
 }
 check "cli: --photons 0 gives the documented black image" photons_zero
 
+# ---- --rep-count at 0, 1, the stored count and above it ----
+rep_count_runs() { # COUNT WANT [options]: renders, its stats count WANT representatives
+  rm -rf "$TMP/out"; mkdir -p "$TMP/out"
+  $PM render scenes/cornell.scene "${FAST[@]}" --method precomputed --rep-count "$1" "${@:3}" -o "$TMP/out/a.exr" \
+    --stats "$TMP/out/a.json" || { echo "exit $?"; return 1; }
+  grep -q "\"representatives\": $2," "$TMP/out/a.json" || { grep representatives "$TMP/out/a.json"; return 1; }
+}
+$PM render scenes/cornell.scene "${FAST[@]}" --method precomputed --stats "$TMP/rc0.json"
+STORED=$(sed -n 's/.*"photons_stored": \([0-9]*\),/\1/p' "$TMP/rc0.json")
+EVERY4=$(sed -n 's/.*"representatives": \([0-9]*\),/\1/p' "$TMP/rc0.json")
+check "--rep-count: the pilot stored photons ($STORED)" test "${STORED:-0}" -gt 10
+check "--rep-count 0: the --rep-every rule ($EVERY4)" rep_count_runs 0 "$EVERY4"
+check "--rep-count 1: one representative" rep_count_runs 1 1
+check "--rep-count at the stored count: every stored photon" rep_count_runs "$STORED" "$STORED"
+check "--rep-count above the stored count: every stored photon" rep_count_runs $((STORED + 1)) "$STORED"
+check "--rep-count 4294967295 (the top of its range): every stored photon" rep_count_runs 4294967295 "$STORED"
+check "--rep-count 4294967296: exit 2" bad_opt "--rep-count: expected an integer in \[0, 4294967295\]" \
+  --method precomputed --rep-count 4294967296
+rep_count_corrected() { # COUNT: refused with --bias-correction, naming both, nothing written
+  rm -rf "$TMP/out"; mkdir -p "$TMP/out"
+  expect_exit 2 "--rep-count $1 flags every one of the $STORED stored photons, and --bias-correction" \
+    $PM render scenes/cornell.scene "${FAST[@]}" --method precomputed --bias-correction --rep-count "$1" \
+    -o "$TMP/out/a.exr" --stats "$TMP/out/a.json" --dump-reps "$TMP/out/a.csv" && [ -z "$(ls -A "$TMP/out")" ]
+}
+check "--rep-count at the stored count, --bias-correction: exit 2, nothing written" rep_count_corrected "$STORED"
+check "--rep-count above the stored count, --bias-correction: exit 2, nothing written" rep_count_corrected $((STORED + 1))
+check "--rep-count 1, --bias-correction: renders" rep_count_runs 1 1 --bias-correction
+
+# ---- --dump-reps to paths it cannot write ----
+dump_err() { # CODE PATTERN PATH [options]: fails so, before rendering, and writes none of the outputs
+  local code=$1 pattern=$2 path=$3; shift 3
+  rm -rf "$TMP/out"; mkdir -p "$TMP/out"
+  expect_exit "$code" "$pattern" timeout 60 $PM render scenes/cornell.scene "${FAST[@]}" --method precomputed "$@" \
+    -o "$TMP/out/a.exr" --stats "$TMP/out/a.json" --dump-reps "$path" &&
+  [ -z "$(ls -A "$TMP/out")" ] || { echo "outputs left:"; ls -A "$TMP/out"; return 1; }
+}
+check "--dump-reps into a missing directory: exit 1 naming it" dump_err 1 "^photonmap: /nonexistent-dir/r.csv: cannot write" /nonexistent-dir/r.csv
+echo x > "$TMP/plain-r"
+check "--dump-reps under a regular file: exit 1 naming it" dump_err 1 "^photonmap: $TMP/plain-r/r.csv: cannot write" "$TMP/plain-r/r.csv"
+mkdir -p "$TMP/rdir.csv"
+check "--dump-reps to a directory: exit 1" dump_err 1 "^photonmap: $TMP/rdir.csv: not a regular file" "$TMP/rdir.csv"
+mkfifo "$TMP/fifo.csv"
+check "--dump-reps to a FIFO: exit 1 at once, no hang" dump_err 1 "^photonmap: $TMP/fifo.csv: not a regular file" "$TMP/fifo.csv"
+check "control: the FIFO is still a FIFO" test -p "$TMP/fifo.csv"
+ln -sf /dev/full "$TMP/full.csv"
+check "--dump-reps to /dev/full (a link): exit 1, /dev/full untouched" dump_err 1 "^photonmap: $TMP/full.csv: not a regular file" "$TMP/full.csv"
+: > "$TMP/out-same.exr"; ln -sf out-same.exr "$TMP/same-reps.csv"
+same_as_exr() {
+  rm -rf "$TMP/out"; mkdir -p "$TMP/out"
+  expect_exit 2 "-o and --dump-reps name the same file" $PM render scenes/cornell.scene "${FAST[@]}" --method precomputed \
+    -o "$TMP/out-same.exr" --stats "$TMP/out/a.json" --dump-reps "$TMP/same-reps.csv" &&
+  [ ! -s "$TMP/out-same.exr" ] && [ -z "$(ls -A "$TMP/out")" ]
+}
+check "--dump-reps the same file as -o (a link): exit 2, nothing written" same_as_exr
+echo old > "$TMP/st.json"; ln -sf st.json "$TMP/st.csv"
+same_as_stats() {
+  expect_exit 2 "--stats and --dump-reps name the same file" $PM render scenes/cornell.scene "${FAST[@]}" \
+    --method precomputed --stats "$TMP/st.json" --dump-reps "$TMP/st.csv" && [ "$(cat "$TMP/st.json")" = old ]
+}
+check "--dump-reps the same file as --stats (a link): exit 2, the old file kept" same_as_stats
+check "--dump-reps without .csv: exit 2 naming --dump-reps" dump_err 2 "^photonmap: --dump-reps: '$TMP/r.txt' does not end in .csv" "$TMP/r.txt"
+
+# ---- the BVH (from 24 shapes) with degenerate shapes ----
+ROOM='camera position 0 1 2.4 look_at 0 1 0 up 0 1 0 fov 65
+light point position 0 1.75 0 power 12.566371 12.566371 12.566371
+material w lambert rho 0.75 0.75 0.75
+sphere center 0 1 0 radius 3 material w'
+bvh_ok() { # the scene $TMP/s.scene renders, by the BVH the same image as by the loop over the shapes
+  rm -f "$TMP/bvh.exr" "$TMP/lin.exr"
+  $PM render "$TMP/s.scene" "${FAST[@]}" --accel bvh -o "$TMP/bvh.exr" --stats "$TMP/bvh.json" || { echo "exit $?"; return 1; }
+  grep -q '"nonfinite_pixels": 0' "$TMP/bvh.json" && ! grep -q '"mean_radiance": \[0, 0, 0\]' "$TMP/bvh.json" &&
+  { [ "${1:-}" = nolinear ] || { $PM render "$TMP/s.scene" "${FAST[@]}" --accel linear -o "$TMP/lin.exr" && cmp "$TMP/bvh.exr" "$TMP/lin.exr"; }; }
+}
+{ echo "$ROOM"; for i in $(seq 10 49); do echo "rect corner 0.$i 1 0 edge1 1e-50 0 0 edge2 0 0 1e-50 material w"; done; } > "$TMP/s.scene"
+check "BVH: 40 rectangles with edges of 1e-50 (the shortest accepted) render, as by the loop" bvh_ok
+{ echo "$ROOM"; for i in $(seq 10 49); do echo "rect corner 0.$i 1 0 edge1 1e-50 0 0 edge2 0 0 1 material w"; done; } > "$TMP/s.scene"
+check "BVH: 40 slivers of 1e-50 x 1 render, as by the loop" bvh_ok
+{ echo "$ROOM"; for i in $(seq 10 49); do echo "sphere center 0.$i 1 0 radius 1e-50 material w"; done; } > "$TMP/s.scene"
+check "BVH: 40 spheres of radius 1e-50 render, as by the loop" bvh_ok
+{ echo "$ROOM"; for i in $(seq 10 49); do echo "sphere center 0 1 0 radius 1e-50 material w"; done; } > "$TMP/s.scene"
+check "BVH: 40 coincident spheres of radius 1e-50 render, as by the loop" bvh_ok
+{ echo "$ROOM"; for i in $(seq 1 30); do echo "rect corner 0 1 0 edge1 1e-49 0 0 edge2 0 1e-49 0 material w"; done
+  echo "rect corner 0 1 0 edge1 1e-51 0 0 edge2 0 1 0 material w"; } > "$TMP/s.scene"
+check "BVH scene: a rectangle edge of 1e-51 (below the limit) is refused at its line" scene_err ":35:[0-9]+: rect edge1 is zero or shorter than 1e-50"
+{ echo "$ROOM"; for i in $(seq 1 30); do echo "sphere center 0 1 0 radius 1e-50 material w"; done
+  echo "sphere center 0 1 0 radius 9e-51 material w"; } > "$TMP/s.scene"
+check "BVH scene: a sphere of radius 9e-51 is refused at its line" scene_err ":35:[0-9]+: sphere radius must be positive and at least 1e-50"
+{ echo "$ROOM"; for i in $(seq 1 30); do echo "rect corner 0 1 0 edge1 1 0 0 edge2 1 1e-20 0 material w"; done; } > "$TMP/s.scene"
+check "BVH scene: a zero-area rectangle (parallel edges) is refused at its line" scene_err ":5:[0-9]+: rect edges are not perpendicular"
+# 100,000 shapes (the most a scene may hold), 99,999 of them at one place
+{ echo "$ROOM"; awk 'BEGIN { for (i = 0; i < 99999; i++) print "sphere center 0 0.5 0 radius 0.2 material w" }'; } > "$TMP/s.scene"
+check "BVH: 99,999 coincident spheres and a room (100,000 shapes) render" bvh_ok nolinear
+{ echo "$ROOM"; awk 'BEGIN { for (i = 0; i < 99999; i++) print "rect corner -0.5 0.5 -0.5 edge1 1 0 0 edge2 0 0 1 material w" }'; } > "$TMP/s.scene"
+check "BVH: 99,999 coincident rectangles and a room render" bvh_ok nolinear
+echo "sphere center 0 0.5 0 radius 0.2 material w" >> "$TMP/s.scene"
+check "scene: 100,001 shapes are refused at the one too many" scene_err ":100004:1: too many shapes \(at most 100000\)"
+
 # ---- outputs ----
+# a device through a link of the right extension (a name without it is
+# refused for its extension first)
 for dev in /dev/full /dev/null; do
+  ln -sf "$dev" "$TMP/dev-$(basename $dev).exr"
   check "output: $dev is refused, not replaced" \
-    bash -c "rc=0; $PM render scenes/cornell.scene ${FAST[*]} -o $dev 2>$TMP/dev.err || rc=\$?; [ \$rc -eq 1 ] && grep -q '^photonmap: $dev: not a regular file' $TMP/dev.err && [ -c $dev ]"
+    bash -c "rc=0; $PM render scenes/cornell.scene ${FAST[*]} -o $TMP/dev-$(basename $dev).exr 2>$TMP/dev.err || rc=\$?; [ \$rc -eq 1 ] && grep -q '^photonmap: $TMP/dev-$(basename $dev).exr: not a regular file' $TMP/dev.err && [ -c $dev ]"
 done
-check "output: a directory as output is refused up front" expect_exit 1 "^photonmap: $TMP: not a regular file" $PM render scenes/cornell.scene "${FAST[@]}" -o "$TMP"
+mkdir -p "$TMP/dir.exr"
+check "output: a directory as output is refused up front" expect_exit 1 "^photonmap: $TMP/dir.exr: not a regular file" $PM render scenes/cornell.scene "${FAST[@]}" -o "$TMP/dir.exr"
 echo x > "$TMP/plain"
 check "output: a path under a regular file" expect_exit 1 "^photonmap: $TMP/plain/a.exr: cannot write" $PM render scenes/cornell.scene "${FAST[@]}" -o "$TMP/plain/a.exr"
 

@@ -60,7 +60,7 @@ valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$tmp/cg.out" 
 echo "bench: profiles (perf)" >&2
 profile() { # method nn: a whole render at 1024x768, P_e = 500k, one thread
   if perf record -q -e cpu-clock -o "$tmp/perf.data" build/photonmap render scenes/cornell.scene --photons 500000 \
-      --nn "$2" --threads 1 --quiet --method "$1" > /dev/null 2>&1; then
+      --nn "$2" --threads 1 --quiet --no-output --method "$1" > /dev/null 2>&1; then
     perf report -i "$tmp/perf.data" --stdio --no-children --sort symbol 2> /dev/null \
       | grep -E '^ +[0-9.]+%' | head -n 12 | sed 's/^ */    /'
   else

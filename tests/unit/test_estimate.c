@@ -54,6 +54,32 @@ void test_stability_nn_one_and_at_stored_count(void)
     photons_map_free(&m);
 }
 
+void test_stability_floor_stops_at_the_extent(void)
+{
+    /* 8 coincident photons and 8 more 0.5 away: a map of extent 0.5. The
+     * floor of r is 1e-3 of the cap while the cap is within the extent, and
+     * 1e-3 of the extent beyond it (a cap of 1e30 must not floor r at 1e27) */
+    float pos[16][3];
+    for (int i = 0; i < 16; i++)
+        pos[i][0] = i < 8 ? 0.25f : 0.75f, pos[i][1] = 0.0f, pos[i][2] = -0.5f;
+    photons_map m;
+    helper_map(&m, (const float(*)[3])pos, 16, down, up_n, 2.0f, 0);
+    m.extent = 0.5;
+    est_scratch *s = est_scratch_new(1, 8);
+    CHECK(s != NULL);
+    uint32_t found;
+    vec3 x = vec_make(0.25, 0, -0.5);
+    const double caps[] = {0.05, 0.5, 1e3, 1e30};
+    for (int i = 0; i < 4; i++) {
+        double f = fmin(caps[i], m.extent) * EST_MIN_RADIUS_FRAC;
+        vec3 e = irr(&m, x, up_n, 8, caps[i], s, &found);
+        CHECK(found == 8);
+        CHECK_MSG(fabs(e.x / (2.0 * 8 / (VEC_PI * f * f)) - 1.0) < 1e-6, "cap %g: E %g", caps[i], e.x);
+    }
+    est_scratch_delete(s, 1);
+    photons_map_free(&m);
+}
+
 void test_stability_coincident_photons(void)
 {
     /* 8 photons at exactly the query point: r = 0, clamped to 1e-3 R */

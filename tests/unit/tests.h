@@ -36,6 +36,7 @@
     /* test_estimate.c */ \
     X(stability_nn_one_and_at_stored_count) \
     X(stability_coincident_photons) \
+    X(stability_floor_stops_at_the_extent) \
     X(stability_few_or_no_photons_in_range) \
     /* test_reps.c */ \
     X(precomputed_equals_conventional_on_uniform_plane) \
