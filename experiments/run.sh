@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # run.sh: one render of the experiment grid, the recipe of one make target
-# (experiments/table.mk). Owns the files of that render and nothing else.
+# (experiments/study.mk). Owns the files of that render and nothing else.
 #
 #   run.sh RUNROOT CELL/seedK
 #
