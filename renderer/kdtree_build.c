@@ -4,6 +4,7 @@
  * points), the height at which searches switch to range scans, kd_free,
  * kd_bytes and kd_build_peak_bytes. */
 #include "kdtree_impl.h"
+#include "mem.h"
 
 #include <assert.h>
 #include <math.h>
@@ -224,15 +225,15 @@ int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint3
     t->n = n;
     t->nleaves = nleaves;
     t->scan_h = scan_height(n, nleaves);
-    kd_item *it = malloc(sizeof(kd_item) * (n ? n : 1));
-    t->split = malloc(sizeof(float) * nleaves);
-    t->axis = malloc(nleaves);
-    t->leaf_start = malloc(sizeof(uint32_t) * (nleaves + 1));
-    t->x = calloc((size_t)n + KD_CHUNK, sizeof(float));
-    t->y = calloc((size_t)n + KD_CHUNK, sizeof(float));
-    t->z = calloc((size_t)n + KD_CHUNK, sizeof(float));
+    kd_item *it = mem_alloc(sizeof(kd_item) * (n ? n : 1));
+    t->split = mem_alloc(sizeof(float) * nleaves);
+    t->axis = mem_alloc(nleaves);
+    t->leaf_start = mem_alloc(sizeof(uint32_t) * (nleaves + 1));
+    t->x = mem_zalloc(((size_t)n + KD_CHUNK) * sizeof(float));
+    t->y = mem_zalloc(((size_t)n + KD_CHUNK) * sizeof(float));
+    t->z = mem_zalloc(((size_t)n + KD_CHUNK) * sizeof(float));
     if (!it || !t->split || !t->axis || !t->leaf_start || !t->x || !t->y || !t->z) {
-        free(it);
+        mem_free(it);
         kd_free(t);
         return -1;
     }
@@ -261,18 +262,18 @@ int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint3
             t->hi[a] = p[a] > t->hi[a] ? p[a] : t->hi[a];
         }
     }
-    free(it);
+    mem_free(it);
     return 0;
 }
 
 void kd_free(kd_tree *t)
 {
-    free(t->split);
-    free(t->axis);
-    free(t->leaf_start);
-    free(t->x);
-    free(t->y);
-    free(t->z);
+    mem_free(t->split);
+    mem_free(t->axis);
+    mem_free(t->leaf_start);
+    mem_free(t->x);
+    mem_free(t->y);
+    mem_free(t->z);
     memset(t, 0, sizeof *t);
 }
 

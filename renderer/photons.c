@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "material.h"
+#include "mem.h"
 #include "parallel.h"
 #include "rng.h"
 
@@ -49,11 +50,11 @@ static int chunk_store(photons_chunk *c, vec3 p, vec3 dir, vec3 power, vec3 n, u
 {
     if (c->count == c->cap) {
         uint64_t nc = c->cap ? c->cap * 2 : PHOTONS_CHUNK;
-        double *np = realloc(c->pos, nc * 3 * sizeof(double));
+        double *np = mem_realloc(c->pos, nc * 3 * sizeof(double));
         if (!np)
             return -1;
         c->pos = np;
-        photons_record *nph = realloc(c->ph, nc * sizeof(photons_record));
+        photons_record *nph = mem_realloc(c->ph, nc * sizeof(photons_record));
         if (!nph)
             return -1;
         c->ph = nph;
@@ -160,8 +161,8 @@ pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threa
         out->escaped += chunks[i].escaped;
     }
     if (!failed) {
-        out->pos = malloc((total ? total : 1) * 3 * sizeof(double));
-        out->ph = malloc((total ? total : 1) * sizeof(photons_record));
+        out->pos = mem_alloc((total ? total : 1) * 3 * sizeof(double));
+        out->ph = mem_alloc((total ? total : 1) * sizeof(photons_record));
         failed = !out->pos || !out->ph;
     }
     uint64_t at = 0;
@@ -171,8 +172,8 @@ pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threa
             memcpy(out->ph + at, chunks[i].ph, chunks[i].count * sizeof(photons_record));
             at += chunks[i].count;
         }
-        free(chunks[i].pos);
-        free(chunks[i].ph);
+        mem_free(chunks[i].pos);
+        mem_free(chunks[i].ph);
     }
     free(chunks);
     if (failed) {
@@ -186,8 +187,8 @@ pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threa
 
 void photons_list_free(photons_list *l)
 {
-    free(l->pos);
-    free(l->ph);
+    mem_free(l->pos);
+    mem_free(l->ph);
     memset(l, 0, sizeof *l);
 }
 
@@ -248,14 +249,14 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, 
     for (uint64_t i = 0; i < l->count; i++)
         nout += (l->ph[i].flags & leave_out) != 0;
     uint32_t n = (uint32_t)l->count - nout;
-    float *pts = malloc(sizeof(float) * 3 * (n ? n : 1));
-    uint32_t *src = malloc(sizeof(uint32_t) * (n ? n : 1)); /* tree input index -> list index */
-    uint32_t *perm = malloc(sizeof(uint32_t) * (n ? n : 1));
-    m->ph = malloc(sizeof(photons_record) * (n ? n : 1));
+    float *pts = mem_alloc(sizeof(float) * 3 * (n ? n : 1));
+    uint32_t *src = mem_alloc(sizeof(uint32_t) * (n ? n : 1)); /* tree input index -> list index */
+    uint32_t *perm = mem_alloc(sizeof(uint32_t) * (n ? n : 1));
+    m->ph = mem_alloc(sizeof(photons_record) * (n ? n : 1));
     int rc = (!pts || !src || !perm || !m->ph) ? -1 : 0;
     if (rc == 0 && left) {
-        left->pos = malloc(sizeof(double) * 3 * (nout ? nout : 1));
-        left->ph = malloc(sizeof(photons_record) * (nout ? nout : 1));
+        left->pos = mem_alloc(sizeof(double) * 3 * (nout ? nout : 1));
+        left->ph = mem_alloc(sizeof(photons_record) * (nout ? nout : 1));
         left->unit = l->unit;
         rc = (!left->pos || !left->ph) ? -1 : 0;
     }
@@ -281,9 +282,9 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, 
             m->ph[i] = l->ph[src[perm[i]]];
         m->count = n;
     }
-    free(pts);
-    free(src);
-    free(perm);
+    mem_free(pts);
+    mem_free(src);
+    mem_free(perm);
     photons_list_free(l);
     if (rc != 0) {
         photons_map_free(m);
@@ -296,7 +297,7 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, 
 void photons_map_free(photons_map *m)
 {
     kd_free(&m->tree);
-    free(m->ph);
+    mem_free(m->ph);
     memset(m, 0, sizeof *m);
 }
 

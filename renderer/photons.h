@@ -46,7 +46,8 @@ typedef struct {
 } photons_params;
 
 /* The photon pass's output: positions in world coordinates (double), in
- * trace order. */
+ * trace order. pos and ph are mem_alloc buffers (mem.h), which is how a
+ * caller that fills a list itself must allocate them. */
 typedef struct {
     uint64_t count;
     double *pos;         /* 3 * count */

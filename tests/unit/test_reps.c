@@ -12,6 +12,7 @@
 #include "estimate.h"
 #include "helpers.h"
 #include "photons.h"
+#include "mem.h"
 #include "render.h"
 #include "reps.h"
 #include "rng.h"
@@ -22,8 +23,8 @@
 static void add_square(photons_list *l, uint64_t n, vec3 origin, vec3 e1, vec3 e2, vec3 nrm, float power,
                        uint64_t seed)
 {
-    l->pos = realloc(l->pos, sizeof(double) * 3 * (l->count + n));
-    l->ph = realloc(l->ph, sizeof(photons_record) * (l->count + n));
+    l->pos = mem_realloc(l->pos, sizeof(double) * 3 * (l->count + n));
+    l->ph = mem_realloc(l->ph, sizeof(photons_record) * (l->count + n));
     rng_stream s = rng_make(seed, 0);
     for (uint64_t i = 0; i < n; i++) {
         vec3 p = vec_add(origin, vec_add(vec_scale(e1, rng_next_double(&s)), vec_scale(e2, rng_next_double(&s))));
