@@ -1,7 +1,9 @@
 /* photons: the photon pass and the map build. Photons are traced in fixed
  * chunks of indices, each chunk into its own buffer, and the buffers are
- * joined in chunk order, so the stored list does not depend on the thread
- * count. The build moves the positions into the map frame (photons.h). */
+ * joined in chunk order (each copied in parallel to its place, found by
+ * prefix sums of the chunks' counts), so the stored list does not depend on
+ * the thread count. The build moves the positions into the map frame
+ * (photons.h). */
 #include "photons.h"
 
 #include <assert.h>
@@ -14,8 +16,17 @@
 #include "parallel.h"
 #include "rng.h"
 
-#define PHOTONS_CHUNK 4096u
+/* Photons per chunk: a power of two from PHOTONS_CHUNK_MIN to
+ * PHOTONS_CHUNK_MAX giving at least PHOTONS_CHUNKS_MIN chunks (the stored
+ * list does not depend on it: chunks are joined in index order). Large
+ * chunks keep their buffers on huge pages (mem.h); enough chunks keep the
+ * threads' shares even. */
+#define PHOTONS_CHUNK_MIN 4096u
+#define PHOTONS_CHUNK_MAX 65536u
+#define PHOTONS_CHUNKS_MIN 64u
 #define PHOTONS_PILOT 4096u
+#define PHOTONS_FIRST_CAP 4096u /* records of a buffer nothing is known about yet */
+#define PHOTONS_CAP_SLACK 1.1   /* a chunk's buffer: this times the stored-per-photon of chunk 0 */
 
 void photons_pack_dir(double x, double y, double z, int8_t out[3])
 {
@@ -29,6 +40,9 @@ vec3 photons_unpack_dir(const int8_t d[3])
     return vec_make(d[0] / 127.0, d[1] / 127.0, d[2] / 127.0);
 }
 
+/* One chunk's photons, in index order. A worker fills a local copy and
+ * writes it back once, at the chunk's end, so two threads never write the
+ * same cache line of the chunks array while they trace. */
 typedef struct {
     uint64_t count, cap;
     double *pos;
@@ -41,6 +55,9 @@ typedef struct {
     const scene *sc;
     const photons_params *p;
     photons_chunk *chunks;
+    uint64_t chunk_len;  /* photons per chunk */
+    uint64_t cap;        /* records a chunk's buffers start with (0: PHOTONS_FIRST_CAP on first store) */
+    int first;           /* chunk 0 is done: trace_chunk skips it */
     progress *prog;
 } trace_ctx;
 
@@ -49,7 +66,7 @@ typedef struct {
 static int chunk_store(photons_chunk *c, vec3 p, vec3 dir, vec3 power, vec3 n, unsigned flags)
 {
     if (c->count == c->cap) {
-        uint64_t nc = c->cap ? c->cap * 2 : PHOTONS_CHUNK;
+        uint64_t nc = c->cap ? c->cap + c->cap / 2 : PHOTONS_FIRST_CAP;
         double *np = mem_realloc(c->pos, nc * 3 * sizeof(double));
         if (!np)
             return -1;
@@ -133,29 +150,76 @@ static void trace_chunk(uint64_t chunk, unsigned thread, void *arg)
 {
     (void)thread;
     trace_ctx *tc = arg;
-    photons_chunk *c = &tc->chunks[chunk];
-    uint64_t lo = chunk * PHOTONS_CHUNK;
-    uint64_t hi = lo + PHOTONS_CHUNK < tc->p->photons ? lo + PHOTONS_CHUNK : tc->p->photons;
-    for (uint64_t i = lo; i < hi && !c->failed; i++) {
-        if (trace_one(tc, i, c))
-            c->failed = 1;
+    if (chunk == 0 && tc->first)
+        return;
+    photons_chunk c = {0};
+    uint64_t lo = chunk * tc->chunk_len;
+    uint64_t hi = lo + tc->chunk_len < tc->p->photons ? lo + tc->chunk_len : tc->p->photons;
+    if (tc->cap) {
+        c.pos = mem_alloc(tc->cap * 3 * sizeof(double));
+        c.ph = mem_alloc(tc->cap * sizeof(photons_record));
+        c.cap = tc->cap;
+        c.failed = !c.pos || !c.ph;
     }
+    for (uint64_t i = lo; i < hi && !c.failed; i++) {
+        if (trace_one(tc, i, &c))
+            c.failed = 1;
+    }
+    tc->chunks[chunk] = c;
     progress_add(tc->prog, hi - lo);
+}
+
+typedef struct {
+    photons_chunk *chunks;
+    const uint64_t *at; /* each chunk's first index in the list */
+    photons_list *out;
+} join_ctx;
+
+/* Copies one chunk into its place in the list and frees its buffers. */
+static void join_chunk(uint64_t chunk, unsigned thread, void *arg)
+{
+    (void)thread;
+    join_ctx *jc = arg;
+    photons_chunk *c = &jc->chunks[chunk];
+    if (c->count) {
+        memcpy(jc->out->pos + 3 * jc->at[chunk], c->pos, c->count * 3 * sizeof(double));
+        memcpy(jc->out->ph + jc->at[chunk], c->ph, c->count * sizeof(photons_record));
+    }
+    mem_free(c->pos);
+    mem_free(c->ph);
+    c->pos = NULL;
+    c->ph = NULL;
 }
 
 pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threads, progress *prog, photons_list *out)
 {
     memset(out, 0, sizeof *out);
-    uint64_t nchunks = (p->photons + PHOTONS_CHUNK - 1) / PHOTONS_CHUNK;
+    uint64_t len = PHOTONS_CHUNK_MIN;
+    while (len < PHOTONS_CHUNK_MAX && len * PHOTONS_CHUNKS_MIN < p->photons)
+        len *= 2;
+    uint64_t nchunks = (p->photons + len - 1) / len;
     photons_chunk *chunks = calloc(nchunks ? nchunks : 1, sizeof(photons_chunk));
-    if (!chunks)
+    uint64_t *at = malloc(sizeof(uint64_t) * (nchunks ? nchunks : 1));
+    if (!chunks || !at) {
+        free(chunks);
+        free(at);
         return PM_ERR_NOMEM;
-    trace_ctx tc = {sc, p, chunks, prog};
+    }
+    trace_ctx tc = {sc, p, chunks, len, 0, 0, prog};
+    if (nchunks > 0) {
+        /* chunk 0 alone first: what it stores per photon sizes the other
+         * chunks' buffers, so that they rarely grow */
+        trace_chunk(0, 0, &tc);
+        double per = (double)chunks[0].count / (double)(len < p->photons ? len : p->photons);
+        tc.cap = (uint64_t)(per * PHOTONS_CAP_SLACK * (double)len) + 64;
+        tc.first = 1;
+    }
     parallel_for(threads, nchunks, trace_chunk, &tc);
     int failed = 0;
     uint64_t total = 0;
     for (uint64_t i = 0; i < nchunks; i++) {
         failed |= chunks[i].failed;
+        at[i] = total;
         total += chunks[i].count;
         out->truncated += chunks[i].truncated;
         out->escaped += chunks[i].escaped;
@@ -165,17 +229,16 @@ pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threa
         out->ph = mem_alloc((total ? total : 1) * sizeof(photons_record));
         failed = !out->pos || !out->ph;
     }
-    uint64_t at = 0;
+    if (!failed) {
+        join_ctx jc = {chunks, at, out};
+        parallel_for(threads, nchunks, join_chunk, &jc);
+    }
     for (uint64_t i = 0; i < nchunks; i++) {
-        if (!failed && chunks[i].count) {
-            memcpy(out->pos + 3 * at, chunks[i].pos, chunks[i].count * 3 * sizeof(double));
-            memcpy(out->ph + at, chunks[i].ph, chunks[i].count * sizeof(photons_record));
-            at += chunks[i].count;
-        }
         mem_free(chunks[i].pos);
         mem_free(chunks[i].ph);
     }
     free(chunks);
+    free(at);
     if (failed) {
         photons_list_free(out);
         return PM_ERR_NOMEM;
