@@ -295,7 +295,7 @@ void photons_map_point(const photons_map *m, vec3 x, float q[3])
     q[2] = (float)((x.z - m->centre.z) * inv);
 }
 
-pm_status photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, photons_list *left)
+pm_status photons_build_map(photons_list *l, uint8_t leave_out, unsigned threads, photons_map *m, photons_list *left)
 {
     assert(left || leave_out == 0);
     memset(m, 0, sizeof *m);
@@ -338,7 +338,7 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, 
         assert(j == n && r == nout);
         if (left)
             left->count = nout;
-        rc = kd_build(&m->tree, pts, n, KD_DEFAULT_LEAF, perm);
+        rc = kd_build(&m->tree, pts, n, KD_DEFAULT_LEAF, perm, threads);
     }
     if (rc == 0) {
         for (uint32_t i = 0; i < n; i++)

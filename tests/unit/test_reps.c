@@ -55,7 +55,7 @@ void test_precomputed_equals_conventional_on_uniform_plane(void)
     add_square(&l, 200000, vec_make(-1, 0, -1), vec_make(2, 0, 0), vec_make(0, 0, 2), vec_make(0, 1, 0), 1e-5f, 1);
     flag_every(&l, 1);
     photons_map m;
-    CHECK(photons_build_map(&l, 0, &m, NULL) == 0);
+    CHECK(photons_build_map(&l, 0, 2, &m, NULL) == 0);
     reps_set reps;
     const uint32_t nn = 100;
     est_gather g = est_gather_make(&m, nn, 0.2, 0);
@@ -110,7 +110,7 @@ void test_precomputed_normal_test_at_corner(void)
     add_square(&l, 4000, vec_make(-1, 0, 0), vec_make(2, 0, 0), vec_make(0, 2, 0), vec_make(0, 0, 1), 1e-2f, 4);
     flag_every(&l, 3);
     photons_map m;
-    CHECK(photons_build_map(&l, 0, &m, NULL) == 0);
+    CHECK(photons_build_map(&l, 0, 2, &m, NULL) == 0);
     reps_set reps;
     est_gather g = est_gather_make(&m, 50, 0.3, 0);
     CHECK(helper_reps(&m, &g, CONFIG_REP_TREE_SEPARATE, 1, &reps) == 0);
@@ -187,7 +187,7 @@ void test_precomputed_dump_reps(void)
     add_square(&l, 20000, vec_make(99, 5, -1), vec_make(2, 0, 0), vec_make(0, 0, 2), vec_make(0, 1, 0), 1e-5f, 5);
     flag_every(&l, 8);
     photons_map m;
-    CHECK(photons_build_map(&l, 0, &m, NULL) == 0);
+    CHECK(photons_build_map(&l, 0, 2, &m, NULL) == 0);
     est_gather g = est_gather_make(&m, 50, 0.3, 0);
     for (int layout = 0; layout < 2; layout++) {
         reps_set reps;
