@@ -90,6 +90,14 @@ static void *alloc_impl(size_t bytes, int zero)
     return (char *)h + MEM_HEAD;
 }
 
+size_t mem_round(size_t bytes)
+{
+    if (bytes < MEM_HUGE_MIN / 2 || bytes > SIZE_MAX - 2 * MEM_ALIGN)
+        return bytes;
+    size_t map = (bytes + MEM_HEAD + MEM_ALIGN - 1) & ~(MEM_ALIGN - 1);
+    return map - MEM_HEAD;
+}
+
 void *mem_alloc(size_t bytes)
 {
     return alloc_impl(bytes, 0);

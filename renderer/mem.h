@@ -18,6 +18,11 @@
 /* Buffers at least this large (header included) are huge-page mappings. */
 #define MEM_HUGE_MIN ((size_t)2 << 20)
 
+/* The bytes a buffer asked for `bytes` can hold at no extra cost in pages:
+ * from MEM_HUGE_MIN / 2 up, rounded so that its mapping is whole huge
+ * pages (a huge page is backed whole once touched, and a partial one at
+ * the end would be small pages, a fault each); smaller sizes as they are. */
+size_t mem_round(size_t bytes);
 /* A buffer of `bytes` (0 is fine: a valid, empty buffer), 64-byte aligned,
  * contents undefined. Returns NULL when memory runs out. */
 void *mem_alloc(size_t bytes);
