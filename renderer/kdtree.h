@@ -54,6 +54,9 @@ size_t kd_bytes(const kd_tree *t);
  * not the caller's pts and perm. A double, so that a count can be sized
  * (and refused) before its points exist. Never fails. */
 double kd_build_peak_bytes(double n, uint32_t leaf_size);
+/* The bytes a tree over n points with leaf_size holds once built (what
+ * kd_bytes will report), a double for the same reason. Never fails. */
+double kd_tree_bytes(double n, uint32_t leaf_size);
 
 /* The coordinates of leaf-order point i (i < t->n) to out. */
 static inline void kd_point(const kd_tree *t, uint32_t i, float out[3])

@@ -396,18 +396,22 @@ size_t kd_bytes(const kd_tree *t)
     return pts * 3 * sizeof(float) + (size_t)t->nleaves * (sizeof(float) + 1 + sizeof(uint32_t)) + sizeof(uint32_t);
 }
 
-/* kd_build's peak: its working copy of the points (kd_item, at least one)
- * beside the tree's arrays as kd_bytes counts them. A double so that a
- * caller can size a count before it knows the points exist. */
-double kd_build_peak_bytes(double n, uint32_t leaf_size)
+/* What kd_bytes reports for a tree over n points: the coordinates with
+ * their padding and the nodes. A double, like kd_build_peak_bytes. */
+double kd_tree_bytes(double n, uint32_t leaf_size)
 {
     if (leaf_size == 0)
         leaf_size = KD_DEFAULT_LEAF;
     double nleaves = 1.0;
     while (nleaves * leaf_size < n)
         nleaves *= 2.0;
-    double work = (n > 1.0 ? n : 1.0) * (double)sizeof(kd_item);
-    double arrays = (n + KD_CHUNK) * 3.0 * sizeof(float) + nleaves * (sizeof(float) + 1 + sizeof(uint32_t)) +
-                    sizeof(uint32_t);
-    return work + arrays;
+    return (n + KD_CHUNK) * 3.0 * sizeof(float) + nleaves * (sizeof(float) + 1 + sizeof(uint32_t)) +
+           sizeof(uint32_t);
+}
+
+/* kd_build's peak: its working copy of the points (kd_item, at least one)
+ * beside the tree's arrays. */
+double kd_build_peak_bytes(double n, uint32_t leaf_size)
+{
+    return (n > 1.0 ? n : 1.0) * (double)sizeof(kd_item) + kd_tree_bytes(n, leaf_size);
 }

@@ -455,12 +455,17 @@ size_t photons_map_bytes(const photons_map *m)
 
 double photons_peak_bytes(double stored)
 {
-    /* the trace's chunk buffers and the joined list (double positions), then
-     * the build: the list, the map-frame copy, the permutations, the
-     * payload, and what kd_build holds */
+    /* The trace: while the chunks are joined, the chunk buffers and the
+     * joined list (double positions). The build: the list, the tree's
+     * input (map-frame floats) and the two permutations stay alive
+     * throughout; beside them first kd_build's working copy and the tree,
+     * then the tree and the payload gathered into leaf order (kd_build's
+     * copy is freed before the payload is written). */
     double list = 3.0 * sizeof(double) + sizeof(photons_record);
-    double build = list + 3.0 * sizeof(float) + 2.0 * sizeof(uint32_t) + sizeof(photons_record);
-    return fmax(stored * 2.0 * list, stored * build + kd_build_peak_bytes(stored, KD_DEFAULT_LEAF));
+    double held = stored * (list + 3.0 * sizeof(float) + 2.0 * sizeof(uint32_t));
+    double tree = kd_tree_bytes(stored, KD_DEFAULT_LEAF);
+    double gather = tree + stored * sizeof(photons_record);
+    return fmax(stored * 2.0 * list, held + fmax(kd_build_peak_bytes(stored, KD_DEFAULT_LEAF), gather));
 }
 
 double photons_stored_per_emitted(const scene *sc, const photons_params *p)

@@ -554,6 +554,7 @@ void test_kdtree_build_memory(void)
             kd_tree t;
             CHECK(kd_build(&t, pts, n, leaves[li], perm, 1) == 0);
             double want = (double)kd_bytes(&t) + 16.0 * (n > 0 ? n : 1);
+            CHECK(kd_tree_bytes(n, leaves[li]) == (double)kd_bytes(&t));
             CHECK_MSG(kd_build_peak_bytes(n, leaves[li]) == want, "n=%u leaf=%u: %.0f bytes, want %.0f", n,
                       leaves[li], kd_build_peak_bytes(n, leaves[li]), want);
             int same = 1;
