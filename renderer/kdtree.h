@@ -39,11 +39,12 @@ typedef struct {
     uint32_t scan_h;      /* k nearest scans whole subtrees this high (see kdtree_build.c) */
 } kd_tree;
 
-/* Builds a tree over n points (xyz triples in pts). If perm is not NULL it
- * receives n entries: perm[i] = input index of the point at leaf position i.
- * Returns 0, or -1 when memory runs out (the tree is then empty and safe to
- * kd_free). n may be 0. */
-int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint32_t *perm);
+/* Builds a tree over n points (xyz triples in pts) on `threads` threads (0
+ * or 1: the calling thread only); the tree is the same for any thread
+ * count. If perm is not NULL it receives n entries: perm[i] = input index
+ * of the point at leaf position i. Returns 0, or -1 when memory runs out
+ * (the tree is then empty and safe to kd_free). n may be 0. */
+int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint32_t *perm, unsigned threads);
 /* Frees the tree's arrays; the struct is left empty. A zeroed tree is fine. */
 void kd_free(kd_tree *t);
 /* Bytes of memory the tree holds. */
@@ -53,6 +54,9 @@ size_t kd_bytes(const kd_tree *t);
  * not the caller's pts and perm. A double, so that a count can be sized
  * (and refused) before its points exist. Never fails. */
 double kd_build_peak_bytes(double n, uint32_t leaf_size);
+/* The bytes a tree over n points with leaf_size holds once built (what
+ * kd_bytes will report), a double for the same reason. Never fails. */
+double kd_tree_bytes(double n, uint32_t leaf_size);
 
 /* The coordinates of leaf-order point i (i < t->n) to out. */
 static inline void kd_point(const kd_tree *t, uint32_t i, float out[3])

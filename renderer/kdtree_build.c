@@ -2,8 +2,18 @@
  * recursive median split on the widest axis, each median found by a
  * Floyd-Rivest sampled quickselect on a contiguous working copy of the
  * points), the height at which searches switch to range scans, kd_free,
- * kd_bytes and kd_build_peak_bytes. */
+ * kd_bytes and kd_build_peak_bytes.
+ *
+ * Threads: a node's split depends only on the items of its own range and
+ * their order, and every node's range follows from n alone (each splits at
+ * lo + (hi - lo) / 2), so nodes of disjoint ranges can be split at the same
+ * time without changing the tree. The top levels are split one level at a
+ * time (a parallel loop over each level's nodes), then the subtrees below
+ * them are built in parallel; the copies in and out run over blocks. The
+ * tree is the same for any thread count. */
 #include "kdtree_impl.h"
+#include "mem.h"
+#include "parallel.h"
 
 #include <assert.h>
 #include <math.h>
@@ -186,14 +196,11 @@ static void bounds(const kd_item *it, uint32_t lo, uint32_t hi, float mn[3], flo
 #endif
 }
 
-static void build_node(kd_builder *b, uint32_t node, uint32_t lo, uint32_t hi, uint32_t level_leaves)
+/* Splits inner node `node` over it[lo..hi): its axis and split value, the
+ * range reordered so that [lo, mid) and [mid, hi) are its children's. */
+static void split_node(kd_builder *b, uint32_t node, uint32_t lo, uint32_t hi)
 {
     kd_tree *t = b->t;
-    if (level_leaves == 1) {
-        uint32_t leaf = node - (t->nleaves - 1);
-        t->leaf_start[leaf] = lo;
-        return;
-    }
     float mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
     if (hi > lo)
         bounds(b->it, lo, hi, mn, mx);
@@ -209,70 +216,177 @@ static void build_node(kd_builder *b, uint32_t node, uint32_t lo, uint32_t hi, u
         t->split[node] = 0.0f;
     }
     t->axis[node] = (uint8_t)axis;
+}
+
+static void build_node(kd_builder *b, uint32_t node, uint32_t lo, uint32_t hi, uint32_t level_leaves)
+{
+    kd_tree *t = b->t;
+    if (level_leaves == 1) {
+        uint32_t leaf = node - (t->nleaves - 1);
+        t->leaf_start[leaf] = lo;
+        return;
+    }
+    split_node(b, node, lo, hi);
+    uint32_t mid = lo + (hi - lo) / 2;
     build_node(b, 2 * node + 1, lo, mid, level_leaves / 2);
     build_node(b, 2 * node + 2, mid, hi, level_leaves / 2);
 }
 
-int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint32_t *perm)
+/* The range of node j (from 0, left to right) of level `level` in a tree
+ * over n points: the halvings from the root that build_node makes. */
+static void node_range(uint32_t n, uint32_t level, uint64_t j, uint32_t *lo_out, uint32_t *hi_out)
+{
+    uint32_t lo = 0, hi = n;
+    for (uint32_t d = level; d > 0; d--) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if ((j >> (d - 1)) & 1u)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    *lo_out = lo;
+    *hi_out = hi;
+}
+
+#define KD_BLOCK 65536u /* items per block of the parallel copies */
+
+typedef struct {
+    kd_builder *b;
+    const float *pts;
+    uint32_t *perm;
+    uint32_t n;
+    uint32_t level;         /* the level being split, or the subtrees' level */
+    float (*box)[2][3];     /* per block of the copy-out: min, max */
+} kd_par;
+
+static void fill_block(uint64_t blk, unsigned thread, void *arg)
+{
+    (void)thread;
+    kd_par *kp = arg;
+    kd_item *it = kp->b->it;
+    uint32_t lo = (uint32_t)(blk * KD_BLOCK), hi = kp->n - lo < KD_BLOCK ? kp->n : lo + KD_BLOCK;
+    for (uint32_t i = lo; i < hi; i++) {
+        it[i].p[0] = kp->pts[3 * (size_t)i];
+        it[i].p[1] = kp->pts[3 * (size_t)i + 1];
+        it[i].p[2] = kp->pts[3 * (size_t)i + 2];
+        it[i].id = i;
+    }
+}
+
+/* Writes perm, x, y, z of one block and the block's bounds (min and max by
+ * strict comparisons in item order, so blocks merged in block order give
+ * what one pass over all items gives). */
+static void out_block(uint64_t blk, unsigned thread, void *arg)
+{
+    (void)thread;
+    kd_par *kp = arg;
+    const kd_item *it = kp->b->it;
+    kd_tree *t = kp->b->t;
+    uint32_t lo = (uint32_t)(blk * KD_BLOCK), hi = kp->n - lo < KD_BLOCK ? kp->n : lo + KD_BLOCK;
+    float mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t i = lo; i < hi; i++) {
+        const float *p = it[i].p;
+        if (kp->perm)
+            kp->perm[i] = it[i].id;
+        t->x[i] = p[0];
+        t->y[i] = p[1];
+        t->z[i] = p[2];
+        for (int a = 0; a < 3; a++) {
+            mn[a] = p[a] < mn[a] ? p[a] : mn[a];
+            mx[a] = p[a] > mx[a] ? p[a] : mx[a];
+        }
+    }
+    memcpy(kp->box[blk][0], mn, sizeof mn);
+    memcpy(kp->box[blk][1], mx, sizeof mx);
+}
+
+static void split_level_node(uint64_t j, unsigned thread, void *arg)
+{
+    (void)thread;
+    kd_par *kp = arg;
+    uint32_t lo, hi;
+    node_range(kp->n, kp->level, j, &lo, &hi);
+    split_node(kp->b, (uint32_t)((1u << kp->level) - 1 + j), lo, hi);
+}
+
+static void build_subtree(uint64_t j, unsigned thread, void *arg)
+{
+    (void)thread;
+    kd_par *kp = arg;
+    uint32_t lo, hi;
+    node_range(kp->n, kp->level, j, &lo, &hi);
+    build_node(kp->b, (uint32_t)((1u << kp->level) - 1 + j), lo, hi, kp->b->t->nleaves >> kp->level);
+}
+
+int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint32_t *perm, unsigned threads)
 {
     memset(t, 0, sizeof *t);
     if (leaf_size == 0)
         leaf_size = KD_DEFAULT_LEAF;
+    if (threads == 0)
+        threads = 1;
     uint32_t nleaves = 1;
     while ((uint64_t)nleaves * leaf_size < n)
         nleaves *= 2;
     t->n = n;
     t->nleaves = nleaves;
     t->scan_h = scan_height(n, nleaves);
-    kd_item *it = malloc(sizeof(kd_item) * (n ? n : 1));
-    t->split = malloc(sizeof(float) * nleaves);
-    t->axis = malloc(nleaves);
-    t->leaf_start = malloc(sizeof(uint32_t) * (nleaves + 1));
-    t->x = calloc((size_t)n + KD_CHUNK, sizeof(float));
-    t->y = calloc((size_t)n + KD_CHUNK, sizeof(float));
-    t->z = calloc((size_t)n + KD_CHUNK, sizeof(float));
-    if (!it || !t->split || !t->axis || !t->leaf_start || !t->x || !t->y || !t->z) {
-        free(it);
+    uint64_t nblocks = ((uint64_t)n + KD_BLOCK - 1) / KD_BLOCK;
+    kd_item *it = mem_alloc(sizeof(kd_item) * (n ? n : 1));
+    float(*box)[2][3] = malloc(sizeof *box * (nblocks ? nblocks : 1));
+    t->split = mem_alloc(sizeof(float) * nleaves);
+    t->axis = mem_alloc(nleaves);
+    t->leaf_start = mem_alloc(sizeof(uint32_t) * (nleaves + 1));
+    t->x = mem_zalloc(((size_t)n + KD_CHUNK) * sizeof(float));
+    t->y = mem_zalloc(((size_t)n + KD_CHUNK) * sizeof(float));
+    t->z = mem_zalloc(((size_t)n + KD_CHUNK) * sizeof(float));
+    if (!it || !box || !t->split || !t->axis || !t->leaf_start || !t->x || !t->y || !t->z) {
+        mem_free(it);
+        free(box);
         kd_free(t);
         return -1;
     }
-    for (uint32_t i = 0; i < n; i++) {
-        it[i].p[0] = pts[3 * (size_t)i];
-        it[i].p[1] = pts[3 * (size_t)i + 1];
-        it[i].p[2] = pts[3 * (size_t)i + 2];
-        it[i].id = i;
-    }
     kd_builder b = {it, t};
-    build_node(&b, 0, 0, n, nleaves);
+    kd_par kp = {&b, pts, perm, n, 0, box};
+    parallel_for(threads, nblocks, fill_block, &kp);
+    uint32_t depth = (uint32_t)__builtin_ctz(nleaves);
+    if (threads == 1 || depth == 0) {
+        build_node(&b, 0, 0, n, nleaves);
+    } else {
+        /* 2^top subtrees: eight or more per thread, for balance */
+        uint32_t top = 3;
+        while ((1u << (top - 3)) < threads && top < 16)
+            top++;
+        top = top < depth ? top : depth;
+        for (kp.level = 0; kp.level < top; kp.level++)
+            parallel_for(threads, (uint64_t)1 << kp.level, split_level_node, &kp);
+        kp.level = top;
+        parallel_for(threads, (uint64_t)1 << top, build_subtree, &kp);
+    }
     t->leaf_start[nleaves] = n;
+    parallel_for(threads, nblocks, out_block, &kp);
     for (int a = 0; a < 3; a++) {
         t->lo[a] = INFINITY;
         t->hi[a] = -INFINITY;
     }
-    for (uint32_t i = 0; i < n; i++) {
-        const float *p = it[i].p;
-        if (perm)
-            perm[i] = it[i].id;
-        t->x[i] = p[0];
-        t->y[i] = p[1];
-        t->z[i] = p[2];
+    for (uint64_t k = 0; k < nblocks; k++)
         for (int a = 0; a < 3; a++) {
-            t->lo[a] = p[a] < t->lo[a] ? p[a] : t->lo[a];
-            t->hi[a] = p[a] > t->hi[a] ? p[a] : t->hi[a];
+            t->lo[a] = box[k][0][a] < t->lo[a] ? box[k][0][a] : t->lo[a];
+            t->hi[a] = box[k][1][a] > t->hi[a] ? box[k][1][a] : t->hi[a];
         }
-    }
-    free(it);
+    free(box);
+    mem_free(it);
     return 0;
 }
 
 void kd_free(kd_tree *t)
 {
-    free(t->split);
-    free(t->axis);
-    free(t->leaf_start);
-    free(t->x);
-    free(t->y);
-    free(t->z);
+    mem_free(t->split);
+    mem_free(t->axis);
+    mem_free(t->leaf_start);
+    mem_free(t->x);
+    mem_free(t->y);
+    mem_free(t->z);
     memset(t, 0, sizeof *t);
 }
 
@@ -282,18 +396,22 @@ size_t kd_bytes(const kd_tree *t)
     return pts * 3 * sizeof(float) + (size_t)t->nleaves * (sizeof(float) + 1 + sizeof(uint32_t)) + sizeof(uint32_t);
 }
 
-/* kd_build's peak: its working copy of the points (kd_item, at least one)
- * beside the tree's arrays as kd_bytes counts them. A double so that a
- * caller can size a count before it knows the points exist. */
-double kd_build_peak_bytes(double n, uint32_t leaf_size)
+/* What kd_bytes reports for a tree over n points: the coordinates with
+ * their padding and the nodes. A double, like kd_build_peak_bytes. */
+double kd_tree_bytes(double n, uint32_t leaf_size)
 {
     if (leaf_size == 0)
         leaf_size = KD_DEFAULT_LEAF;
     double nleaves = 1.0;
     while (nleaves * leaf_size < n)
         nleaves *= 2.0;
-    double work = (n > 1.0 ? n : 1.0) * (double)sizeof(kd_item);
-    double arrays = (n + KD_CHUNK) * 3.0 * sizeof(float) + nleaves * (sizeof(float) + 1 + sizeof(uint32_t)) +
-                    sizeof(uint32_t);
-    return work + arrays;
+    return (n + KD_CHUNK) * 3.0 * sizeof(float) + nleaves * (sizeof(float) + 1 + sizeof(uint32_t)) +
+           sizeof(uint32_t);
+}
+
+/* kd_build's peak: its working copy of the points (kd_item, at least one)
+ * beside the tree's arrays. */
+double kd_build_peak_bytes(double n, uint32_t leaf_size)
+{
+    return (n > 1.0 ? n : 1.0) * (double)sizeof(kd_item) + kd_tree_bytes(n, leaf_size);
 }

@@ -1,7 +1,9 @@
 /* photons: the photon pass and the map build. Photons are traced in fixed
  * chunks of indices, each chunk into its own buffer, and the buffers are
- * joined in chunk order, so the stored list does not depend on the thread
- * count. The build moves the positions into the map frame (photons.h). */
+ * joined in chunk order (each copied in parallel to its place, found by
+ * prefix sums of the chunks' counts), so the stored list does not depend on
+ * the thread count. The build moves the positions into the map frame
+ * (photons.h). */
 #include "photons.h"
 
 #include <assert.h>
@@ -10,11 +12,21 @@
 #include <string.h>
 
 #include "material.h"
+#include "mem.h"
 #include "parallel.h"
 #include "rng.h"
 
-#define PHOTONS_CHUNK 4096u
+/* Photons per chunk: a power of two from PHOTONS_CHUNK_MIN to
+ * PHOTONS_CHUNK_MAX giving at least PHOTONS_CHUNKS_MIN chunks (the stored
+ * list does not depend on it: chunks are joined in index order). Large
+ * chunks keep their buffers on huge pages (mem.h); enough chunks keep the
+ * threads' shares even. */
+#define PHOTONS_CHUNK_MIN 4096u
+#define PHOTONS_CHUNK_MAX 262144u
+#define PHOTONS_CHUNKS_MIN 64u
 #define PHOTONS_PILOT 4096u
+#define PHOTONS_FIRST_CAP 4096u /* records of a buffer nothing is known about yet */
+#define PHOTONS_CAP_SLACK 1.1   /* a chunk's buffer: this times the stored-per-photon of chunk 0 */
 
 void photons_pack_dir(double x, double y, double z, int8_t out[3])
 {
@@ -28,6 +40,9 @@ vec3 photons_unpack_dir(const int8_t d[3])
     return vec_make(d[0] / 127.0, d[1] / 127.0, d[2] / 127.0);
 }
 
+/* One chunk's photons, in index order. A worker fills a local copy and
+ * writes it back once, at the chunk's end, so two threads never write the
+ * same cache line of the chunks array while they trace. */
 typedef struct {
     uint64_t count, cap;
     double *pos;
@@ -40,25 +55,38 @@ typedef struct {
     const scene *sc;
     const photons_params *p;
     photons_chunk *chunks;
+    uint64_t chunk_len;  /* photons per chunk */
+    uint64_t cap;        /* records a chunk's buffers start with (0: PHOTONS_FIRST_CAP on first store) */
+    int first;           /* chunk 0 is done: trace_chunk skips it */
     progress *prog;
 } trace_ctx;
+
+/* Sets c's buffers to hold at least `want` records (and what that costs
+ * no more pages: mem_round), keeping its photons. Returns -1 when memory
+ * runs out (c is then unchanged). */
+static int chunk_reserve(photons_chunk *c, uint64_t want)
+{
+    size_t pos_bytes = mem_round(want * 3 * sizeof(double)), ph_bytes = mem_round(want * sizeof(photons_record));
+    uint64_t a = pos_bytes / (3 * sizeof(double)), b = ph_bytes / sizeof(photons_record);
+    double *np = mem_realloc(c->pos, pos_bytes);
+    if (!np)
+        return -1;
+    c->pos = np;
+    photons_record *nph = mem_realloc(c->ph, ph_bytes);
+    if (!nph)
+        return -1;
+    c->ph = nph;
+    c->cap = a < b ? a : b;
+    assert(c->cap >= want);
+    return 0;
+}
 
 /* Appends one photon of relative power `power` to c. Returns -1 when memory
  * runs out. */
 static int chunk_store(photons_chunk *c, vec3 p, vec3 dir, vec3 power, vec3 n, unsigned flags)
 {
-    if (c->count == c->cap) {
-        uint64_t nc = c->cap ? c->cap * 2 : PHOTONS_CHUNK;
-        double *np = realloc(c->pos, nc * 3 * sizeof(double));
-        if (!np)
-            return -1;
-        c->pos = np;
-        photons_record *nph = realloc(c->ph, nc * sizeof(photons_record));
-        if (!nph)
-            return -1;
-        c->ph = nph;
-        c->cap = nc;
-    }
+    if (c->count == c->cap && chunk_reserve(c, c->cap ? c->cap + c->cap / 2 : PHOTONS_FIRST_CAP))
+        return -1;
     double *q = c->pos + 3 * c->count;
     q[0] = p.x;
     q[1] = p.y;
@@ -132,49 +160,91 @@ static void trace_chunk(uint64_t chunk, unsigned thread, void *arg)
 {
     (void)thread;
     trace_ctx *tc = arg;
-    photons_chunk *c = &tc->chunks[chunk];
-    uint64_t lo = chunk * PHOTONS_CHUNK;
-    uint64_t hi = lo + PHOTONS_CHUNK < tc->p->photons ? lo + PHOTONS_CHUNK : tc->p->photons;
-    for (uint64_t i = lo; i < hi && !c->failed; i++) {
-        if (trace_one(tc, i, c))
-            c->failed = 1;
+    if (chunk == 0 && tc->first)
+        return;
+    photons_chunk c = {0};
+    uint64_t lo = chunk * tc->chunk_len;
+    uint64_t hi = lo + tc->chunk_len < tc->p->photons ? lo + tc->chunk_len : tc->p->photons;
+    if (tc->cap)
+        c.failed = chunk_reserve(&c, tc->cap) != 0;
+    for (uint64_t i = lo; i < hi && !c.failed; i++) {
+        if (trace_one(tc, i, &c))
+            c.failed = 1;
     }
+    tc->chunks[chunk] = c;
     progress_add(tc->prog, hi - lo);
+}
+
+typedef struct {
+    photons_chunk *chunks;
+    const uint64_t *at; /* each chunk's first index in the list */
+    photons_list *out;
+} join_ctx;
+
+/* Copies one chunk into its place in the list and frees its buffers. */
+static void join_chunk(uint64_t chunk, unsigned thread, void *arg)
+{
+    (void)thread;
+    join_ctx *jc = arg;
+    photons_chunk *c = &jc->chunks[chunk];
+    if (c->count) {
+        memcpy(jc->out->pos + 3 * jc->at[chunk], c->pos, c->count * 3 * sizeof(double));
+        memcpy(jc->out->ph + jc->at[chunk], c->ph, c->count * sizeof(photons_record));
+    }
+    mem_free(c->pos);
+    mem_free(c->ph);
+    c->pos = NULL;
+    c->ph = NULL;
 }
 
 pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threads, progress *prog, photons_list *out)
 {
     memset(out, 0, sizeof *out);
-    uint64_t nchunks = (p->photons + PHOTONS_CHUNK - 1) / PHOTONS_CHUNK;
+    uint64_t len = PHOTONS_CHUNK_MIN;
+    while (len < PHOTONS_CHUNK_MAX && len * PHOTONS_CHUNKS_MIN < p->photons)
+        len *= 2;
+    uint64_t nchunks = (p->photons + len - 1) / len;
     photons_chunk *chunks = calloc(nchunks ? nchunks : 1, sizeof(photons_chunk));
-    if (!chunks)
+    uint64_t *at = malloc(sizeof(uint64_t) * (nchunks ? nchunks : 1));
+    if (!chunks || !at) {
+        free(chunks);
+        free(at);
         return PM_ERR_NOMEM;
-    trace_ctx tc = {sc, p, chunks, prog};
+    }
+    trace_ctx tc = {sc, p, chunks, len, 0, 0, prog};
+    if (nchunks > 0) {
+        /* chunk 0 alone first: what it stores per photon sizes the other
+         * chunks' buffers, so that they rarely grow */
+        trace_chunk(0, 0, &tc);
+        double per = (double)chunks[0].count / (double)(len < p->photons ? len : p->photons);
+        tc.cap = (uint64_t)(per * PHOTONS_CAP_SLACK * (double)len) + 64;
+        tc.first = 1;
+    }
     parallel_for(threads, nchunks, trace_chunk, &tc);
     int failed = 0;
     uint64_t total = 0;
     for (uint64_t i = 0; i < nchunks; i++) {
         failed |= chunks[i].failed;
+        at[i] = total;
         total += chunks[i].count;
         out->truncated += chunks[i].truncated;
         out->escaped += chunks[i].escaped;
     }
     if (!failed) {
-        out->pos = malloc((total ? total : 1) * 3 * sizeof(double));
-        out->ph = malloc((total ? total : 1) * sizeof(photons_record));
+        out->pos = mem_alloc((total ? total : 1) * 3 * sizeof(double));
+        out->ph = mem_alloc((total ? total : 1) * sizeof(photons_record));
         failed = !out->pos || !out->ph;
     }
-    uint64_t at = 0;
+    if (!failed) {
+        join_ctx jc = {chunks, at, out};
+        parallel_for(threads, nchunks, join_chunk, &jc);
+    }
     for (uint64_t i = 0; i < nchunks; i++) {
-        if (!failed && chunks[i].count) {
-            memcpy(out->pos + 3 * at, chunks[i].pos, chunks[i].count * 3 * sizeof(double));
-            memcpy(out->ph + at, chunks[i].ph, chunks[i].count * sizeof(photons_record));
-            at += chunks[i].count;
-        }
-        free(chunks[i].pos);
-        free(chunks[i].ph);
+        mem_free(chunks[i].pos);
+        mem_free(chunks[i].ph);
     }
     free(chunks);
+    free(at);
     if (failed) {
         photons_list_free(out);
         return PM_ERR_NOMEM;
@@ -186,26 +256,20 @@ pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threa
 
 void photons_list_free(photons_list *l)
 {
-    free(l->pos);
-    free(l->ph);
+    mem_free(l->pos);
+    mem_free(l->ph);
     memset(l, 0, sizeof *l);
 }
 
-/* The map frame of a list: the centre of its bounding box and the power of
- * two at or above its half-diagonal (1 for an empty or one-point list), and
- * the box's diagonal. */
-static void map_frame(const photons_list *l, vec3 *centre, double *scale, double *extent)
+/* The map frame of a list whose bounding box is lo..hi (lo > hi in some
+ * axis: no photons): the centre of the box and the power of two at or
+ * above its half-diagonal (1 for an empty or one-point list), and the box's
+ * diagonal. */
+static void map_frame(uint64_t count, const double lo[3], const double hi[3], vec3 *centre, double *scale,
+                      double *extent)
 {
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (uint64_t i = 0; i < l->count; i++) {
-        for (int a = 0; a < 3; a++) {
-            double v = l->pos[3 * i + (uint64_t)a];
-            lo[a] = v < lo[a] ? v : lo[a];
-            hi[a] = v > hi[a] ? v : hi[a];
-        }
-    }
     *extent = 0.0;
-    if (l->count == 0) {
+    if (count == 0) {
         *centre = vec_make(0, 0, 0);
         *scale = 1.0;
         return;
@@ -223,6 +287,81 @@ static void map_frame(const photons_list *l, vec3 *centre, double *scale, double
     *scale = ldexp(1.0, e);
 }
 
+/* The build's passes over the list run over blocks of this many photons;
+ * what a block finds (bounds by strict comparisons in list order, counts)
+ * is merged in block order, which gives what one pass in order gives. */
+#define PHOTONS_BLOCK 65536u
+
+typedef struct {
+    const photons_list *l;
+    uint8_t leave_out;
+    photons_map *m;
+    photons_list *left;
+    float *pts;
+    uint32_t *src, *perm;
+    double (*box)[2][3];  /* per block: min, max */
+    uint32_t (*at)[2];    /* per block: its photons' first tree input, first left-out */
+} build_ctx;
+
+static void block_range(uint64_t blk, uint64_t count, uint32_t *lo, uint32_t *hi)
+{
+    *lo = (uint32_t)(blk * PHOTONS_BLOCK);
+    *hi = count - *lo < PHOTONS_BLOCK ? (uint32_t)count : *lo + PHOTONS_BLOCK;
+}
+
+/* A block's bounds and its count of photons left out (to at[blk][1]). */
+static void scan_block(uint64_t blk, unsigned thread, void *arg)
+{
+    (void)thread;
+    build_ctx *bc = arg;
+    const photons_list *l = bc->l;
+    uint32_t lo, hi, out = 0;
+    block_range(blk, l->count, &lo, &hi);
+    double mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t i = lo; i < hi; i++) {
+        for (int a = 0; a < 3; a++) {
+            double v = l->pos[3 * (size_t)i + (size_t)a];
+            mn[a] = v < mn[a] ? v : mn[a];
+            mx[a] = v > mx[a] ? v : mx[a];
+        }
+        out += (l->ph[i].flags & bc->leave_out) != 0;
+    }
+    memcpy(bc->box[blk][0], mn, sizeof mn);
+    memcpy(bc->box[blk][1], mx, sizeof mx);
+    bc->at[blk][1] = out;
+}
+
+/* A block's photons into the tree's input (map frame) or the left-out list. */
+static void split_block(uint64_t blk, unsigned thread, void *arg)
+{
+    (void)thread;
+    build_ctx *bc = arg;
+    const photons_list *l = bc->l;
+    uint32_t lo, hi, j = bc->at[blk][0], r = bc->at[blk][1];
+    block_range(blk, l->count, &lo, &hi);
+    for (uint32_t i = lo; i < hi; i++) {
+        if (l->ph[i].flags & bc->leave_out) {
+            memcpy(bc->left->pos + 3 * (size_t)r, l->pos + 3 * (size_t)i, 3 * sizeof(double));
+            bc->left->ph[r++] = l->ph[i];
+            continue;
+        }
+        vec3 x = vec_make(l->pos[3 * (size_t)i], l->pos[3 * (size_t)i + 1], l->pos[3 * (size_t)i + 2]);
+        photons_map_point(bc->m, x, bc->pts + 3 * (size_t)j);
+        bc->src[j++] = i;
+    }
+}
+
+/* A block of the payload in the tree's leaf order. */
+static void gather_block(uint64_t blk, unsigned thread, void *arg)
+{
+    (void)thread;
+    build_ctx *bc = arg;
+    uint32_t lo, hi;
+    block_range(blk, bc->m->count, &lo, &hi);
+    for (uint32_t i = lo; i < hi; i++)
+        bc->m->ph[i] = bc->l->ph[bc->src[bc->perm[i]]];
+}
+
 void photons_map_point(const photons_map *m, vec3 x, float q[3])
 {
     double inv = 1.0 / m->scale; /* exact: a power of two */
@@ -231,7 +370,7 @@ void photons_map_point(const photons_map *m, vec3 x, float q[3])
     q[2] = (float)((x.z - m->centre.z) * inv);
 }
 
-pm_status photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, photons_list *left)
+pm_status photons_build_map(photons_list *l, uint8_t leave_out, unsigned threads, photons_map *m, photons_list *left)
 {
     assert(left || leave_out == 0);
     memset(m, 0, sizeof *m);
@@ -243,47 +382,56 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, 
     }
     m->unit = l->unit;
     m->stored = l->count;
-    map_frame(l, &m->centre, &m->scale, &m->extent);
-    uint32_t nout = 0;
-    for (uint64_t i = 0; i < l->count; i++)
-        nout += (l->ph[i].flags & leave_out) != 0;
-    uint32_t n = (uint32_t)l->count - nout;
-    float *pts = malloc(sizeof(float) * 3 * (n ? n : 1));
-    uint32_t *src = malloc(sizeof(uint32_t) * (n ? n : 1)); /* tree input index -> list index */
-    uint32_t *perm = malloc(sizeof(uint32_t) * (n ? n : 1));
-    m->ph = malloc(sizeof(photons_record) * (n ? n : 1));
-    int rc = (!pts || !src || !perm || !m->ph) ? -1 : 0;
+    uint64_t nblocks = (l->count + PHOTONS_BLOCK - 1) / PHOTONS_BLOCK;
+    build_ctx bc = {l, leave_out, m, left, NULL, NULL, NULL, NULL, NULL};
+    bc.box = malloc(sizeof *bc.box * (nblocks ? nblocks : 1));
+    bc.at = malloc(sizeof *bc.at * (nblocks ? nblocks : 1));
+    int rc = (!bc.box || !bc.at) ? -1 : 0;
+    uint32_t n = 0, nout = 0;
+    if (rc == 0) {
+        parallel_for(threads, nblocks, scan_block, &bc);
+        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (uint64_t k = 0; k < nblocks; k++) {
+            for (int a = 0; a < 3; a++) {
+                lo[a] = bc.box[k][0][a] < lo[a] ? bc.box[k][0][a] : lo[a];
+                hi[a] = bc.box[k][1][a] > hi[a] ? bc.box[k][1][a] : hi[a];
+            }
+            uint32_t lo_i, hi_i, out = bc.at[k][1];
+            block_range(k, l->count, &lo_i, &hi_i);
+            bc.at[k][0] = n;
+            bc.at[k][1] = nout;
+            n += hi_i - lo_i - out;
+            nout += out;
+        }
+        map_frame(l->count, lo, hi, &m->centre, &m->scale, &m->extent);
+        bc.pts = mem_alloc(sizeof(float) * 3 * (n ? n : 1));
+        bc.src = mem_alloc(sizeof(uint32_t) * (n ? n : 1)); /* tree input index -> list index */
+        bc.perm = mem_alloc(sizeof(uint32_t) * (n ? n : 1));
+        m->ph = mem_alloc(sizeof(photons_record) * (n ? n : 1));
+        rc = (!bc.pts || !bc.src || !bc.perm || !m->ph) ? -1 : 0;
+    }
     if (rc == 0 && left) {
-        left->pos = malloc(sizeof(double) * 3 * (nout ? nout : 1));
-        left->ph = malloc(sizeof(photons_record) * (nout ? nout : 1));
+        left->pos = mem_alloc(sizeof(double) * 3 * (nout ? nout : 1));
+        left->ph = mem_alloc(sizeof(photons_record) * (nout ? nout : 1));
         left->unit = l->unit;
         rc = (!left->pos || !left->ph) ? -1 : 0;
     }
+    assert(rc != 0 || left || nout == 0);
     if (rc == 0) {
-        uint32_t j = 0, r = 0;
-        for (uint32_t i = 0; i < (uint32_t)l->count; i++) {
-            if (l->ph[i].flags & leave_out) {
-                memcpy(left->pos + 3 * (size_t)r, l->pos + 3 * (size_t)i, 3 * sizeof(double));
-                left->ph[r++] = l->ph[i];
-                continue;
-            }
-            vec3 x = vec_make(l->pos[3 * (size_t)i], l->pos[3 * (size_t)i + 1], l->pos[3 * (size_t)i + 2]);
-            photons_map_point(m, x, pts + 3 * (size_t)j);
-            src[j++] = i;
-        }
-        assert(j == n && r == nout);
+        parallel_for(threads, nblocks, split_block, &bc);
         if (left)
             left->count = nout;
-        rc = kd_build(&m->tree, pts, n, KD_DEFAULT_LEAF, perm);
+        rc = kd_build(&m->tree, bc.pts, n, KD_DEFAULT_LEAF, bc.perm, threads);
     }
     if (rc == 0) {
-        for (uint32_t i = 0; i < n; i++)
-            m->ph[i] = l->ph[src[perm[i]]];
         m->count = n;
+        parallel_for(threads, (n + PHOTONS_BLOCK - 1) / PHOTONS_BLOCK, gather_block, &bc);
     }
-    free(pts);
-    free(src);
-    free(perm);
+    free(bc.box);
+    free(bc.at);
+    mem_free(bc.pts);
+    mem_free(bc.src);
+    mem_free(bc.perm);
     photons_list_free(l);
     if (rc != 0) {
         photons_map_free(m);
@@ -296,7 +444,7 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, 
 void photons_map_free(photons_map *m)
 {
     kd_free(&m->tree);
-    free(m->ph);
+    mem_free(m->ph);
     memset(m, 0, sizeof *m);
 }
 
@@ -307,12 +455,17 @@ size_t photons_map_bytes(const photons_map *m)
 
 double photons_peak_bytes(double stored)
 {
-    /* the trace's chunk buffers and the joined list (double positions), then
-     * the build: the list, the map-frame copy, the permutations, the
-     * payload, and what kd_build holds */
+    /* The trace: while the chunks are joined, the chunk buffers and the
+     * joined list (double positions). The build: the list, the tree's
+     * input (map-frame floats) and the two permutations stay alive
+     * throughout; beside them first kd_build's working copy and the tree,
+     * then the tree and the payload gathered into leaf order (kd_build's
+     * copy is freed before the payload is written). */
     double list = 3.0 * sizeof(double) + sizeof(photons_record);
-    double build = list + 3.0 * sizeof(float) + 2.0 * sizeof(uint32_t) + sizeof(photons_record);
-    return fmax(stored * 2.0 * list, stored * build + kd_build_peak_bytes(stored, KD_DEFAULT_LEAF));
+    double held = stored * (list + 3.0 * sizeof(float) + 2.0 * sizeof(uint32_t));
+    double tree = kd_tree_bytes(stored, KD_DEFAULT_LEAF);
+    double gather = tree + stored * sizeof(photons_record);
+    return fmax(stored * 2.0 * list, held + fmax(kd_build_peak_bytes(stored, KD_DEFAULT_LEAF), gather));
 }
 
 double photons_stored_per_emitted(const scene *sc, const photons_params *p)

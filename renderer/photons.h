@@ -46,7 +46,8 @@ typedef struct {
 } photons_params;
 
 /* The photon pass's output: positions in world coordinates (double), in
- * trace order. */
+ * trace order. pos and ph are mem_alloc buffers (mem.h), which is how a
+ * caller that fills a list itself must allocate them. */
 typedef struct {
     uint64_t count;
     double *pos;         /* 3 * count */
@@ -79,13 +80,14 @@ vec3 photons_unpack_dir(const int8_t d[3]);
 pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threads, progress *prog, photons_list *out);
 /* Frees a list; a zeroed list is fine. */
 void photons_list_free(photons_list *l);
-/* Builds the map from a list, which it consumes and frees. The photons
+/* Builds the map from a list, which it consumes and frees, on `threads`
+ * threads (the map is the same for any count). The photons
  * whose flags meet the mask `leave_out` stay out of the tree (they still
  * count in m->stored and in the map's frame); they are moved, in trace
  * order, into *left (which may be NULL when the mask is 0). Returns PM_OK,
  * or PM_ERR_NOMEM when memory runs out or the list exceeds 2^32-1 photons
  * (render_check_memory refuses those up front; m and *left are then empty). */
-pm_status photons_build_map(photons_list *l, uint8_t leave_out, photons_map *m, photons_list *left);
+pm_status photons_build_map(photons_list *l, uint8_t leave_out, unsigned threads, photons_map *m, photons_list *left);
 /* Frees a map; a zeroed map is fine. */
 void photons_map_free(photons_map *m);
 /* x (world) in the map frame, as the tree's floats. */

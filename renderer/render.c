@@ -69,7 +69,7 @@ static pm_status step_build(render_state *rs)
 {
     int64_t t0 = stats_now_ns();
     photons_list left;
-    if (photons_build_map(&rs->list, reps_leave_out_mask(&rs->rp), &rs->map, &left))
+    if (photons_build_map(&rs->list, reps_leave_out_mask(&rs->rp), rs->threads, &rs->map, &left))
         return PM_ERR_NOMEM;
     pm_status rc = reps_collect(&rs->rp, &rs->map, &left, &rs->reps);
     photons_list_free(&left);

@@ -179,7 +179,7 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
         if (rc == 0) {
             for (uint32_t i = 0; i < count; i++)
                 memcpy(pos + 3 * (size_t)i, r->site[i].pos, 3 * sizeof(float));
-            rc = kd_build(&r->own, pos, count, KD_DEFAULT_LEAF, order);
+            rc = kd_build(&r->own, pos, count, KD_DEFAULT_LEAF, order, nt);
         }
         free(pos);
     } else if (rc == 0) {

@@ -692,7 +692,7 @@ int main(int argc, char **argv)
         }
         reps_choose(&rps, &list);
         uint32_t stored = (uint32_t)list.count;
-        if (photons_build_map(&list, 0, &map, NULL)) {
+        if (photons_build_map(&list, 0, 1, &map, NULL)) {
             fprintf(stderr, "bench: out of memory\n");
             return 1;
         }
@@ -768,7 +768,7 @@ int main(int argc, char **argv)
             for (int r = 0; r < reps && r < 64; r++) {
                 kd_tree bt;
                 double t0 = now_s();
-                if (kd_build(&bt, pos, stored, KD_DEFAULT_LEAF, NULL)) {
+                if (kd_build(&bt, pos, stored, KD_DEFAULT_LEAF, NULL, 1)) {
                     fprintf(stderr, "bench: out of memory\n");
                     return 1;
                 }

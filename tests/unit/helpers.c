@@ -1,6 +1,7 @@
 /* helpers: scene-from-text and renders for the unit tests. */
 #include "helpers.h"
 
+#include "mem.h"
 #include "render.h"
 
 #include <stdio.h>
@@ -52,8 +53,8 @@ void helper_map(photons_map *m, const float (*pos)[3], uint32_t count, vec3 dir,
     photons_list l;
     memset(&l, 0, sizeof l);
     l.count = count;
-    l.pos = malloc(sizeof(double) * 3 * (count ? count : 1));
-    l.ph = calloc(count ? count : 1, sizeof(photons_record));
+    l.pos = mem_alloc(sizeof(double) * 3 * (count ? count : 1));
+    l.ph = mem_zalloc(sizeof(photons_record) * (count ? count : 1));
     if (!l.pos || !l.ph)
         abort();
     for (uint32_t i = 0; i < count; i++) {
@@ -66,6 +67,6 @@ void helper_map(photons_map *m, const float (*pos)[3], uint32_t count, vec3 dir,
         l.ph[i].flags = (uint8_t)flags;
     }
     l.unit = vec_make(1, 1, 1);
-    if (photons_build_map(&l, 0, m, NULL))
+    if (photons_build_map(&l, 0, 1, m, NULL))
         abort();
 }

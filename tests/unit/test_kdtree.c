@@ -81,7 +81,7 @@ void test_kdtree_matches_brute_force(void)
             float *pts = random_points(n, 1000 + n, clustered);
             uint32_t *perm = malloc(sizeof(uint32_t) * n);
             kd_tree t;
-            CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm) == 0);
+            CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == 0);
             rng_stream s = rng_make(7, n);
             for (int qi = 0; qi < 20; qi++) {
                 float q[3];
@@ -108,14 +108,14 @@ void test_kdtree_edge_cases(void)
     uint32_t idx[8];
     float d2[8], r2 = -1.0f;
     /* N = 0 */
-    CHECK(kd_build(&t, NULL, 0, KD_DEFAULT_LEAF, NULL) == 0);
+    CHECK(kd_build(&t, NULL, 0, KD_DEFAULT_LEAF, NULL, 1) == 0);
     CHECK(kd_knn(&t, q, 5, INFINITY, idx, d2, &r2) == 0);
     CHECK(r2 == 0.0f);
     kd_free(&t);
     /* N = 1, k > N */
     float one[3] = {1, 2, 3};
     uint32_t perm1[1];
-    CHECK(kd_build(&t, one, 1, KD_DEFAULT_LEAF, perm1) == 0);
+    CHECK(kd_build(&t, one, 1, KD_DEFAULT_LEAF, perm1, 1) == 0);
     CHECK(kd_knn(&t, q, 5, INFINITY, idx, d2, &r2) == 1);
     CHECK(d2[0] == 14.0f && r2 == 14.0f && perm1[idx[0]] == 0);
     CHECK(kd_knn(&t, q, 5, 13.9f, idx, d2, &r2) == 0); /* radius cap excludes it */
@@ -126,7 +126,7 @@ void test_kdtree_edge_cases(void)
     for (int i = 0; i < 3 * NDUP; i++)
         dup[i] = 0.5f;
     uint32_t *perm = malloc(sizeof(uint32_t) * NDUP);
-    CHECK(kd_build(&t, dup, NDUP, KD_DEFAULT_LEAF, perm) == 0);
+    CHECK(kd_build(&t, dup, NDUP, KD_DEFAULT_LEAF, perm, 1) == 0);
     float on[3] = {0.5f, 0.5f, 0.5f};
     check_query(&t, dup, perm, NDUP, on, 100, INFINITY);
     check_query(&t, dup, perm, NDUP, on, NDUP + 10, INFINITY);
@@ -140,7 +140,7 @@ void test_kdtree_edge_cases(void)
     uint32_t *p2 = malloc(sizeof(uint32_t) * 500);
     const uint32_t leaves[] = {1, 3, 1000};
     for (size_t li = 0; li < 3; li++) {
-        CHECK(kd_build(&t, pts, 500, leaves[li], p2) == 0);
+        CHECK(kd_build(&t, pts, 500, leaves[li], p2, 1) == 0);
         check_query(&t, pts, p2, 500, q, 30, INFINITY);
         check_query(&t, pts, p2, 500, q, 3, 0.01f);
         kd_free(&t);
@@ -161,7 +161,7 @@ void test_kdtree_nearest_if(void)
     float *pts = random_points(n, 11, 0);
     uint32_t *perm = malloc(sizeof(uint32_t) * n);
     kd_tree t;
-    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm) == 0);
+    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == 0);
     rng_stream s = rng_make(5, 5);
     for (int qi = 0; qi < 200; qi++) {
         float q[3];
@@ -360,7 +360,7 @@ static void query_matches_brute_force(kd_simd simd)
                     continue;
                 uint32_t *perm = malloc(sizeof(uint32_t) * n);
                 kd_tree t;
-                CHECK(kd_build(&t, pts, n, leaves[li], perm) == 0);
+                CHECK(kd_build(&t, pts, n, leaves[li], perm, 1) == 0);
                 kd_pair *all[KQ_NQ];
                 for (uint32_t i = 0; i < KQ_NQ; i++)
                     all[i] = brute_sorted(pts, perm, n, q + 3 * (size_t)i);
@@ -392,7 +392,7 @@ static void query_hints(kd_simd simd)
     float *pts = point_set(1, n, 3);
     uint32_t *perm = malloc(sizeof(uint32_t) * n);
     kd_tree t;
-    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm) == 0);
+    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == 0);
     const float hints[] = {0.0f, 1e-30f, 1e-7f, 1e-4f, 0.01f, 1.0f, 1e30f, INFINITY, NAN};
     const uint32_t hint_ks[] = {1, 10, 300};
     const uint32_t ks[] = {1, 10, 100};
@@ -438,7 +438,7 @@ static void query_history_independent(kd_simd simd)
     float *pts = point_set(3, n, 1);
     uint32_t *perm = malloc(sizeof(uint32_t) * n);
     kd_tree t;
-    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm) == 0);
+    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == 0);
     float target[3] = {11.0f, 12.0f, 0.0f}, other[3] = {2.5f, 20.0f, 0.0f}, far[3] = {500.0f, 0.0f, 0.0f};
     kd_pair *all = brute_sorted(pts, perm, n, target);
     const uint32_t ks[] = {1, 4, 5, 9, 13, 21, 25, 50, 100};
@@ -499,8 +499,8 @@ void test_kdtree_query_state(void)
     float *pts = point_set(0, n, 9);
     uint32_t *perm = malloc(sizeof(uint32_t) * n);
     kd_tree t, empty;
-    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm) == 0);
-    CHECK(kd_build(&empty, NULL, 0, KD_DEFAULT_LEAF, NULL) == 0);
+    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == 0);
+    CHECK(kd_build(&empty, NULL, 0, KD_DEFAULT_LEAF, NULL, 1) == 0);
     float q[3] = {0.1f, 0.2f, -0.3f}, nanq[3] = {NAN, 0.0f, 0.0f};
     kd_pair *all = brute_sorted(pts, perm, n, q);
     uint32_t idx[400];
@@ -552,8 +552,9 @@ void test_kdtree_build_memory(void)
             float *pts = random_points(n, 31 + n, 0);
             uint32_t *perm = malloc(sizeof(uint32_t) * (n + 1));
             kd_tree t;
-            CHECK(kd_build(&t, pts, n, leaves[li], perm) == 0);
+            CHECK(kd_build(&t, pts, n, leaves[li], perm, 1) == 0);
             double want = (double)kd_bytes(&t) + 16.0 * (n > 0 ? n : 1);
+            CHECK(kd_tree_bytes(n, leaves[li]) == (double)kd_bytes(&t));
             CHECK_MSG(kd_build_peak_bytes(n, leaves[li]) == want, "n=%u leaf=%u: %.0f bytes, want %.0f", n,
                       leaves[li], kd_build_peak_bytes(n, leaves[li]), want);
             int same = 1;
@@ -569,4 +570,70 @@ void test_kdtree_build_memory(void)
         }
     /* beyond what a tree holds: still a number, growing with n */
     CHECK(kd_build_peak_bytes(1e12, KD_DEFAULT_LEAF) > 16e12);
+}
+
+/* 1 when a and b are the same tree to the bit (every array, the points'
+ * padding included) and their permutations agree; else 0. */
+static int same_tree(const kd_tree *a, const uint32_t *pa, const kd_tree *b, const uint32_t *pb)
+{
+    if (a->n != b->n || a->nleaves != b->nleaves || a->scan_h != b->scan_h)
+        return 0;
+    if (memcmp(a->lo, b->lo, sizeof a->lo) || memcmp(a->hi, b->hi, sizeof a->hi))
+        return 0;
+    size_t inner = a->nleaves - 1, pts = (size_t)a->n + 8; /* KD_CHUNK floats of padding */
+    return !memcmp(a->split, b->split, inner * sizeof(float)) && !memcmp(a->axis, b->axis, inner) &&
+           !memcmp(a->leaf_start, b->leaf_start, (a->nleaves + 1) * sizeof(uint32_t)) &&
+           !memcmp(a->x, b->x, pts * sizeof(float)) && !memcmp(a->y, b->y, pts * sizeof(float)) &&
+           !memcmp(a->z, b->z, pts * sizeof(float)) && !memcmp(pa, pb, a->n * sizeof(uint32_t));
+}
+
+/* The build on 2 and 3 threads gives the 1-thread tree to the bit, over
+ * points with many equal coordinates (ties in every selection) and sizes
+ * spanning several copy blocks; as negative controls, the same points with
+ * two of them swapped in the input, or one split value changed, do not
+ * compare equal. */
+void test_kdtree_build_threads(void)
+{
+    const uint32_t sizes[] = {0, 5, 1000, 70001, 200003};
+    const uint32_t leaves[] = {KD_DEFAULT_LEAF, 1};
+    for (size_t si = 0; si < sizeof sizes / sizeof sizes[0]; si++)
+        for (size_t li = 0; li < sizeof leaves / sizeof leaves[0]; li++) {
+            uint32_t n = sizes[si];
+            float *pts = malloc(sizeof(float) * 3 * (n ? n : 1));
+            rng_stream s = rng_make(77, n);
+            for (uint32_t i = 0; i < 3 * n; i++) {
+                double u = rng_next_double(&s);
+                /* a third of the coordinates on a coarse grid of 9 values */
+                pts[i] = i % 3 == 1 ? (float)(floor(u * 9.0) / 8.0 - 0.5) : (float)(u - 0.5);
+            }
+            uint32_t *p1 = malloc(sizeof(uint32_t) * (n + 1)), *pn = malloc(sizeof(uint32_t) * (n + 1));
+            kd_tree t1, tn;
+            CHECK(kd_build(&t1, pts, n, leaves[li], p1, 1) == 0);
+            for (unsigned th = 2; th <= 3; th++) {
+                CHECK(kd_build(&tn, pts, n, leaves[li], pn, th) == 0);
+                CHECK_MSG(same_tree(&t1, p1, &tn, pn), "n=%u leaf=%u: %u threads build another tree", n,
+                          leaves[li], th);
+                kd_free(&tn);
+            }
+            if (n >= 1000) {
+                /* negative controls */
+                float keep[3];
+                memcpy(keep, pts, sizeof keep);
+                memcpy(pts, pts + 3 * (n / 2), sizeof keep);
+                memcpy(pts + 3 * (n / 2), keep, sizeof keep);
+                CHECK(kd_build(&tn, pts, n, leaves[li], pn, 2) == 0);
+                CHECK_MSG(!same_tree(&t1, p1, &tn, pn), "n=%u: swapped input compares equal", n);
+                kd_free(&tn);
+                t1.split[t1.nleaves / 2] = nextafterf(t1.split[t1.nleaves / 2], INFINITY);
+                memcpy(pts + 3 * (n / 2), pts, sizeof keep);
+                memcpy(pts, keep, sizeof keep);
+                CHECK(kd_build(&tn, pts, n, leaves[li], pn, 2) == 0);
+                CHECK_MSG(!same_tree(&t1, p1, &tn, pn), "n=%u: a changed split compares equal", n);
+                kd_free(&tn);
+            }
+            kd_free(&t1);
+            free(p1);
+            free(pn);
+            free(pts);
+        }
 }

@@ -12,6 +12,7 @@
 #include "estimate.h"
 #include "helpers.h"
 #include "photons.h"
+#include "mem.h"
 #include "render.h"
 #include "reps.h"
 #include "rng.h"
@@ -22,8 +23,8 @@
 static void add_square(photons_list *l, uint64_t n, vec3 origin, vec3 e1, vec3 e2, vec3 nrm, float power,
                        uint64_t seed)
 {
-    l->pos = realloc(l->pos, sizeof(double) * 3 * (l->count + n));
-    l->ph = realloc(l->ph, sizeof(photons_record) * (l->count + n));
+    l->pos = mem_realloc(l->pos, sizeof(double) * 3 * (l->count + n));
+    l->ph = mem_realloc(l->ph, sizeof(photons_record) * (l->count + n));
     rng_stream s = rng_make(seed, 0);
     for (uint64_t i = 0; i < n; i++) {
         vec3 p = vec_add(origin, vec_add(vec_scale(e1, rng_next_double(&s)), vec_scale(e2, rng_next_double(&s))));
@@ -54,7 +55,7 @@ void test_precomputed_equals_conventional_on_uniform_plane(void)
     add_square(&l, 200000, vec_make(-1, 0, -1), vec_make(2, 0, 0), vec_make(0, 0, 2), vec_make(0, 1, 0), 1e-5f, 1);
     flag_every(&l, 1);
     photons_map m;
-    CHECK(photons_build_map(&l, 0, &m, NULL) == 0);
+    CHECK(photons_build_map(&l, 0, 2, &m, NULL) == 0);
     reps_set reps;
     const uint32_t nn = 100;
     est_gather g = est_gather_make(&m, nn, 0.2, 0);
@@ -109,7 +110,7 @@ void test_precomputed_normal_test_at_corner(void)
     add_square(&l, 4000, vec_make(-1, 0, 0), vec_make(2, 0, 0), vec_make(0, 2, 0), vec_make(0, 0, 1), 1e-2f, 4);
     flag_every(&l, 3);
     photons_map m;
-    CHECK(photons_build_map(&l, 0, &m, NULL) == 0);
+    CHECK(photons_build_map(&l, 0, 2, &m, NULL) == 0);
     reps_set reps;
     est_gather g = est_gather_make(&m, 50, 0.3, 0);
     CHECK(helper_reps(&m, &g, CONFIG_REP_TREE_SEPARATE, 1, &reps) == 0);
@@ -186,7 +187,7 @@ void test_precomputed_dump_reps(void)
     add_square(&l, 20000, vec_make(99, 5, -1), vec_make(2, 0, 0), vec_make(0, 0, 2), vec_make(0, 1, 0), 1e-5f, 5);
     flag_every(&l, 8);
     photons_map m;
-    CHECK(photons_build_map(&l, 0, &m, NULL) == 0);
+    CHECK(photons_build_map(&l, 0, 2, &m, NULL) == 0);
     est_gather g = est_gather_make(&m, 50, 0.3, 0);
     for (int layout = 0; layout < 2; layout++) {
         reps_set reps;

@@ -14,6 +14,7 @@
     X(kdtree_query_state) \
     X(kdtree_query_avx2) \
     X(kdtree_build_memory) \
+    X(kdtree_build_threads) \
     /* test_kdtree_select.c */ \
     X(kdtree_select_base) \
     X(kdtree_select_avx2) \
