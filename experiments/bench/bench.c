@@ -476,7 +476,7 @@ static int run_peers(const char *dir, const char *python, uint32_t pe, const flo
     double t0 = now_s();
     kd_tree ours;
     uint32_t *perm = malloc(sizeof(uint32_t) * (n ? n : 1));
-    if (!perm || kd_build(&ours, pos, n, KD_DEFAULT_LEAF, perm)) {
+    if (!perm || kd_build(&ours, pos, n, KD_DEFAULT_LEAF, perm, 1)) {
         fprintf(stderr, "bench: out of memory\n");
         exit(1);
     }
@@ -642,7 +642,7 @@ int main(int argc, char **argv)
         photons_params pp = {pe, cfg.seed, cfg.photon_depth, 1};
         photons_list list;
         photons_map map;
-        if (photons_trace(sc, &pp, 1, NULL, &list) || photons_build_map(&list, 0, &map, NULL)) {
+        if (photons_trace(sc, &pp, 1, NULL, &list) || photons_build_map(&list, 0, 1, &map, NULL)) {
             fprintf(stderr, "bench: out of memory\n");
             return 1;
         }
