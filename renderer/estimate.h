@@ -66,6 +66,13 @@ vec3 est_irradiance(const photons_map *m, vec3 x, vec3 n, const est_gather *g, e
  * precompute's form, reps.h). */
 vec3 est_irradiance_at(const photons_map *m, const float q[3], vec3 n, const est_gather *g, est_scratch *s,
                        uint32_t *found);
+/* est_irradiance_at with a plane test (the representatives' gated
+ * precompute, reps.h): a gathered photon counts only when its distance from
+ * the plane through q with normal n is at most tau times the disc's radius
+ * r (tau <= 0: no test, the same result as est_irradiance_at). *r2 receives
+ * the squared radius the estimate divides by (map frame). */
+vec3 est_irradiance_plane_at(const photons_map *m, const float q[3], vec3 n, const est_gather *g, double tau,
+                             est_scratch *s, uint32_t *found, double *r2);
 /* The factor from irradiance in map units to W per scene unit^2. */
 vec3 est_world_factor(const photons_map *m);
 

@@ -15,8 +15,8 @@
 #define EYE_TILE 16u
 
 typedef struct {
-    uint64_t samples, depth_hits, empty, underflow;
-    char pad[128 - 4 * sizeof(uint64_t)]; /* one per thread: no two threads' counters share a cache line */
+    uint64_t samples, depth_hits, empty, underflow, fallbacks;
+    char pad[128 - 5 * sizeof(uint64_t)]; /* one per thread: no two threads' counters share a cache line */
 } eye_counts;
 
 typedef struct {
@@ -64,7 +64,8 @@ static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t de
         if (c->cfg->method == CONFIG_METHOD_PRECOMPUTED) {
             int found;
             e = reps_lookup(c->reps, c->map, h.p, h.n, c->cfg->normal_cos, &c->gather, &c->scratch[thread], &found);
-            c->counts[thread].empty += !found;
+            c->counts[thread].empty += !(found & REPS_FOUND);
+            c->counts[thread].fallbacks += (found & REPS_FALLBACK) != 0;
         } else {
             uint32_t found;
             e = est_irradiance(c->map, h.p, h.n, &c->gather, &c->scratch[thread], &found);
@@ -170,6 +171,7 @@ pm_status eye_render(const eye_input *in, unsigned threads, int show_progress, i
             st->eye_depth_limit_hits += c.counts[t].depth_hits;
             st->empty_estimates += c.counts[t].empty;
             st->underflow_pixels += c.counts[t].underflow;
+            st->rep_fallbacks += c.counts[t].fallbacks;
         }
         st->nonfinite_pixels = image_count_nonfinite(out);
         image_mean(out, st->mean_radiance);

@@ -149,7 +149,7 @@ void test_precomputed_rep_count(void)
     const uint64_t counts[4] = {1, 777, 5000, 1000000};
     for (int c = 0; c < 4; c++) {
         photons_params pp = {20000, 3, 64, 1};
-        reps_params rp = {4, counts[c], CONFIG_REP_TREE_SEPARATE, 0};
+        reps_params rp = {.every = 4, .count = counts[c], .tree = CONFIG_REP_TREE_SEPARATE, .leave_out = 0};
         photons_list l;
         CHECK(photons_trace(sc, &pp, 2, NULL, &l) == 0);
         reps_choose(&rp, &l);
