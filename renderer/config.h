@@ -15,9 +15,10 @@ typedef enum { CONFIG_REP_TREE_SEPARATE = 0, CONFIG_REP_TREE_SHARED = 1 } config
 /* --rep-eval: the representatives' irradiance all before the eye pass (the
  * paper), or each the first time a lookup selects it; --rep-gate: the
  * lookup's acceptance, the nearest with an agreeing normal (the paper), or
- * also near x's tangent plane and within its own kNN radius (reps.h) */
+ * also near x's tangent plane and within its own kNN radius, with the same
+ * test on the precompute's photons (plane) or without (plane-lookup) (reps.h) */
 typedef enum { CONFIG_REP_EVAL_EAGER = 0, CONFIG_REP_EVAL_LAZY = 1 } config_rep_eval;
-typedef enum { CONFIG_REP_GATE_NONE = 0, CONFIG_REP_GATE_PLANE = 1 } config_rep_gate;
+typedef enum { CONFIG_REP_GATE_NONE = 0, CONFIG_REP_GATE_PLANE = 1, CONFIG_REP_GATE_PLANE_LOOKUP = 2 } config_rep_gate;
 
 typedef struct {
     config_method method;     /* radiance estimate: eq. 1 or eq. 2 of the paper */
@@ -66,11 +67,11 @@ typedef struct {
 #define CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT "0.05"
 #define CONFIG_DEFAULT_PHOTON_DEPTH 64u
 #define CONFIG_DEFAULT_EYE_DEPTH 16u
-/* The plane gate's default tolerance and its range. 0.1: on a sphere of
- * radius R a point at distance d lies d^2 / 2R from the tangent plane, so
- * the gate passes every point within the radius cap (0.05 of the photons'
- * bounding-box diagonal, 0.17 R for a lit sphere) while tau >= 0.087; a
- * tau of 1 or more tests nothing the radius test does not. */
+/* The plane gate's default tolerance and its range (the 0.1 r of a
+ * plane-distance test in other renderers' photon gathers). The gate's
+ * height sees no curvature on a sphere (est_surface_height), so it is a
+ * test against other surfaces: a parallel one closer than tau r passes.
+ * A tau of 1 or more tests nothing the radius test does not. */
 #define CONFIG_DEFAULT_REP_GATE_TAU 0.1
 #define CONFIG_MIN_REP_GATE_TAU 1e-3
 #define CONFIG_MAX_REP_GATE_TAU 1.0

@@ -49,6 +49,15 @@ est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius,
     return g;
 }
 
+double est_surface_height(vec3 d, vec3 n, vec3 nj)
+{
+    vec3 m = vec_add(n, vec_norm(nj));
+    double len2 = vec_len2(m);
+    if (!(len2 > 1e-12))
+        return INFINITY; /* opposite normals: no common surface */
+    return fabs(vec_dot(d, m)) / sqrt(len2);
+}
+
 /* The gather of est_irradiance_at and est_irradiance_plane_at; inlined
  * into both, so the plain estimate keeps no test in its loop. */
 static inline vec3 irradiance_core(const photons_map *m, const float q[3], vec3 n, const est_gather *g, double tau,
@@ -76,8 +85,8 @@ static inline vec3 irradiance_core(const photons_map *m, const float q[3], vec3 
             if (tau > 0.0) {
                 float pt[3];
                 kd_point(&m->tree, s->idx[j], pt);
-                double h = (pt[0] - q[0]) * n.x + (pt[1] - q[1]) * n.y + (pt[2] - q[2]) * n.z;
-                if (!(fabs(h) <= plane))
+                vec3 d = vec_make((double)pt[0] - q[0], (double)pt[1] - q[1], (double)pt[2] - q[2]);
+                if (!(est_surface_height(d, n, photons_unpack_dir(p->normal)) <= plane))
                     continue;
             }
             sum[0] += p->power[0];

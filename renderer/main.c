@@ -41,7 +41,7 @@ static const char *const method_names[] = {"conventional", "precomputed", NULL};
 static const char *const direct_names[] = {"photons", "shadow-rays", NULL};
 static const char *const rep_tree_names[] = {"separate", "shared", NULL};
 static const char *const rep_eval_names[] = {"eager", "lazy", NULL};
-static const char *const rep_gate_names[] = {"none", "plane", NULL};
+static const char *const rep_gate_names[] = {"none", "plane", "plane-lookup", NULL};
 _Static_assert(sizeof(config_rep_eval) == sizeof(int) && sizeof(config_rep_gate) == sizeof(int),
                "config_rep_eval and config_rep_gate are int-sized");
 /* in the order of scene_accel */
@@ -93,14 +93,16 @@ static const cli_option render_options[] = {
              "the first time a lookup selects it, once (the same image bit for bit; time_s.precompute then holds "
              "only the representatives' tree, their cost is in time_s.render; not with --dump-reps)"},
     {.name = "--rep-gate", .kind = CLI_CHOICE, .offset = RC(rep_gate), .choices = rep_gate_names,
-     .help = "precomputed: accept the nearest representative whose normal agrees (the paper), or (plane) the "
-             "first of the 4 nearest that also lies within tau r of x's tangent plane and within r of x, r its "
-             "kNN radius, else the conventional estimate at x; its precompute counts only the photons within "
-             "tau r of its tangent plane. Assumes locally flat surfaces (a sphere of radius R passes all when "
-             "r <= 2 tau R); needs --rep-tree separate"},
+     .help = "precomputed: accept the nearest representative whose normal agrees (the paper), or the first of "
+             "the 4 nearest that also lies within tau r of x's tangent plane and within r of x, r its kNN radius, "
+             "else the conventional estimate at x (rep_fallbacks); plane: its precompute also counts only the "
+             "photons within tau r of its tangent plane (darker at concave edges: the adjacent face's photons "
+             "no longer make up for the cut disc); plane-lookup: the paper's precompute. The plane is through "
+             "the mean of the two normals: x's tangent plane on a flat surface, none of a sphere's own points "
+             "fails; assumes a surface smooth within r; needs --rep-tree separate"},
     {.name = "--rep-gate-tau", .kind = CLI_REAL, .metavar = "T", .offset = RC(rep_gate_tau),
      .rlo = CONFIG_MIN_REP_GATE_TAU, .rhi = CONFIG_MAX_REP_GATE_TAU,
-     .help = "--rep-gate plane: the largest distance from the tangent plane, in kNN radii"},
+     .help = "--rep-gate plane or plane-lookup: the largest distance from the tangent plane, in kNN radii"},
     {.name = "--max-radius", .kind = CLI_REAL, .metavar = "R", .offset = RC(max_radius), .rlo = 1e-30, .rhi = 1e30,
      .help = "search radius cap in scene units",
      .default_text = CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT " x the diagonal of the photons' bounding box"},

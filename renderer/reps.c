@@ -37,12 +37,12 @@ const char *reps_check(const config_render *c)
         return "--rep-eval lazy evaluates the representatives of the precomputed method on first use; the "
                "conventional method has none: use it with --method precomputed";
     if (c->rep_gate != CONFIG_REP_GATE_NONE && c->method != CONFIG_METHOD_PRECOMPUTED)
-        return "--rep-gate plane chooses among the representatives of the precomputed method; the conventional "
+        return "--rep-gate plane (and plane-lookup) chooses among the representatives of the precomputed method; the conventional "
                "method has none: use it with --method precomputed";
-    if (c->rep_gate_tau != CONFIG_DEFAULT_REP_GATE_TAU && c->rep_gate != CONFIG_REP_GATE_PLANE)
-        return "--rep-gate-tau is the plane gate's tolerance: use it with --rep-gate plane";
-    if (c->rep_gate == CONFIG_REP_GATE_PLANE && c->rep_tree == CONFIG_REP_TREE_SHARED)
-        return "--rep-gate plane tries the nearest representatives in their own kd-tree; --rep-tree shared has "
+    if (c->rep_gate_tau != CONFIG_DEFAULT_REP_GATE_TAU && c->rep_gate == CONFIG_REP_GATE_NONE)
+        return "--rep-gate-tau is the plane gate's tolerance: use it with --rep-gate plane or plane-lookup";
+    if (c->rep_gate != CONFIG_REP_GATE_NONE && c->rep_tree == CONFIG_REP_TREE_SHARED)
+        return "--rep-gate plane (and plane-lookup) tries the nearest representatives in their own kd-tree; --rep-tree shared has "
                "none: use --rep-tree separate";
     if (c->rep_eval == CONFIG_REP_EVAL_LAZY && c->dump_reps)
         return "--dump-reps writes every representative's precomputed irradiance; --rep-eval lazy computes only "
@@ -309,9 +309,10 @@ static const reps_value *ready_value(const reps_set *r, const photons_map *m, ui
 
 /* The plane gate: of the REPS_GATE_CANDIDATES representatives nearest to
  * map-frame point q (within the cap), in (distance, tree order), the first
- * whose normal agrees, whose distance from the plane through q with normal
- * n is at most tau r and whose distance from q is at most r, r its kNN
- * radius. Returns it, or NULL. */
+ * whose normal agrees, whose height from q (est_surface_height: from q's
+ * tangent plane where both normals agree exactly) is at most tau r and
+ * whose distance from q is at most r, r its kNN radius. Returns it, or
+ * NULL. */
 static const reps_value *gate_accept(const reps_set *r, const photons_map *m, const float q[3], vec3 n,
                                      double cos_min, float max_r2, est_scratch *s)
 {
@@ -339,8 +340,9 @@ static const reps_value *gate_accept(const reps_set *r, const photons_map *m, co
             continue;
         float p[3];
         kd_point(&r->own, i, p);
-        double h = (p[0] - q[0]) * n.x + (p[1] - q[1]) * n.y + (p[2] - q[2]) * n.z;
-        if (fabs(h) <= r->tau * sqrt((double)v->radius2))
+        vec3 d = vec_make((double)p[0] - q[0], (double)p[1] - q[1], (double)p[2] - q[2]);
+        vec3 nr = vec_make(v->normal[0], v->normal[1], v->normal[2]);
+        if (est_surface_height(d, n, nr) <= r->tau * sqrt((double)v->radius2))
             return v;
     }
     return NULL;
@@ -354,7 +356,7 @@ vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, double
     photons_map_point(m, x, q);
     lookup_ctx c = {r, n, cos_min};
     const reps_value *v = NULL;
-    if (r->gate == CONFIG_REP_GATE_PLANE) {
+    if (r->gate != CONFIG_REP_GATE_NONE) {
         assert(r->tree == CONFIG_REP_TREE_SEPARATE); /* reps_check */
         v = gate_accept(r, m, q, n, cos_min, max_r2, s);
         if (!v) {

@@ -14,8 +14,10 @@
  *    paper's), or the plane gate: of the REPS_GATE_CANDIDATES nearest, the
  *    first whose normal agrees, which lies within tau of its kNN radius r
  *    from x's tangent plane and within r of x, else the conventional
- *    estimate at x (a fallback); the gated precompute counts only the
- *    photons within tau r of the representative's tangent plane;
+ *    estimate at x (a fallback); with `plane` the precompute counts only
+ *    the photons within tau r of the representative's tangent plane,
+ *    with `plane-lookup` all (the paper's gather); heights are
+ *    est_surface_height's, which sees no curvature on a sphere;
  *  - their CSV form (--dump-reps). */
 #ifndef PM_REPS_H
 #define PM_REPS_H
@@ -42,7 +44,7 @@ typedef struct {
     config_rep_tree tree; /* the lookup's layout */
     int leave_out;        /* 1: the photon tree holds only the photons that are not representatives */
     config_rep_eval eval; /* eager (0) or on first use */
-    config_rep_gate gate; /* none (0): the nearest agreeing; plane: the gate */
+    config_rep_gate gate; /* none (0): the nearest agreeing; plane: the gate (and its gather); plane-lookup */
     double tau;           /* the plane gate's tolerance, in kNN radii */
 } reps_params;
 

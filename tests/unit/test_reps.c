@@ -390,6 +390,20 @@ void test_reps_lazy_equals_eager(void)
 
 void test_reps_plane_gate(void)
 {
+    /* the gate's height: 0 for two points of one sphere of any radius (a
+     * small one seen from 0.02 away, where the tangent plane alone puts
+     * the other point 0.004 off, the negative control), the offset for a
+     * parallel face, infinite for opposite normals */
+    {
+        double R = 0.05, a = 0.4; /* radians apart on the sphere */
+        vec3 n1 = vec_make(0, 1, 0), n2 = vec_make(sin(a), cos(a), 0);
+        vec3 d = vec_scale(vec_sub(n2, n1), R);
+        CHECK(est_surface_height(d, n1, n2) < 1e-15);
+        CHECK(fabs(vec_dot(d, n1)) > 0.003);
+        CHECK(est_surface_height(vec_scale(vec_sub(n2, n1), -R), n1, n2) < 1e-15); /* the inside */
+        CHECK_NEAR(est_surface_height(vec_make(0.01, 0.003, 0.02), n1, vec_scale(n1, 0.9)), 0.003, 1e-15);
+        CHECK(isinf(est_surface_height(vec_make(0.01, 0, 0), n1, vec_scale(n1, -1.0))));
+    }
     const uint32_t nn = 100;
     est_scratch *s = est_scratch_new(1, nn);
     CHECK(s != NULL);
@@ -463,6 +477,19 @@ void test_reps_plane_gate(void)
         CHECK(sum_p / N > 0.25 * 1.6);
         CHECK_NEAR(sum_g / N, 0.25, 0.25 * 0.05);
         CHECK(fallbacks < N / 10);
+        /* plane-lookup: the same lookup gate on the paper's precompute,
+         * whose values still count both faces */
+        reps_set lookup_only;
+        variant_reps(&m, &g, CONFIG_REP_TREE_SEPARATE, CONFIG_REP_EVAL_EAGER, CONFIG_REP_GATE_PLANE_LOOKUP, 0.1, 2,
+                     &lookup_only);
+        double sum_l = 0;
+        for (int i = 0; i < N; i++) {
+            vec3 x = vec_make(rng_next_double(&q) - 0.5, i % 2 ? 0.0 : 0.01, rng_next_double(&q) - 0.5);
+            int f;
+            sum_l += reps_lookup(&lookup_only, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f).y;
+        }
+        CHECK(sum_l / N > 0.25 * 1.6);
+        reps_free(&lookup_only);
         reps_free(&plain);
         reps_free(&gated);
         photons_map_free(&m);
