@@ -94,7 +94,7 @@ static const cli_option render_options[] = {
              "only the representatives' tree, their cost is in time_s.render; not with --dump-reps)"},
     {.name = "--rep-gate", .kind = CLI_CHOICE, .offset = RC(rep_gate), .choices = rep_gate_names,
      .help = "precomputed: accept the nearest representative whose normal agrees (the paper), or the first of "
-             "the 4 nearest that also lies within tau r of x's tangent plane and within r of x, r its kNN radius, "
+             "the 4 nearest that also lies within tau r of x's tangent plane, r its kNN radius, "
              "else the conventional estimate at x (rep_fallbacks); plane: its precompute also counts only the "
              "photons within tau r of its tangent plane (darker at concave edges: the adjacent face's photons "
              "no longer make up for the cut disc); plane-lookup: the paper's precompute. The plane is through "

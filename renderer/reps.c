@@ -309,10 +309,9 @@ static const reps_value *ready_value(const reps_set *r, const photons_map *m, ui
 
 /* The plane gate: of the REPS_GATE_CANDIDATES representatives nearest to
  * map-frame point q (within the cap), in (distance, tree order), the first
- * whose normal agrees, whose height from q (est_surface_height: from q's
- * tangent plane where both normals agree exactly) is at most tau r and
- * whose distance from q is at most r, r its kNN radius. Returns it, or
- * NULL. */
+ * whose normal agrees and whose height from q (est_surface_height: from
+ * q's tangent plane where both normals agree exactly) is at most tau r, r
+ * its kNN radius. Returns it, or NULL. */
 static const reps_value *gate_accept(const reps_set *r, const photons_map *m, const float q[3], vec3 n,
                                      double cos_min, float max_r2, est_scratch *s)
 {
@@ -335,9 +334,11 @@ static const reps_value *gate_accept(const reps_set *r, const photons_map *m, co
         uint32_t i = idx[j];
         if (!agrees(&r->value[i], &c))
             continue;
+        /* no test of the distance against r itself: it would select
+         * representatives by their own noise (a large r, a low estimate:
+         * measured on the furnace sphere, --bias-correction, n = 3, the
+         * mean radiance 0.88 instead of 1) */
         const reps_value *v = ready_value(r, m, i, s);
-        if (!(d2[j] <= v->radius2))
-            continue;
         float p[3];
         kd_point(&r->own, i, p);
         vec3 d = vec_make((double)p[0] - q[0], (double)p[1] - q[1], (double)p[2] - q[2]);

@@ -13,7 +13,8 @@
  *  - the lookup: the nearest representative whose normal agrees (the
  *    paper's), or the plane gate: of the REPS_GATE_CANDIDATES nearest, the
  *    first whose normal agrees, which lies within tau of its kNN radius r
- *    from x's tangent plane and within r of x, else the conventional
+ *    from x's tangent plane (within the radius cap, not r, of x: a test
+ *    against r selects by the estimate's noise), else the conventional
  *    estimate at x (a fallback); with `plane` the precompute counts only
  *    the photons within tau r of the representative's tangent plane,
  *    with `plane-lookup` all (the paper's gather); heights are

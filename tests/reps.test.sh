@@ -44,9 +44,7 @@ check "negative control: lazy with other representatives differs" lazy_control
 
 # The furnace sphere (radius 1): the gate's height of two points of one
 # sphere is 0 (est_surface_height), so every representative and photon in
-# range passes; with --nn 100 every eye hit also lies within its nearest
-# representative's kNN radius (with 50 a rare one does not, and a farther
-# representative answers)
+# range passes
 FURNACE=(scenes/furnace.scene --photons 100000 --nn 100 --width 96 --height 72 --quiet --method precomputed)
 gate_unchanged() { # gate, extra options...
   local gate=$1; shift
