@@ -29,6 +29,9 @@ config_render config_defaults(void)
     c.bias_correction = 0;
     c.accel = SCENE_ACCEL_AUTO;
     c.dump_reps = NULL;
+    c.rep_eval = CONFIG_REP_EVAL_EAGER;
+    c.rep_gate = CONFIG_REP_GATE_NONE;
+    c.rep_gate_tau = CONFIG_DEFAULT_REP_GATE_TAU;
     return c;
 }
 

@@ -54,32 +54,65 @@ est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius,
     return g;
 }
 
-vec3 est_irradiance_at(const photons_map *m, const float q[3], vec3 n, const est_gather *g, est_scratch *s,
-                       uint32_t *found)
+double est_surface_height(vec3 d, vec3 n, vec3 nj)
+{
+    vec3 m = vec_add(n, vec_norm(nj));
+    double len2 = vec_len2(m);
+    if (!(len2 > 1e-12))
+        return INFINITY; /* opposite normals: no common surface */
+    return fabs(vec_dot(d, m)) / sqrt(len2);
+}
+
+/* The gather of est_irradiance_at and est_irradiance_plane_at; inlined
+ * into both, so the plain estimate keeps no test in its loop. */
+static inline vec3 irradiance_core(const photons_map *m, const float q[3], vec3 n, const est_gather *g, double tau,
+                                   est_scratch *s, uint32_t *found, double *r2_out)
 {
     assert(g->nn <= s->cap);
     float r2f;
     uint32_t k = kd_query_knn(&m->tree, &s->query, q, g->nn, (float)g->max_r2, s->idx, s->d2, &r2f);
     *found = k;
+    double r2 = k < g->nn ? g->max_r2 : (double)r2f;
+    if (r2 < g->min_r2)
+        r2 = g->min_r2;
+    *r2_out = r2;
     if (k == 0)
         return vec_make(0, 0, 0);
     /* the paper counts all k; the corrected estimate only those strictly
      * inside the radius r that the n-th photon (or the cap) defines */
     float inside = g->corrected ? (k < g->nn ? (float)g->max_r2 : r2f) : INFINITY;
+    double plane = tau > 0.0 ? tau * sqrt(r2) : 0.0;
     double sum[3] = {0, 0, 0};
     for (uint32_t j = 0; j < k; j++) {
         const photons_record *p = &m->ph[s->idx[j]];
         if (p->dir[0] * n.x + p->dir[1] * n.y + p->dir[2] * n.z < 0.0 && s->d2[j] < inside) {
+            if (tau > 0.0) {
+                float pt[3];
+                kd_point(&m->tree, s->idx[j], pt);
+                vec3 d = vec_make((double)pt[0] - q[0], (double)pt[1] - q[1], (double)pt[2] - q[2]);
+                if (!(est_surface_height(d, n, photons_unpack_dir(p->normal)) <= plane))
+                    continue;
+            }
             sum[0] += p->power[0];
             sum[1] += p->power[1];
             sum[2] += p->power[2];
         }
     }
-    double r2 = k < g->nn ? g->max_r2 : (double)r2f;
-    if (r2 < g->min_r2)
-        r2 = g->min_r2;
     double inv = g->boost / (VEC_PI * r2);
     return vec_make(sum[0] * inv, sum[1] * inv, sum[2] * inv);
+}
+
+vec3 est_irradiance_at(const photons_map *m, const float q[3], vec3 n, const est_gather *g, est_scratch *s,
+                       uint32_t *found)
+{
+    double r2;
+    return irradiance_core(m, q, n, g, 0.0, s, found, &r2);
+}
+
+vec3 est_irradiance_plane_at(const photons_map *m, const float q[3], vec3 n, const est_gather *g, double tau,
+                             est_scratch *s, uint32_t *found, double *r2)
+{
+    return irradiance_core(m, q, n, g, tau, s, found, r2);
 }
 
 vec3 est_world_factor(const photons_map *m)

@@ -71,6 +71,23 @@ vec3 est_irradiance(const photons_map *m, vec3 x, vec3 n, const est_gather *g, e
  * precompute's form, reps.h). */
 vec3 est_irradiance_at(const photons_map *m, const float q[3], vec3 n, const est_gather *g, est_scratch *s,
                        uint32_t *found);
+/* The plane gate's height of a point at offset d from x, x with unit
+ * normal n and the point with normal nj (not necessarily unit): the
+ * distance of d from the plane through x whose normal is the mean of n and
+ * nj. For two points of one plane (nj = n) it is the distance from x's
+ * tangent plane; for two points of one sphere, whatever its radius, it is
+ * 0 (their chord is perpendicular to n + nj), so the gate sees no curvature
+ * there; a parallel surface (a thin slab's other face, a shelf) lies at its
+ * offset. INFINITY for opposite normals. */
+double est_surface_height(vec3 d, vec3 n, vec3 nj);
+/* est_irradiance_at with the plane gate's test (the representatives' gated
+ * precompute, reps.h): a gathered photon counts only when its height
+ * (est_surface_height, with the normal of the surface it landed on) is at
+ * most tau times the disc's radius r (tau <= 0: no test, the same result as
+ * est_irradiance_at). *r2 receives the squared radius the estimate divides
+ * by (map frame). */
+vec3 est_irradiance_plane_at(const photons_map *m, const float q[3], vec3 n, const est_gather *g, double tau,
+                             est_scratch *s, uint32_t *found, double *r2);
 /* The factor from irradiance in map units to W per scene unit^2. */
 vec3 est_world_factor(const photons_map *m);
 

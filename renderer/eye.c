@@ -16,9 +16,9 @@
 #define EYE_TILE 16u
 
 typedef struct {
-    uint64_t samples, depth_hits, empty, underflow, flushed;
+    uint64_t samples, depth_hits, empty, underflow, flushed, fallbacks;
     double peak; /* the largest channel value of any pixel, before the conversion to float */
-    char pad[128 - 5 * sizeof(uint64_t) - sizeof(double)]; /* one per thread: no two threads' counters share a cache line */
+    char pad[128 - 6 * sizeof(uint64_t) - sizeof(double)]; /* one per thread: no two threads' counters share a cache line */
 } eye_counts;
 
 typedef struct {
@@ -66,7 +66,8 @@ static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t de
         if (c->cfg->method == CONFIG_METHOD_PRECOMPUTED) {
             int found;
             e = reps_lookup(c->reps, c->map, h.p, h.n, c->cfg->normal_cos, &c->gather, &c->scratch[thread], &found);
-            c->counts[thread].empty += !found;
+            c->counts[thread].empty += !(found & REPS_FOUND);
+            c->counts[thread].fallbacks += (found & REPS_FALLBACK) != 0;
         } else {
             uint32_t found;
             e = est_irradiance(c->map, h.p, h.n, &c->gather, &c->scratch[thread], &found);
@@ -178,6 +179,7 @@ pm_status eye_render(const eye_input *in, unsigned threads, int show_progress, i
             st->underflow_pixels += c.counts[t].underflow;
             st->flushed_values += c.counts[t].flushed;
             st->peak_radiance = fmax(st->peak_radiance, c.counts[t].peak);
+            st->rep_fallbacks += c.counts[t].fallbacks;
         }
         st->nonfinite_pixels = image_count_nonfinite(out);
         image_mean(out, st->mean_radiance);

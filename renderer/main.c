@@ -42,6 +42,10 @@ typedef struct {
 static const char *const method_names[] = {"conventional", "precomputed", NULL};
 static const char *const direct_names[] = {"photons", "shadow-rays", NULL};
 static const char *const rep_tree_names[] = {"separate", "shared", NULL};
+static const char *const rep_eval_names[] = {"eager", "lazy", NULL};
+static const char *const rep_gate_names[] = {"none", "plane", "plane-lookup", NULL};
+_Static_assert(sizeof(config_rep_eval) == sizeof(int) && sizeof(config_rep_gate) == sizeof(int),
+               "config_rep_eval and config_rep_gate are int-sized");
 /* in the order of scene_accel */
 static const char *const accel_names[] = {"auto", "bvh", "linear", NULL};
 /* the table writes these choices as ints into enum fields */
@@ -85,6 +89,22 @@ static const cli_option render_options[] = {
      .help = "precomputed: a representative's normal must agree above this cosine"},
     {.name = "--rep-tree", .kind = CLI_CHOICE, .offset = RC(rep_tree), .choices = rep_tree_names,
      .help = "precomputed: the representatives' own kd-tree, or the photon tree by flag"},
+    /* the precomputed method beyond the paper (reps.h) */
+    {.name = "--rep-eval", .kind = CLI_CHOICE, .offset = RC(rep_eval), .choices = rep_eval_names,
+     .help = "precomputed: compute every representative's irradiance before the eye pass (the paper), or each "
+             "the first time a lookup selects it, once (the same image bit for bit; time_s.precompute then holds "
+             "only the representatives' tree, their cost is in time_s.render; not with --dump-reps)"},
+    {.name = "--rep-gate", .kind = CLI_CHOICE, .offset = RC(rep_gate), .choices = rep_gate_names,
+     .help = "precomputed: accept the nearest representative whose normal agrees (the paper), or the first of "
+             "the 4 nearest that also lies within tau r of x's tangent plane, r its kNN radius, "
+             "else the conventional estimate at x (rep_fallbacks); plane: its precompute also counts only the "
+             "photons within tau r of its tangent plane (darker at concave edges: the adjacent face's photons "
+             "no longer make up for the cut disc); plane-lookup: the paper's precompute. The plane is through "
+             "the mean of the two normals: x's tangent plane on a flat surface, none of a sphere's own points "
+             "fails; assumes a surface smooth within r; needs --rep-tree separate"},
+    {.name = "--rep-gate-tau", .kind = CLI_REAL, .metavar = "T", .offset = RC(rep_gate_tau),
+     .rlo = CONFIG_MIN_REP_GATE_TAU, .rhi = CONFIG_MAX_REP_GATE_TAU,
+     .help = "--rep-gate plane or plane-lookup: the largest distance from the tangent plane, in kNN radii"},
     {.name = "--max-radius", .kind = CLI_REAL, .metavar = "R", .offset = RC(max_radius), .rlo = 1e-30, .rhi = 1e30,
      .help = "search radius cap in scene units (r is floored at 1e-3 of it, or of the photons' extent when the cap "
              "is larger: a cap beyond the photons finds what a cap at their extent finds)",

@@ -120,8 +120,9 @@ static pm_status check_precision(const render_state *rs, char *err, size_t errle
     return PM_ERR_INPUT;
 }
 
-/* Step 3 (precomputed method): irradiance at the representatives. Returns
- * PM_OK, or PM_ERR_NOMEM. */
+/* Step 3 (precomputed method): irradiance at the representatives (lazy:
+ * their lookup and normals only; the irradiance is then computed, and
+ * timed, in the eye pass). Returns PM_OK, or PM_ERR_NOMEM. */
 static pm_status step_precompute(render_state *rs)
 {
     const config_render *cfg = rs->cfg;
@@ -207,6 +208,8 @@ pm_status render_run(const scene *sc, const config_render *cfg, unsigned threads
         rc = step_precompute(&rs);
     if (rc == PM_OK)
         rc = step_eye(&rs, &out->img);
+    if (rc == PM_OK)
+        st->reps_evaluated = reps_evaluated(&rs.reps);
     photons_list_free(&rs.list);
     if (rc == PM_OK && cfg->dump_reps) {
         /* the caller writes them: they stay with the map that places them */

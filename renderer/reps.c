@@ -4,6 +4,7 @@
 
 #include <assert.h>
 #include <math.h>
+#include <sched.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,6 +20,9 @@ reps_params reps_params_of(const config_render *cfg)
     p.count = pre ? cfg->rep_count : 0;
     p.tree = cfg->rep_tree;
     p.leave_out = pre && cfg->bias_correction;
+    p.eval = cfg->rep_eval;
+    p.gate = cfg->rep_gate;
+    p.tau = cfg->rep_gate_tau;
     return p;
 }
 
@@ -28,6 +32,21 @@ const char *reps_check(const config_render *c)
         return "--dump-reps writes the representatives of the precomputed method: use it with --method precomputed";
     if (c->rep_count > 0 && c->rep_every != CONFIG_DEFAULT_REP_EVERY)
         return "--rep-count and --rep-every are two rules for choosing the representatives: give one";
+    /* the variants beyond the paper */
+    if (c->rep_eval != CONFIG_REP_EVAL_EAGER && c->method != CONFIG_METHOD_PRECOMPUTED)
+        return "--rep-eval lazy evaluates the representatives of the precomputed method on first use; the "
+               "conventional method has none: use it with --method precomputed";
+    if (c->rep_gate != CONFIG_REP_GATE_NONE && c->method != CONFIG_METHOD_PRECOMPUTED)
+        return "--rep-gate plane (and plane-lookup) chooses among the representatives of the precomputed method; the conventional "
+               "method has none: use it with --method precomputed";
+    if (c->rep_gate_tau != CONFIG_DEFAULT_REP_GATE_TAU && c->rep_gate == CONFIG_REP_GATE_NONE)
+        return "--rep-gate-tau is the plane gate's tolerance: use it with --rep-gate plane or plane-lookup";
+    if (c->rep_gate != CONFIG_REP_GATE_NONE && c->rep_tree == CONFIG_REP_TREE_SHARED)
+        return "--rep-gate plane (and plane-lookup) tries the nearest representatives in their own kd-tree; --rep-tree shared has "
+               "none: use --rep-tree separate";
+    if (c->rep_eval == CONFIG_REP_EVAL_LAZY && c->dump_reps)
+        return "--dump-reps writes every representative's precomputed irradiance; --rep-eval lazy computes only "
+               "those the eye pass selects: use --rep-eval eager";
     if (c->method != CONFIG_METHOD_PRECOMPUTED)
         return NULL;
     if (!c->bias_correction && c->nn < 3)
@@ -83,6 +102,9 @@ pm_status reps_collect(const reps_params *p, const photons_map *m, const photons
 {
     memset(out, 0, sizeof *out);
     out->tree = p->tree;
+    out->eval = p->eval;
+    out->gate = p->gate;
+    out->tau = p->tau;
     uint32_t nin = 0, nleft = left ? (uint32_t)left->count : 0;
     for (uint32_t i = 0; i < m->count; i++)
         nin += (m->ph[i].flags & PHOTONS_FLAG_REP) != 0;
@@ -120,13 +142,28 @@ size_t reps_sites_bytes(const reps_set *r)
     return (size_t)r->count * sizeof(reps_site);
 }
 
+/* Equation 1 at representative site rp into v's irradiance and radius
+ * (with the plane gate, counting only the photons near its tangent plane).
+ * The eager precompute and the lazy lookup both call it, so the two give
+ * the same bits. */
+static void evaluate_value(const reps_set *r, const photons_map *m, const reps_site *rp, reps_value *v,
+                           est_scratch *s)
+{
+    vec3 n = vec_norm(photons_unpack_dir(rp->normal));
+    uint32_t found;
+    double r2;
+    double tau = r->gate == CONFIG_REP_GATE_PLANE ? r->tau : 0.0;
+    vec3 e = est_irradiance_plane_at(m, rp->pos, n, &r->gather, tau, s, &found, &r2);
+    v->irradiance[0] = (float)e.x;
+    v->irradiance[1] = (float)e.y;
+    v->irradiance[2] = (float)e.z;
+    v->radius2 = (float)r2;
+}
+
 typedef struct {
+    const reps_set *r;
     const photons_map *m;
-    const est_gather *g;
-    const reps_site *site;
     const uint32_t *order; /* value index i -> site index (separate layout), or NULL: the same */
-    reps_value *value;     /* by value index */
-    uint32_t count;
     est_scratch *scratch;  /* one per thread */
     progress *prog;
 } evaluate_ctx;
@@ -134,20 +171,24 @@ typedef struct {
 static void evaluate_chunk(uint64_t chunk, unsigned thread, void *arg)
 {
     evaluate_ctx *c = arg;
+    const reps_set *r = c->r;
     uint32_t lo = (uint32_t)chunk * REPS_CHUNK;
-    uint32_t hi = lo + REPS_CHUNK < c->count ? lo + REPS_CHUNK : c->count;
+    uint32_t hi = lo + REPS_CHUNK < r->count ? lo + REPS_CHUNK : r->count;
     for (uint32_t i = lo; i < hi; i++) {
-        const reps_site *rp = &c->site[c->order ? c->order[i] : i];
+        const reps_site *rp = &r->site[c->order ? c->order[i] : i];
+        reps_value *v = &r->value[i];
+        /* the normal always now: the lookup's selection reads it */
         vec3 n = vec_norm(photons_unpack_dir(rp->normal));
-        uint32_t found;
-        vec3 e = est_irradiance_at(c->m, rp->pos, n, c->g, &c->scratch[thread], &found);
-        reps_value *r = &c->value[i];
-        r->irradiance[0] = (float)e.x;
-        r->irradiance[1] = (float)e.y;
-        r->irradiance[2] = (float)e.z;
-        r->normal[0] = (float)n.x;
-        r->normal[1] = (float)n.y;
-        r->normal[2] = (float)n.z;
+        v->normal[0] = (float)n.x;
+        v->normal[1] = (float)n.y;
+        v->normal[2] = (float)n.z;
+        if (r->eval == CONFIG_REP_EVAL_EAGER) {
+            evaluate_value(r, c->m, rp, v, &c->scratch[thread]);
+        } else {
+            v->irradiance[0] = v->irradiance[1] = v->irradiance[2] = 0.0f;
+            v->radius2 = 0.0f;
+            atomic_init(&r->state[i], REPS_PENDING);
+        }
     }
     progress_add(c->prog, hi - lo);
 }
@@ -158,8 +199,12 @@ static void free_values(reps_set *r)
     kd_free(&r->own);
     free(r->value);
     free(r->rep_of);
+    free((void *)r->state);
+    free(r->site_of);
     r->value = NULL;
     r->rep_of = NULL;
+    r->state = NULL;
+    r->site_of = NULL;
 }
 
 pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, unsigned threads, progress *prog)
@@ -167,9 +212,12 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
     unsigned nt = threads ? threads : 1;
     uint32_t count = r->count;
     uint32_t *order = NULL;
+    r->gather = *g;
     r->value = malloc(sizeof(reps_value) * (count ? count : 1));
+    if (r->eval == CONFIG_REP_EVAL_LAZY)
+        r->state = malloc(sizeof(atomic_uchar) * (count ? count : 1));
     est_scratch *scratch = est_scratch_new(nt, g->nn);
-    int rc = (!r->value || !scratch) ? -1 : 0;
+    int rc = (!r->value || !scratch || (r->eval == CONFIG_REP_EVAL_LAZY && !r->state)) ? -1 : 0;
     if (rc == 0 && r->tree == CONFIG_REP_TREE_SEPARATE) {
         /* the representatives' own tree first: the precompute then runs in
          * its leaf order (nearby queries in a row) and stores in that order */
@@ -195,11 +243,14 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
         }
     }
     if (rc == 0) {
-        /* Evaluation: every representative's irradiance, now, before the eye
-         * pass (the paper's eager precompute). An evaluation on first use
-         * would allocate the values here and fill them from reps_lookup. */
-        evaluate_ctx c = {m, g, r->site, order, r->value, count, scratch, prog};
+        /* eager: every representative's irradiance, now, before the eye
+         * pass (the paper's precompute); lazy: the normals only */
+        evaluate_ctx c = {r, m, order, scratch, prog};
         parallel_for(threads, (count + REPS_CHUNK - 1) / REPS_CHUNK, evaluate_chunk, &c);
+    }
+    if (rc == 0 && r->eval == CONFIG_REP_EVAL_LAZY) {
+        r->site_of = order; /* the lookup finds a value's site by it */
+        order = NULL;
     }
     free(order);
     est_scratch_delete(scratch, nt);
@@ -232,6 +283,72 @@ static int pred_shared(uint32_t i, const void *arg)
     return j != KD_NONE && agrees(&c->r->value[j], c);
 }
 
+/* Value i of r, its irradiance computed: eager, as it is; lazy, computed
+ * by the first thread that claims it (with s's buffers) while any other
+ * waits for it to be published. */
+static const reps_value *ready_value(const reps_set *r, const photons_map *m, uint32_t i, est_scratch *s)
+{
+    if (!r->state)
+        return &r->value[i];
+    atomic_uchar *st = &r->state[i];
+    if (atomic_load_explicit(st, memory_order_acquire) == REPS_READY)
+        return &r->value[i];
+    unsigned char expect = REPS_PENDING;
+    if (atomic_compare_exchange_strong_explicit(st, &expect, REPS_CLAIMED, memory_order_acq_rel,
+                                                memory_order_acquire)) {
+        const reps_site *rp = &r->site[r->site_of ? r->site_of[i] : i];
+        evaluate_value(r, m, rp, &r->value[i], s);
+        atomic_store_explicit(st, REPS_READY, memory_order_release);
+    } else {
+        /* another thread computes it: one kNN query, microseconds */
+        while (atomic_load_explicit(st, memory_order_acquire) != REPS_READY)
+            sched_yield();
+    }
+    return &r->value[i];
+}
+
+/* The plane gate: of the REPS_GATE_CANDIDATES representatives nearest to
+ * map-frame point q (within the cap), in (distance, tree order), the first
+ * whose normal agrees and whose height from q (est_surface_height: from
+ * q's tangent plane where both normals agree exactly) is at most tau r, r
+ * its kNN radius. Returns it, or NULL. */
+static const reps_value *gate_accept(const reps_set *r, const photons_map *m, const float q[3], vec3 n,
+                                     double cos_min, float max_r2, est_scratch *s)
+{
+    uint32_t idx[REPS_GATE_CANDIDATES];
+    float d2[REPS_GATE_CANDIDATES], top;
+    uint32_t k = kd_query_knn(&r->own, &s->query, q, REPS_GATE_CANDIDATES, max_r2, idx, d2, &top);
+    /* kd_query_knn answers in no particular order: sort by (d2, index) */
+    for (uint32_t a = 1; a < k; a++) {
+        for (uint32_t b = a; b > 0 && (d2[b] < d2[b - 1] || (d2[b] == d2[b - 1] && idx[b] < idx[b - 1])); b--) {
+            float td = d2[b];
+            d2[b] = d2[b - 1];
+            d2[b - 1] = td;
+            uint32_t ti = idx[b];
+            idx[b] = idx[b - 1];
+            idx[b - 1] = ti;
+        }
+    }
+    lookup_ctx c = {r, n, cos_min};
+    for (uint32_t j = 0; j < k; j++) {
+        uint32_t i = idx[j];
+        if (!agrees(&r->value[i], &c))
+            continue;
+        /* no test of the distance against r itself: it would select
+         * representatives by their own noise (a large r, a low estimate:
+         * measured on the furnace sphere, --bias-correction, n = 3, the
+         * mean radiance 0.88 instead of 1) */
+        const reps_value *v = ready_value(r, m, i, s);
+        float p[3];
+        kd_point(&r->own, i, p);
+        vec3 d = vec_make((double)p[0] - q[0], (double)p[1] - q[1], (double)p[2] - q[2]);
+        vec3 nr = vec_make(v->normal[0], v->normal[1], v->normal[2]);
+        if (est_surface_height(d, n, nr) <= r->tau * sqrt((double)v->radius2))
+            return v;
+    }
+    return NULL;
+}
+
 vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, double cos_min, const est_gather *g,
                  est_scratch *s, int *found)
 {
@@ -240,25 +357,41 @@ vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, double
     photons_map_point(m, x, q);
     lookup_ctx c = {r, n, cos_min};
     const reps_value *v = NULL;
-    /* Acceptance: the nearest representative whose normal agrees (the
-     * paper's lookup), found by the layout's tree. Another acceptance rule
-     * (a tangent-plane gate, say) would switch here, on a setting of r,
-     * with its own predicate and fallback. */
-    if (r->tree == CONFIG_REP_TREE_SEPARATE) {
+    if (r->gate != CONFIG_REP_GATE_NONE) {
+        assert(r->tree == CONFIG_REP_TREE_SEPARATE); /* reps_check */
+        v = gate_accept(r, m, q, n, cos_min, max_r2, s);
+        if (!v) {
+            uint32_t k;
+            vec3 e = est_irradiance(m, x, n, g, s, &k);
+            *found = REPS_FALLBACK | (k > 0 ? REPS_FOUND : 0);
+            return e;
+        }
+    } else if (r->tree == CONFIG_REP_TREE_SEPARATE) {
+        /* the paper's: the nearest representative whose normal agrees */
         uint32_t i = kd_nearest_if(&r->own, q, max_r2, pred_separate, &c, s->last_rep, &d2);
         if (i != KD_NONE)
-            v = &r->value[i];
+            v = ready_value(r, m, i, s);
         s->last_rep = i;
     } else {
         uint32_t i = kd_nearest_if(&m->tree, q, max_r2, pred_shared, &c, s->last_rep, &d2);
         if (i != KD_NONE)
-            v = &r->value[r->rep_of[i]];
+            v = ready_value(r, m, r->rep_of[i], s);
         s->last_rep = i;
     }
-    *found = v != NULL;
+    *found = v != NULL ? REPS_FOUND : 0;
     if (!v)
         return vec_make(0, 0, 0);
     return vec_mul(vec_make(v->irradiance[0], v->irradiance[1], v->irradiance[2]), est_world_factor(m));
+}
+
+uint64_t reps_evaluated(const reps_set *r)
+{
+    if (!r->state)
+        return r->value ? r->count : 0;
+    uint64_t n = 0;
+    for (uint32_t i = 0; i < r->count; i++)
+        n += atomic_load_explicit(&r->state[i], memory_order_acquire) == REPS_READY;
+    return n;
 }
 
 pm_status reps_write_csv(const reps_set *r, const photons_map *m, FILE *f)
@@ -287,6 +420,10 @@ pm_status reps_write_csv(const reps_set *r, const photons_map *m, FILE *f)
 size_t reps_bytes(const reps_set *r, const photons_map *m)
 {
     size_t b = (size_t)r->count * sizeof(reps_value);
+    if (r->state)
+        b += (size_t)r->count * sizeof(atomic_uchar);
+    if (r->site_of)
+        b += (size_t)r->count * sizeof(uint32_t);
     if (r->tree == CONFIG_REP_TREE_SEPARATE)
         b += kd_bytes(&r->own);
     else

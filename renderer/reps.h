@@ -7,18 +7,23 @@
  *  - their sites (position in the map frame, normal, place in the tree);
  *  - both layouts of the lookup: their own kd-tree (separate) or the photon
  *    tree, found by flag (shared);
- *  - the precompute (equation 1 at every representative, estimate.h) and
- *    the lookup (the nearest representative whose normal agrees);
- *  - their CSV form (--dump-reps).
- *
- * Two extension points are marked in reps.c: how the irradiance at the
- * representatives is evaluated (today eagerly, all before the eye pass:
- * reps_evaluate) and how a lookup accepts a representative (today the
- * nearest with an agreeing normal: reps_lookup). Their settings would be
- * config_render fields beside rep_tree, checked in reps_check. */
+ *  - the precompute (equation 1 at every representative, estimate.h), all
+ *    before the eye pass (eager, the paper's) or each representative the
+ *    first time a lookup selects it (lazy: the same bits, computed once);
+ *  - the lookup: the nearest representative whose normal agrees (the
+ *    paper's), or the plane gate: of the REPS_GATE_CANDIDATES nearest, the
+ *    first whose normal agrees, which lies within tau of its kNN radius r
+ *    from x's tangent plane (within the radius cap, not r, of x: a test
+ *    against r selects by the estimate's noise), else the conventional
+ *    estimate at x (a fallback); with `plane` the precompute counts only
+ *    the photons within tau r of the representative's tangent plane,
+ *    with `plane-lookup` all (the paper's gather); heights are
+ *    est_surface_height's, which sees no curvature on a sphere;
+ *  - their CSV form (--dump-reps). */
 #ifndef PM_REPS_H
 #define PM_REPS_H
 
+#include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -39,7 +44,14 @@ typedef struct {
                              count) for j = 0 .. count-1 (every stored photon when fewer) */
     config_rep_tree tree; /* the lookup's layout */
     int leave_out;        /* 1: the photon tree holds only the photons that are not representatives */
+    config_rep_eval eval; /* eager (0) or on first use */
+    config_rep_gate gate; /* none (0): the nearest agreeing; plane: the gate (and its gather); plane-lookup */
+    double tau;           /* the plane gate's tolerance, in kNN radii */
 } reps_params;
+
+/* How many of the nearest representatives the plane gate tries before it
+ * falls back to the conventional estimate. */
+#define REPS_GATE_CANDIDATES 4u
 
 /* The rule and layout of cfg: none for the conventional method; the
  * representatives are left out of the photon tree for the corrected
@@ -77,6 +89,7 @@ typedef struct {
 typedef struct {
     float irradiance[3]; /* relative to photons_map.unit / scale^2 */
     float normal[3];     /* unit */
+    float radius2;       /* the squared radius its estimate divided by (map frame) */
 } reps_value;
 
 typedef struct {
@@ -87,7 +100,17 @@ typedef struct {
     kd_tree own;        /* separate: the representatives' own tree */
     reps_value *value;  /* separate: in that tree's leaf order; shared: by site (see rep_of) */
     uint32_t *rep_of;   /* shared: photon tree index -> site index or KD_NONE */
+    config_rep_eval eval;
+    config_rep_gate gate;
+    double tau;
+    est_gather gather;  /* the precompute's (reps_evaluate's g) */
+    /* lazy: per value, REPS_PENDING, REPS_CLAIMED (a thread computes it) or
+     * REPS_READY (published with release order); NULL when eager */
+    atomic_uchar *state;
+    uint32_t *site_of;  /* lazy, separate layout: value index -> site index */
 } reps_set;
+
+enum { REPS_PENDING = 0, REPS_CLAIMED = 1, REPS_READY = 2 };
 
 /* The sites of the representatives into out (no values yet, p's layout):
  * the flagged photons of m's tree, then those photons_build_map left out
@@ -99,19 +122,35 @@ size_t reps_sites_bytes(const reps_set *r);
 
 /* Builds r's lookup layout and computes the irradiance at every
  * representative from its g->nn nearest photons of m (equation 1,
- * est_irradiance_at), on `threads` threads, deterministically. The shared
+ * est_irradiance_at; with the plane gate est_irradiance_plane_at), on
+ * `threads` threads, deterministically; lazy: only their normals, the
+ * irradiance then on first use by reps_lookup (m and g must outlive r's
+ * lookups). The shared
  * layout needs the representatives in the photon tree (asserted). Returns
  * PM_OK, or PM_ERR_NOMEM when memory runs out (r's lookup and values are
  * then freed, its sites kept). */
 pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, unsigned threads, progress *prog);
 
+/* What reps_lookup's *found holds: bits. */
+#define REPS_FOUND 1    /* an estimate from photons: a representative's, or the fallback's */
+#define REPS_FALLBACK 2 /* the plane gate accepted none: the conventional estimate at x */
+
 /* Irradiance (W per unit^2) of the nearest representative within the
  * gather's radius cap of world point x whose normal has cosine > cos_min
  * with n (of equally near ones, the first in tree order, so the answer does
- * not depend on s, whose last answer only starts the search). Returns 0 and
- * sets *found = 0 when none qualifies. */
+ * not depend on s, whose last answer only starts the search); with the
+ * plane gate, of the REPS_GATE_CANDIDATES nearest (by distance, then tree
+ * order) the first that passes it, else the conventional estimate at x with
+ * g (REPS_FALLBACK). Lazy: computes the irradiance of the representatives
+ * it reads that no thread has yet (with s's buffers), thread-safely, once.
+ * Returns 0 and sets *found = 0 when none qualifies (ungated) or the
+ * fallback found no photon. */
 vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, double cos_min, const est_gather *g,
                  est_scratch *s, int *found);
+
+/* How many representatives have their irradiance computed: all (eager),
+ * or those the lookups have read so far (lazy). */
+uint64_t reps_evaluated(const reps_set *r);
 
 /* Writes the representatives as CSV to f: the header
  * "x,y,z,nx,ny,nz,e_r,e_g,e_b", then one line per representative: its

@@ -73,6 +73,13 @@ pm_status stats_write_json(FILE *f, const char *scene_path, const config_render 
     fprintf(f, "  \"rep_every\": %u,\n", cfg->rep_every);
     fprintf(f, "  \"rep_count\": %llu,\n", (unsigned long long)cfg->rep_count);
     fprintf(f, "  \"normal_cos\": %.17g,\n", cfg->normal_cos);
+    fprintf(f, "  \"rep_eval\": \"%s\",\n", cfg->rep_eval == CONFIG_REP_EVAL_LAZY ? "lazy" : "eager");
+    fprintf(f, "  \"rep_gate\": \"%s\",\n", cfg->rep_gate == CONFIG_REP_GATE_PLANE          ? "plane"
+                                     : cfg->rep_gate == CONFIG_REP_GATE_PLANE_LOOKUP ? "plane-lookup"
+                                                                                     : "none");
+    fprintf(f, "  \"rep_gate_tau\": %.17g,\n", cfg->rep_gate_tau);
+    fprintf(f, "  \"reps_evaluated\": %llu,\n", (unsigned long long)st->reps_evaluated);
+    fprintf(f, "  \"rep_fallbacks\": %llu,\n", (unsigned long long)st->rep_fallbacks);
     fprintf(f, "  \"nn\": %u,\n", cfg->nn);
     fprintf(f, "  \"max_radius\": %.17g,\n", st->max_radius);
     fprintf(f, "  \"width\": %u,\n  \"height\": %u,\n", cfg->width, cfg->height);

@@ -31,6 +31,9 @@ typedef struct {
                                      two places) */
     uint64_t bytes_photon_map;    /* photon map (tree + payload) */
     uint64_t bytes_representatives;
+    /* precomputed, beyond the paper (reps.h) */
+    uint64_t reps_evaluated;      /* representatives whose irradiance was computed (all but for --rep-eval lazy) */
+    uint64_t rep_fallbacks;       /* eye samples the plane gate sent to the conventional estimate */
 } stats_run;
 
 /* Monotonic time in nanoseconds. */

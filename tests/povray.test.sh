@@ -107,6 +107,10 @@ $PM render $SCENE "${FULL[@]}" --direct photons -o "$TMP/full-photons.exr"
 $PM render $SCENE "${FULL[@]}" --direct shadow-rays -o "$TMP/full-shadow.exr"
 check "full image (--direct photons) vs POV-Ray: block metric" full_cmp "$TMP/full-photons.exr"
 check "full image (--direct shadow-rays) vs POV-Ray: block metric" full_cmp "$TMP/full-shadow.exr"
+# the precomputed method's variants beyond the paper (lazy: the same bits as
+# eager, tests/reps.test.sh; the plane gate)
+$PM render $SCENE "${FULL[@]}" --method precomputed --rep-eval lazy --rep-gate plane -o "$TMP/full-plane.exr"
+check "full image (precomputed, lazy + --rep-gate plane) vs POV-Ray: block metric" full_cmp "$TMP/full-plane.exr"
 
 oiiotool "$TMP/full-photons.exr" --mulc 0.8 -o "$TMP/full-x08.exr"
 oiiotool "$TMP/full-photons.exr" --mulc 3.14159265 -o "$TMP/full-xpi.exr"
@@ -137,5 +141,9 @@ caustic_full_cmp() { "${CMP[@]}" block "$1" "$REF/caustic/caustic-reference-128x
 check "caustic scene (--direct photons) vs POV-Ray reference: block metric" caustic_full_cmp "$TMP/caustic-photons.exr"
 check "caustic scene (--direct shadow-rays) vs POV-Ray reference: block metric" caustic_full_cmp "$TMP/caustic-shadow.exr"
 check "caustic scene control: brightness x0.8 fails" fails caustic_full_cmp "$TMP/caustic-x08.exr"
+$PM render scenes/caustic.scene "${FULL[@]}" --method precomputed --rep-eval lazy --rep-gate plane -o "$TMP/caustic-plane.exr"
+check "caustic (precomputed, lazy + --rep-gate plane) vs POV-Ray: block metric in its window" caustic_cmp "$TMP/caustic-plane.exr"
+check "caustic scene (precomputed, lazy + --rep-gate plane) vs POV-Ray reference: block metric" caustic_full_cmp \
+  "$TMP/caustic-plane.exr"
 
 finish

@@ -683,7 +683,7 @@ int main(int argc, char **argv)
     }
     for (int si = 0; si < nsizes; si++) {
         photons_params pp = {sizes[si], cfg.seed, cfg.photon_depth, 1};
-        reps_params rps = {cfg.rep_every, 0, CONFIG_REP_TREE_SEPARATE, 0};
+        reps_params rps = {.every = cfg.rep_every, .count = 0, .tree = CONFIG_REP_TREE_SEPARATE, .leave_out = 0};
         photons_list list;
         photons_map map;
         if (photons_trace(sc, &pp, 1, NULL, &list)) {

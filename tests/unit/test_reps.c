@@ -3,6 +3,7 @@
  * normal test at a corner, no agreeing representative, the fixed-count rule
  * and the CSV dump. Synthetic photon maps give exact expectations. */
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -150,7 +151,7 @@ void test_precomputed_rep_count(void)
     const uint64_t counts[4] = {1, 777, 5000, 1000000};
     for (int c = 0; c < 4; c++) {
         photons_params pp = {20000, 3, 64, 1};
-        reps_params rp = {4, counts[c], CONFIG_REP_TREE_SEPARATE, 0};
+        reps_params rp = {.every = 4, .count = counts[c], .tree = CONFIG_REP_TREE_SEPARATE, .leave_out = 0};
         photons_list l;
         CHECK(photons_trace(sc, &pp, 2, NULL, &l) == 0);
         reps_choose(&rp, &l);
@@ -261,4 +262,238 @@ void test_stability_no_agreeing_representative(void)
         est_scratch_delete(ls, 1);
     }
     photons_map_free(&m);
+}
+
+/* The representatives of map m with the variants' settings (the flagged
+ * photons, all in the tree), evaluated on `threads` threads. */
+static void variant_reps(const photons_map *m, const est_gather *g, config_rep_tree tree, config_rep_eval eval,
+                         config_rep_gate gate, double tau, unsigned threads, reps_set *out)
+{
+    reps_params p = {.every = 0, .count = 0, .tree = tree, .leave_out = 0, .eval = eval, .gate = gate, .tau = tau};
+    CHECK(reps_collect(&p, m, NULL, out) == PM_OK);
+    CHECK(reps_evaluate(out, m, g, threads, NULL) == PM_OK);
+}
+
+/* A corner (floor y = 0 and wall z = 0, 40k photons each, every 3rd a
+ * representative) and lookup points on both near the edge. */
+#define LAZY_POINTS 3000
+static void corner_map(photons_map *m, vec3 *pts, vec3 *nrm)
+{
+    photons_list l = {0};
+    add_square(&l, 40000, vec_make(-1, 0, 0), vec_make(2, 0, 0), vec_make(0, 0, 1), vec_make(0, 1, 0), 1e-5f, 11);
+    add_square(&l, 40000, vec_make(-1, 0, 0), vec_make(2, 0, 0), vec_make(0, 1, 0), vec_make(0, 0, 1), 2e-5f, 12);
+    flag_every(&l, 3);
+    CHECK(photons_build_map(&l, 0, m, NULL) == 0);
+    rng_stream q = rng_make(13, 0);
+    for (int i = 0; i < LAZY_POINTS; i++) {
+        double u = rng_next_double(&q) * 1.8 - 0.9, t = rng_next_double(&q) * 0.2;
+        pts[i] = i % 2 ? vec_make(u, 0, t) : vec_make(u, t, 0);
+        nrm[i] = i % 2 ? vec_make(0, 1, 0) : vec_make(0, 0, 1);
+    }
+}
+
+typedef struct {
+    const reps_set *r;
+    const photons_map *m;
+    const est_gather *g;
+    const vec3 *pts, *nrm;
+    vec3 *out;
+    int *found;
+    int reverse;
+} lazy_job;
+
+static void *lazy_worker(void *arg)
+{
+    lazy_job *j = arg;
+    est_scratch *s = est_scratch_new(1, j->g->nn);
+    CHECK(s != NULL);
+    for (int k = 0; k < LAZY_POINTS; k++) {
+        int i = j->reverse ? LAZY_POINTS - 1 - k : k;
+        j->out[i] = reps_lookup(j->r, j->m, j->pts[i], j->nrm[i], 0.9, j->g, s, &j->found[i]);
+    }
+    est_scratch_delete(s, 1);
+    return NULL;
+}
+
+/* Lookups of rs from two threads at once (one forwards, one backwards, so
+ * they race for the same representatives); both must match want. */
+static void check_two_threads(const reps_set *rs, const photons_map *m, const est_gather *g, const vec3 *pts,
+                              const vec3 *nrm, const vec3 *want, const int *want_found)
+{
+    static vec3 out[2][LAZY_POINTS];
+    static int found[2][LAZY_POINTS];
+    lazy_job jobs[2];
+    pthread_t th[2];
+    for (int t = 0; t < 2; t++) {
+        jobs[t] = (lazy_job){rs, m, g, pts, nrm, out[t], found[t], t};
+        CHECK(pthread_create(&th[t], NULL, lazy_worker, &jobs[t]) == 0);
+    }
+    for (int t = 0; t < 2; t++)
+        pthread_join(th[t], NULL);
+    for (int t = 0; t < 2; t++) {
+        CHECK(memcmp(out[t], want, sizeof out[t]) == 0);
+        CHECK(memcmp(found[t], want_found, sizeof found[t]) == 0);
+    }
+}
+
+void test_reps_lazy_equals_eager(void)
+{
+    /* lazy computes a representative on its first selection with the same
+     * gather as the eager precompute: every lookup the same bits, from one
+     * thread or two racing, in both layouts and with the plane gate; only
+     * the selected ones are computed */
+    static vec3 pts[LAZY_POINTS], nrm[LAZY_POINTS], want[LAZY_POINTS], got[LAZY_POINTS];
+    static int want_found[LAZY_POINTS], got_found[LAZY_POINTS];
+    photons_map m;
+    corner_map(&m, pts, nrm);
+    const uint32_t nn = 40;
+    est_gather g = est_gather_make(&m, nn, 0.2, 0);
+    est_scratch *s = est_scratch_new(1, nn);
+    CHECK(s != NULL);
+    for (int v = 0; v < 3; v++) {
+        config_rep_tree tree = v == 1 ? CONFIG_REP_TREE_SHARED : CONFIG_REP_TREE_SEPARATE;
+        config_rep_gate gate = v == 2 ? CONFIG_REP_GATE_PLANE : CONFIG_REP_GATE_NONE;
+        reps_set eager, lazy, lazy2;
+        variant_reps(&m, &g, tree, CONFIG_REP_EVAL_EAGER, gate, 0.1, 2, &eager);
+        variant_reps(&m, &g, tree, CONFIG_REP_EVAL_LAZY, gate, 0.1, 2, &lazy);
+        variant_reps(&m, &g, tree, CONFIG_REP_EVAL_LAZY, gate, 0.1, 1, &lazy2);
+        CHECK(reps_evaluated(&eager) == eager.count && reps_evaluated(&lazy) == 0);
+        for (int i = 0; i < LAZY_POINTS; i++) {
+            want[i] = reps_lookup(&eager, &m, pts[i], nrm[i], 0.9, &g, s, &want_found[i]);
+            got[i] = reps_lookup(&lazy, &m, pts[i], nrm[i], 0.9, &g, s, &got_found[i]);
+        }
+        CHECK(memcmp(want, got, sizeof want) == 0 && memcmp(want_found, got_found, sizeof want_found) == 0);
+        uint64_t evaluated = reps_evaluated(&lazy);
+        CHECK(evaluated > 0 && evaluated < lazy.count);
+        /* a second pass computes nothing more and answers the same */
+        for (int i = 0; i < LAZY_POINTS; i++)
+            got[i] = reps_lookup(&lazy, &m, pts[i], nrm[i], 0.9, &g, s, &got_found[i]);
+        CHECK(memcmp(want, got, sizeof want) == 0 && reps_evaluated(&lazy) == evaluated);
+        check_two_threads(&lazy2, &m, &g, pts, nrm, want, want_found);
+        CHECK(reps_evaluated(&lazy2) == evaluated);
+        /* negative control: a lazy set on another gather differs */
+        if (v == 0) {
+            est_gather g2 = est_gather_make(&m, nn / 2, 0.2, 0);
+            reps_set other;
+            variant_reps(&m, &g2, tree, CONFIG_REP_EVAL_LAZY, gate, 0.1, 1, &other);
+            for (int i = 0; i < LAZY_POINTS; i++)
+                got[i] = reps_lookup(&other, &m, pts[i], nrm[i], 0.9, &g, s, &got_found[i]);
+            CHECK(memcmp(want, got, sizeof want) != 0);
+            reps_free(&other);
+        }
+        reps_free(&eager);
+        reps_free(&lazy);
+        reps_free(&lazy2);
+    }
+    est_scratch_delete(s, 1);
+    photons_map_free(&m);
+}
+
+void test_reps_plane_gate(void)
+{
+    /* the gate's height: 0 for two points of one sphere of any radius (a
+     * small one seen from 0.02 away, where the tangent plane alone puts
+     * the other point 0.004 off, the negative control), the offset for a
+     * parallel face, infinite for opposite normals */
+    {
+        double R = 0.05, a = 0.4; /* radians apart on the sphere */
+        vec3 n1 = vec_make(0, 1, 0), n2 = vec_make(sin(a), cos(a), 0);
+        vec3 d = vec_scale(vec_sub(n2, n1), R);
+        CHECK(est_surface_height(d, n1, n2) < 1e-15);
+        CHECK(fabs(vec_dot(d, n1)) > 0.003);
+        CHECK(est_surface_height(vec_scale(vec_sub(n2, n1), -R), n1, n2) < 1e-15); /* the inside */
+        CHECK_NEAR(est_surface_height(vec_make(0.01, 0.003, 0.02), n1, vec_scale(n1, 0.9)), 0.003, 1e-15);
+        CHECK(isinf(est_surface_height(vec_make(0.01, 0, 0), n1, vec_scale(n1, -1.0))));
+    }
+    const uint32_t nn = 100;
+    est_scratch *s = est_scratch_new(1, nn);
+    CHECK(s != NULL);
+    rng_stream q = rng_make(21, 0);
+    /* a uniform plane: no representative fails the gate, so it changes
+     * nothing, bit for bit, and never falls back */
+    {
+        photons_list l = {0};
+        add_square(&l, 200000, vec_make(-1, 0, -1), vec_make(2, 0, 0), vec_make(0, 0, 2), vec_make(0, 1, 0), 1e-5f, 22);
+        flag_every(&l, 4);
+        photons_map m;
+        CHECK(photons_build_map(&l, 0, &m, NULL) == 0);
+        est_gather g = est_gather_make(&m, nn, 0.2, 0);
+        reps_set plain, gated;
+        variant_reps(&m, &g, CONFIG_REP_TREE_SEPARATE, CONFIG_REP_EVAL_EAGER, CONFIG_REP_GATE_NONE, 0.1, 2, &plain);
+        variant_reps(&m, &g, CONFIG_REP_TREE_SEPARATE, CONFIG_REP_EVAL_EAGER, CONFIG_REP_GATE_PLANE, 0.1, 2, &gated);
+        int same = 1, fallbacks = 0;
+        for (int i = 0; i < 2000; i++) {
+            vec3 x = vec_make(rng_next_double(&q) * 1.9 - 0.95, 0, rng_next_double(&q) * 1.9 - 0.95);
+            int f1, f2;
+            vec3 a = reps_lookup(&plain, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f1);
+            vec3 b = reps_lookup(&gated, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f2);
+            same &= memcmp(&a, &b, sizeof a) == 0 && f1 == f2;
+            fallbacks += (f2 & REPS_FALLBACK) != 0;
+        }
+        CHECK(same && fallbacks == 0);
+        /* a point 0.02 above the plane (a surface with no representative of
+         * its own): every candidate is off its tangent plane, so the gate
+         * falls back to the conventional estimate there, the same bits */
+        vec3 x = vec_make(0.1, 0.02, 0.1);
+        int f;
+        uint32_t k;
+        vec3 e = reps_lookup(&gated, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f);
+        vec3 c = est_irradiance(&m, x, vec_make(0, 1, 0), &g, s, &k);
+        CHECK(f == (REPS_FALLBACK | REPS_FOUND) && memcmp(&e, &c, sizeof e) == 0);
+        /* negative control: ungated, a representative of the plane answers */
+        e = reps_lookup(&plain, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f);
+        CHECK(f == REPS_FOUND && memcmp(&e, &c, sizeof e) != 0);
+        reps_free(&plain);
+        reps_free(&gated);
+        photons_map_free(&m);
+    }
+    /* a thin slab: two parallel lit faces 0.01 apart, facing the same way
+     * (E = 0.25 each), closer than the kNN radius r (about 0.025): the
+     * paper's precompute counts both faces' photons (the ball cuts the
+     * other face in a disc of radius sqrt(r^2 - 0.01^2): E about 0.46) and
+     * its lookup takes the other face's representatives; the gate keeps
+     * each face to itself */
+    {
+        photons_list l = {0};
+        add_square(&l, 100000, vec_make(-1, 0, -1), vec_make(2, 0, 0), vec_make(0, 0, 2), vec_make(0, 1, 0), 1e-5f, 23);
+        add_square(&l, 100000, vec_make(-1, 0.01, -1), vec_make(2, 0, 0), vec_make(0, 0, 2), vec_make(0, 1, 0), 1e-5f,
+                   24);
+        flag_every(&l, 4);
+        photons_map m;
+        CHECK(photons_build_map(&l, 0, &m, NULL) == 0);
+        est_gather g = est_gather_make(&m, nn, 0.2, 0);
+        reps_set plain, gated;
+        variant_reps(&m, &g, CONFIG_REP_TREE_SEPARATE, CONFIG_REP_EVAL_EAGER, CONFIG_REP_GATE_NONE, 0.1, 2, &plain);
+        variant_reps(&m, &g, CONFIG_REP_TREE_SEPARATE, CONFIG_REP_EVAL_LAZY, CONFIG_REP_GATE_PLANE, 0.1, 2, &gated);
+        double sum_p = 0, sum_g = 0;
+        int N = 1000, fallbacks = 0;
+        for (int i = 0; i < N; i++) {
+            vec3 x = vec_make(rng_next_double(&q) - 0.5, i % 2 ? 0.0 : 0.01, rng_next_double(&q) - 0.5);
+            int f1, f2;
+            sum_p += reps_lookup(&plain, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f1).y;
+            sum_g += reps_lookup(&gated, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f2).y;
+            CHECK((f1 & REPS_FOUND) && (f2 & REPS_FOUND));
+            fallbacks += (f2 & REPS_FALLBACK) != 0;
+        }
+        CHECK(sum_p / N > 0.25 * 1.6);
+        CHECK_NEAR(sum_g / N, 0.25, 0.25 * 0.05);
+        CHECK(fallbacks < N / 10);
+        /* plane-lookup: the same lookup gate on the paper's precompute,
+         * whose values still count both faces */
+        reps_set lookup_only;
+        variant_reps(&m, &g, CONFIG_REP_TREE_SEPARATE, CONFIG_REP_EVAL_EAGER, CONFIG_REP_GATE_PLANE_LOOKUP, 0.1, 2,
+                     &lookup_only);
+        double sum_l = 0;
+        for (int i = 0; i < N; i++) {
+            vec3 x = vec_make(rng_next_double(&q) - 0.5, i % 2 ? 0.0 : 0.01, rng_next_double(&q) - 0.5);
+            int f;
+            sum_l += reps_lookup(&lookup_only, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f).y;
+        }
+        CHECK(sum_l / N > 0.25 * 1.6);
+        reps_free(&lookup_only);
+        reps_free(&plain);
+        reps_free(&gated);
+        photons_map_free(&m);
+    }
+    est_scratch_delete(s, 1);
 }

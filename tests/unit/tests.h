@@ -45,6 +45,8 @@
     X(precomputed_rep_count) \
     X(precomputed_dump_reps) \
     X(stability_no_agreeing_representative) \
+    X(reps_lazy_equals_eager) \
+    X(reps_plane_gate) \
     /* test_render.c */ \
     X(furnace_sphere) \
     X(diffuse_plane_matches_analytic) \
