@@ -283,7 +283,7 @@ static void corner_map(photons_map *m, vec3 *pts, vec3 *nrm)
     add_square(&l, 40000, vec_make(-1, 0, 0), vec_make(2, 0, 0), vec_make(0, 0, 1), vec_make(0, 1, 0), 1e-5f, 11);
     add_square(&l, 40000, vec_make(-1, 0, 0), vec_make(2, 0, 0), vec_make(0, 1, 0), vec_make(0, 0, 1), 2e-5f, 12);
     flag_every(&l, 3);
-    CHECK(photons_build_map(&l, 0, m, NULL) == 0);
+    CHECK(photons_build_map(&l, 0, 2, m, NULL) == 0);
     rng_stream q = rng_make(13, 0);
     for (int i = 0; i < LAZY_POINTS; i++) {
         double u = rng_next_double(&q) * 1.8 - 0.9, t = rng_next_double(&q) * 0.2;
@@ -416,7 +416,7 @@ void test_reps_plane_gate(void)
         add_square(&l, 200000, vec_make(-1, 0, -1), vec_make(2, 0, 0), vec_make(0, 0, 2), vec_make(0, 1, 0), 1e-5f, 22);
         flag_every(&l, 4);
         photons_map m;
-        CHECK(photons_build_map(&l, 0, &m, NULL) == 0);
+        CHECK(photons_build_map(&l, 0, 2, &m, NULL) == 0);
         est_gather g = est_gather_make(&m, nn, 0.2, 0);
         reps_set plain, gated;
         variant_reps(&m, &g, CONFIG_REP_TREE_SEPARATE, CONFIG_REP_EVAL_EAGER, CONFIG_REP_GATE_NONE, 0.1, 2, &plain);
@@ -460,7 +460,7 @@ void test_reps_plane_gate(void)
                    24);
         flag_every(&l, 4);
         photons_map m;
-        CHECK(photons_build_map(&l, 0, &m, NULL) == 0);
+        CHECK(photons_build_map(&l, 0, 2, &m, NULL) == 0);
         est_gather g = est_gather_make(&m, nn, 0.2, 0);
         reps_set plain, gated;
         variant_reps(&m, &g, CONFIG_REP_TREE_SEPARATE, CONFIG_REP_EVAL_EAGER, CONFIG_REP_GATE_NONE, 0.1, 2, &plain);
