@@ -73,6 +73,7 @@ assert r.loc[ref, "message"].str.contains("test refusal").all() and r.loc[ref, "
 ok = r[~ref]
 assert (ok["status"] == "ok").all() and (ok["total_s"] > 0).all() and (ok["cpu_s"] >= 0).all()
 assert (ok["relmse_ref"] > 0).all() and (ok["psnr_ref"] > 0).all() and (ok["threads"] == 1).all()
+assert (ok["nmse_ref"] > 0).all() and ok["nmse_ref"].notna().all()
 conv = ok["method"] == "conventional"
 assert (ok.loc[conv, "relmse_conv"] == 0).all() and (ok.loc[~conv, "relmse_conv"] > 0).all()
 assert (ok.loc[~conv, "representatives"] > 0).all() and (ok["photons_stored"] > 0).all()

@@ -561,3 +561,19 @@ def test_paired_difference_uses_the_pairing():
     assert stats.paired_difference(a, b)["p"] < 0.01
     assert sps.ttest_ind(a, b, equal_var=False).pvalue > 0.5
     assert stats.paired_difference(a, np.roll(b, 2))["p"] > 0.05
+
+
+# ---- metrics: the relative error that stays relative
+
+def test_nmse_known_and_scale_invariant():
+    """NMSE = mean((x-r)^2) / mean(r^2) on a known pair (r = 1, 2; x = 1.1,
+    1.8: (0.01 + 0.04) / 2 / 2.5 = 0.01); scaling both images by 0.01 leaves
+    it unchanged, while relMSE (its absolute offset 0.01) falls by far more
+    than rounding: the negative control that shows why NMSE is added."""
+    r = np.array([[[1.0, 1.0, 1.0], [2.0, 2.0, 2.0]]])
+    x = np.array([[[1.1, 1.1, 1.1], [1.8, 1.8, 1.8]]])
+    close(metrics.nmse(x, r), 0.01, 1e-12, "nmse")
+    close(metrics.nmse(0.01 * x, 0.01 * r), metrics.nmse(x, r), 1e-12, "nmse scaled")
+    assert metrics.relmse(0.01 * x, 0.01 * r) < 0.05 * metrics.relmse(x, r)
+    assert math.isnan(metrics.nmse(x, 0 * r))
+    assert metrics.PRIMARY in ("relmse", "nmse")

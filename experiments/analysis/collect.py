@@ -12,7 +12,7 @@ been made yet is a row with status "missing"): the settings, the status
 not applicable, or "missing"), the renderer's per-phase times, the CPU
 seconds of the process, its place in a back-to-back pair (pair_pos: 1 or 2,
 rendered first or second by experiments/pair.sh; 0: not paired), photon
-counts, and the image's relMSE/RMSE/PSNR
+counts, and the image's relMSE/NMSE/RMSE/PSNR
 against the reference and its relMSE against the conventional image of the
 same seed and estimate (0 for the conventional image itself), and its role:
 "grid" (a render of the requested grid) or "comparison" (a conventional
@@ -40,7 +40,7 @@ RUN_COLUMNS = [
     "photons", "nn", "seed", "rep_every", "rep_count", "status", "exit", "message",
     "trace_s", "build_s", "precompute_s", "render_s", "total_s", "cpu_s", "user_s", "sys_s",
     "photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "loadavg_1min", "pair_pos",
-    "relmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "role", "run",
+    "relmse_ref", "nmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "role", "run",
 ]
 CELL_COLUMNS = [
     "scene", "size", "subpixels", "tag", "method", "estimate", "photons", "nn",
@@ -106,6 +106,7 @@ def measure(row, x, ref, ref_path, conv_imgs):
             raise ValueError(f"{row['run']}.exr is {x.shape[1]}x{x.shape[0]}, "
                              f"the reference {ref_path} {ref.shape[1]}x{ref.shape[0]}")
         row["relmse_ref"] = metrics.relmse(x, ref)
+        row["nmse_ref"] = metrics.nmse(x, ref)
         row["rmse_ref"] = metrics.rmse(x, ref)
         row["psnr_ref"] = metrics.psnr(x, ref)
     if row["seed"] in conv_imgs:

@@ -108,7 +108,9 @@ def summarize(runs, cells, paper, rng, replicates):
             row[f"relmse_diff_equivalent{sfx}"] = d["equivalent"]
             for col in ("photons_stored", "representatives", "empty_estimates"):
                 row[f"{col}{sfx}"] = stats.median_range(ok_values(sel, col))[0]
-            for col in ("relmse_ref", "psnr_ref", "relmse_conv"):
+            for col in ("relmse_ref", "nmse_ref", "psnr_ref", "relmse_conv"):
+                if col not in sel:  # a runs.csv from before NMSE
+                    continue
                 v = ok_values(sel, col)
                 v = v[np.isfinite(v)]
                 row[f"{col}_mean{sfx}"], row[f"{col}_ci95{sfx}"] = stats.t_interval(v)
@@ -448,6 +450,8 @@ def markdown(table, runs, estimates, args):
             "the two renders of a seed ran back to back (`pair_pos` in `runs.csv`). `relmse_diff_*`: the paired "
             "difference precomputed − conventional of `relmse_ref` (`stats.paired_difference`), `_p_holm` Holm's "
             "adjustment over the precomputed cells, `_verdict` from `stats.compare_family`.",
+            "- `nmse_ref_mean`, `nmse_ref_ci95`: the same for NMSE = mean((x-r)^2) / mean(r^2), the error that "
+            "stays relative in dark pixels (`metrics.py` says why relMSE stays the primary one).",
             "- `relmse_ref_mean`, `relmse_ref_ci95`: mean over seeds and the half-width of its 95% Student-t "
             "interval (t_{0.975, S-1} sd / sqrt(S), S seeds); the same for `psnr_ref` and `relmse_conv`.",
             "- `bias_ref`, `variance_ref` (from `cells.csv`): with xbar the per-pixel mean image over the S seeds, "
