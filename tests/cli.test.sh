@@ -125,7 +125,7 @@ no_glass_caustics() {
   grep -q 'photons { target reflection on refraction on' "$TMP/c.pov" &&
   grep -q 'photons { target reflection on refraction off' "$TMP/nc.pov" &&
   grep -q 'shadow-only proxy' "$TMP/nc.pov" && ! grep -q 'shadow-only proxy' "$TMP/c.pov" &&
-  cmp -s "$TMP/nc.pov" reference/cornell-nocaustic-128x96.pov && ! cmp -s "$TMP/c.pov" reference/cornell-nocaustic-128x96.pov
+  cmp -s "$TMP/nc.pov" reference/cornell/cornell-nocaustic-128x96.pov && ! cmp -s "$TMP/c.pov" reference/cornell/cornell-nocaustic-128x96.pov
 }
 check "export-pov --no-glass-caustics: no glass target, its proxy, the committed negative control" no_glass_caustics
 check "missing scene file: exit 1 naming it" expect_exit 1 "nope.scene: cannot open" $PM render nope.scene

@@ -153,13 +153,18 @@ assert not [c for c in need if c not in e.columns], e.columns
 t = e[e["kind"] == "target"]
 assert len(t) == 2 and (e["estimate"] == "paper").all() and list(t["target"]) == [0.1, 0.05], e
 c, tight = e[e["kind"] == "curve"], e[e["kind"] == "tightest"]
-assert len(c) == 41 and len(tight) == 1 and tight["target"].iloc[0] == c["target"].min(), e
-assert (c["target"].diff().dropna() > 0).all() and c["defined_fraction"].between(0, 1).all()
-d = c[np.isfinite(c["lo"])]
-assert len(d) and ((d["lo"] <= d["speedup"] * 1.000001) | (d["defined_fraction"] < 1)).all() and (d["lo"] <= d["hi"]).all()
-assert os.path.getsize(f"{R}/table1/equal-error.png") > 5000
 md = open(f"{R}/table1/equal-error.md").read()
-assert "The tightest target both fronts reach" in md and "The curve" in md, md
+# 41 targets over the common range of the fronts (one when that range is a
+# single error, none when the millisecond times of this tiny grid leave the fronts no common range)
+if len(tight):
+    assert len(c) in (1, 41) and len(tight) == 1 and tight["target"].iloc[0] == c["target"].min(), e
+    assert (c["target"].diff().dropna() > 0).all() and c["defined_fraction"].between(0, 1).all()
+    d = c[np.isfinite(c["lo"])]
+    assert ((d["lo"] <= d["speedup"] * 1.000001) | (d["defined_fraction"] < 1)).all() and (d["lo"] <= d["hi"]).all()
+    assert os.path.getsize(f"{R}/table1/equal-error.png") > 5000
+    assert "The tightest target both fronts reach" in md and "The curve" in md, md
+else:
+    assert len(c) == 0 and "no tightest target both reach, and no curve" in md, md
 assert "# Speed-up at equal error" in md and "## paper estimate" in md and "| relMSE target |" in md, md
 assert "| 0.1 |" in md and "| 0.05 |" in md and "EE_TARGETS=0.1 0.05" in md, md
 assert "nan" not in md.lower()

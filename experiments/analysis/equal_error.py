@@ -195,21 +195,20 @@ def section(res, time_col):
     out += report.md_table(["method", "cell", "time s", "relMSE"], rows, ["l", "l", "r", "r"])
     t = res.get("tightest")
     if t is None:
-        out += ["", "The two fronts reach no common relMSE: no error at which both can be timed."]
-        return out
-    lo_r, hi_r = res["range"]
-    curve = [r for r in res["curve"] if report.isnum(r["speedup"])]
-    sp = [r["speedup"] for r in curve]
-    out += ["", f"**The tightest target both fronts reach**: relMSE {fmt(t['target'])}, the larger of the two "
-            "fronts' smallest errors (defined as such, not chosen from the curve): conventional "
-            f"{fmt(t['conventional_s'])} s ({t['conventional_between']}), precomputed {fmt(t['precomputed_s'])} s "
-            f"({t['precomputed_between']}); speed-up **{fmt(t['speedup'])}** {fmt_interval(t['lo'], t['hi'])}, "
-            f"defined in {100 * t['defined_fraction']:.0f}% of the resamples (at the end of a front a resample "
-            "often does not reach it: the interval is over those that do).", "",
-            f"**The curve** (`kind` = curve in the CSV, {len(res['curve'])} targets evenly in log over the whole "
-            f"range both fronts span, {fmt(lo_r)} to {fmt(hi_r)}; figure `{os.path.basename(res['figure'])}`): "
-            + (f"speed-up from {fmt(min(sp))} to {fmt(max(sp))} over the range; a single number is one point of "
-               "it, and its peak is not a summary." if sp else "undefined everywhere.")]
+        out += ["", "The two fronts reach no common relMSE: no tightest target both reach, and no curve."]
+    else:
+        lo_r, hi_r = res["range"]
+        sp = [r["speedup"] for r in res["curve"] if report.isnum(r["speedup"])]
+        out += ["", f"**The tightest target both fronts reach**: relMSE {fmt(t['target'])}, the larger of the two "
+                "fronts' smallest errors (defined as such, not chosen from the curve): conventional "
+                f"{fmt(t['conventional_s'])} s ({t['conventional_between']}), precomputed {fmt(t['precomputed_s'])} s "
+                f"({t['precomputed_between']}); speed-up **{fmt(t['speedup'])}** {fmt_interval(t['lo'], t['hi'])}, "
+                f"defined in {100 * t['defined_fraction']:.0f}% of the resamples (at the end of a front a resample "
+                "often does not reach it: the interval is over those that do).", "",
+                f"**The curve** (`kind` = curve in the CSV, {len(res['curve'])} targets evenly in log over the whole "
+                f"range both fronts span, {fmt(lo_r)} to {fmt(hi_r)}; figure `{os.path.basename(res['figure'])}`): "
+                + (f"speed-up from {fmt(min(sp))} to {fmt(max(sp))} over the range; a single number is one point of "
+                   "it, and its peak is not a summary." if sp else "undefined everywhere.")]
     if not res["targets"]:
         return out
     out += ["", "At each relMSE target: the time each method needs (its front interpolated in log-log between the "
