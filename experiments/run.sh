@@ -7,12 +7,15 @@
 # CELL is METHOD-ESTIMATE-pPHOTONS-nNN (ESTIMATE: paper, or corrected = the
 # renderer's --bias-correction). Settings from the environment: PM SCENE
 # WIDTH HEIGHT SUBPIXELS THREADS_ARG PM_ARGS (extra render options), PYTHON,
-# RUN_LIST (every run of the grid in order, for "run k/N").
+# RUN_LIST (every run of the grid in order, for "run k/N"), PAIR_POS (1 or 2:
+# the render's place in a back-to-back pair run by experiments/pair.sh; 0 or
+# unset: not paired).
 #
 # Writes, in RUNROOT/CELL/: seedK.exr (the image), seedK.stats.json (the
 # renderer's --stats), seedK.err (its stderr) and, last, seedK.run.json
 # (the make target): exit status, user/system CPU seconds from /usr/bin/time
-# -f "%U %S", the 1-minute load average when the run started, the command,
+# -f "%U %S", the 1-minute load average when the run started, its place in
+# a pair (pair_pos), the command,
 # and for a refused run (exit 2: the renderer rejects the combination, e.g.
 # --bias-correction with --rep-every 1) its message. Everything is written to
 # a temporary name and renamed, so a killed run leaves no result and is
@@ -36,6 +39,8 @@ esac
 : "${WIDTH:?}" "${HEIGHT:?}" "${SUBPIXELS:?}" "${SCENE:?}"
 PM=${PM:-build/photonmap}
 PYTHON=${PYTHON:-/usr/bin/python3}
+pair_pos=${PAIR_POS:-0}
+[[ "$pair_pos" =~ ^[012]$ ]] || { echo "run.sh: PAIR_POS=$pair_pos: not 0, 1 or 2" >&2; exit 1; }
 
 # "run k/N": this run's place in the grid make was given
 k=0 i=0
@@ -59,7 +64,8 @@ msg=$(tr '\t\n' '  ' < "$base.tmp.err" | tr -d '\000-\010\013-\037' | sed 's/ *$
 json_str() { local s=${1//\\/\\\\}; s=${s//\"/\\\"}; printf '"%s"' "$s"; }
 record() { # EXIT USER SYS CPU MESSAGE: the run record, written last
   { printf '{\n  "exit": %s,\n  "user_s": %s,\n  "sys_s": %s,\n  "cpu_s": %s,\n' "$1" "$2" "$3" "$4"
-    printf '  "loadavg_1min": %s,\n  "message": %s,\n  "command": %s\n}\n' "$load" "$(json_str "$5")" "$(json_str "${cmd[*]}")"
+    printf '  "loadavg_1min": %s,\n  "pair_pos": %s,\n  "message": %s,\n  "command": %s\n}\n' "$load" "$pair_pos" \
+      "$(json_str "$5")" "$(json_str "${cmd[*]}")"
   } > "$base.tmp.run"
   mv "$base.tmp.run" "$base.run.json"
 }

@@ -53,6 +53,14 @@ else
     }
     END { exit found ? 0 : 3 }' "$db" > "$list" || die "SWEEP=$SWEEP: no such make target"
   rm -f "$db"
+  # one task per recipe: the two records of a pair (experiments/study.mk's
+  # pair rule, ROOT/conventional-X and ROOT/precomputed-X) are made together,
+  # so the conventional one goes when its precomputed partner is listed
+  awk '{ line[NR] = $0; have[$0] = 1 }
+       END { for (i = 1; i <= NR; i++) { p = line[i]
+               if (sub(/\/conventional-/, "/precomputed-", p) && (p in have)) continue
+               print line[i] } }' "$list" > "$list.pairs"
+  mv "$list.pairs" "$list"
   [ -s "$list" ] || die "SWEEP=$SWEEP: the target has no prerequisites to run as tasks"
 fi
 n=$(wc -l < "$list")

@@ -19,7 +19,10 @@
 # which defines
 #   ID_RUNROOT ID_RUN_NAMES ID_RUN_FILES   the run layout of the study
 #   ID-runs    phony: every render (one make target each: make -j, resuming,
-#              `make sweep-slurm SWEEP=ID-runs`)
+#              `make sweep-slurm SWEEP=ID-runs`); with both methods in
+#              ID_METHODS the two renders of one (cell, seed) are one recipe
+#              (experiments/pair.sh: back to back, the order alternating with
+#              the seed), and the sweep's task list has one task per pair
 #   ID-table   phony: the renders, then experiments/analysis collect -> RUNS_CSV
 #              and CELLS_CSV, table -> TABLE.{md,csv}, equal_error -> EQUAL_ERROR.{md,csv}
 #
@@ -53,11 +56,20 @@ $(1)_RUN_NAMES := $$(call run_names,$$(call run_cells,$$($(1)_PHOTONS),$$($(1)_N
 $(1)_RUN_FILES := $$($(1)_RUN_NAMES:%=$$($(1)_RUNROOT)/%.run.json)
 $(1)_REF := $$($(1)_REF)
 
+$(1)_RUN_ENV = PM=$$(PM) PM_ARGS="$$($(1)_PM_ARGS)" SCENE=$$($(1)_SCENE) WIDTH=$$($(1)_W) \
+	  HEIGHT=$$($(1)_H) SUBPIXELS=$$($(1)_SUBPIXELS) THREADS_ARG=$$(T_ARG) PYTHON=$$(PYTHON) \
+	  RUN_LIST="$$($(1)_RUN_NAMES)"
 # one render (experiments/run.sh writes its files, the record last)
 $$($(1)_RUNROOT)/%.run.json: | $$(BUILD)/photonmap $$(DEPS_TEST)
-	@PM=$$(PM) PM_ARGS="$$($(1)_PM_ARGS)" SCENE=$$($(1)_SCENE) WIDTH=$$($(1)_W) \
-	  HEIGHT=$$($(1)_H) SUBPIXELS=$$($(1)_SUBPIXELS) THREADS_ARG=$$(T_ARG) PYTHON=$$(PYTHON) \
-	  RUN_LIST="$$($(1)_RUN_NAMES)" bash experiments/run.sh $$($(1)_RUNROOT) $$*
+	@$$($(1)_RUN_ENV) bash experiments/run.sh $$($(1)_RUNROOT) $$*
+ifeq ($$(sort $$(filter conventional precomputed,$$($(1)_METHODS))),conventional precomputed)
+# both methods: the two renders of one (cell, seed) are one recipe, back to
+# back in an order alternating with the seed (experiments/pair.sh): a
+# pattern rule with two targets makes both at once, so make -j runs it once,
+# and a missing record of either renders the pair again
+$$($(1)_RUNROOT)/conventional-%.run.json $$($(1)_RUNROOT)/precomputed-%.run.json: | $$(BUILD)/photonmap $$(DEPS_TEST)
+	@$$($(1)_RUN_ENV) bash experiments/pair.sh $$($(1)_RUNROOT) $$*
+endif
 
 .PHONY: $(1)-runs $(1)-table
 $(1)-runs: $$($(1)_RUN_FILES)

@@ -73,6 +73,7 @@ assert r.loc[ref, "message"].str.contains("test refusal").all() and r.loc[ref, "
 ok = r[~ref]
 assert (ok["status"] == "ok").all() and (ok["total_s"] > 0).all() and (ok["cpu_s"] >= 0).all()
 assert (ok["relmse_ref"] > 0).all() and (ok["psnr_ref"] > 0).all() and (ok["threads"] == 1).all()
+assert (ok["nmse_ref"] > 0).all() and ok["nmse_ref"].notna().all()
 conv = ok["method"] == "conventional"
 assert (ok.loc[conv, "relmse_conv"] == 0).all() and (ok.loc[~conv, "relmse_conv"] > 0).all()
 assert (ok.loc[~conv, "representatives"] > 0).all() and (ok["photons_stored"] > 0).all()
@@ -102,6 +103,37 @@ p = ok[ok["method"] == "precomputed"]
 assert (p["ratio_ci95_lo"] <= p["ratio_percent"]).all() and (p["ratio_percent"] <= p["ratio_ci95_hi"]).all()
 assert (p["relmse_conv_mean"] > 0).all() and t["paper_s"].isna().all()
 '
+check "pairs: each (cell, seed) rendered back to back, the order alternating with the seed (pair_pos, the command log)" pycheck '
+r = pd.read_csv(f"{R}/table1/runs.csv")
+assert set(r["pair_pos"]) == {1, 2}, r["pair_pos"]
+first = r[r["pair_pos"] == 1]
+assert (first.loc[first["seed"] % 2 == 1, "method"] == "conventional").all(), first
+assert (first.loc[first["seed"] % 2 == 0, "method"] == "precomputed").all(), first
+assert len(first) == 12 and first.groupby(["photons", "nn", "seed"]).size().eq(1).all()
+log = [l for l in open(os.path.join(os.path.dirname(R), "pm.log")) if "--seed" in l and "--width 32" in l]
+key = lambda l: (l.split("--photons ")[1].split()[0], l.split("--nn ")[1].split()[0], l.split("--seed ")[1].split()[0])
+assert len(log) == 24 and all(key(log[i]) == key(log[i + 1]) for i in range(0, 24, 2)), log
+'
+check "table1.csv: paired time ratios with the drift control, the paired error difference with a verdict" pycheck '
+t = pd.read_csv(f"{R}/table1/table1.csv")
+p = t[(t["method"] == "precomputed") & (t["seeds"] == 3)]
+need = ["pairs", "paired_ratio_percent", "paired_ratio_ci95_lo", "paired_ratio_ci95_hi", "paired_cpu_ratio_percent",
+        "trace_ratio_percent", "trace_ratio_ci95_lo", "trace_ratio_ci95_hi", "relmse_diff_mean", "relmse_diff_lo",
+        "relmse_diff_hi", "relmse_diff_p", "relmse_diff_p_holm", "relmse_diff_delta", "relmse_diff_verdict"]
+assert not [c for c in need if c not in t.columns], [c for c in need if c not in t.columns]
+assert len(p) == 3 and (p["pairs"] == 3).all()
+assert (p["paired_ratio_ci95_lo"] <= p["paired_ratio_percent"]).all() and (p["paired_ratio_percent"] <= p["paired_ratio_ci95_hi"]).all()
+assert (p["trace_ratio_percent"] > 0).all() and (p["trace_ratio_ci95_lo"] <= p["trace_ratio_percent"]).all(), p["trace_ratio_percent"]
+assert (p["relmse_diff_p_holm"] >= p["relmse_diff_p"]).all()
+assert set(p["relmse_diff_verdict"]) <= {"higher", "lower", "equivalent", "undetermined"}
+r = pd.read_csv(f"{R}/table1/runs.csv")
+c = r[(r.method == "conventional") & (r.photons == 4000) & (r.nn == 10)].set_index("seed").relmse_ref
+q = r[(r.method == "precomputed") & (r.photons == 4000) & (r.nn == 10)].set_index("seed").relmse_ref
+row = p[(p.photons == 4000) & (p.nn == 10)].iloc[0]
+assert abs(row["relmse_diff_mean"] - (q - c).mean()) < 1e-6 * abs(c.mean()), (row["relmse_diff_mean"], (q - c).mean())
+md = open(f"{R}/table1/table1.md").read()
+assert "## Paired: precomputed against conventional, the same seed (paper estimate)" in md and "drift" in md
+'
 check "table1.csv: the reference floor is the fast reference's relMSE" \
   bash -c "want=\$($IM $TMP/fast.exr $TMP/ref.exr --csv | cut -d, -f1);
            got=\$(R=$R $PY -c 'import os, pandas as pd; print(pd.read_csv(os.environ[\"R\"] + \"/table1/table1.csv\").relmse_ref_floor.iloc[0])');
@@ -116,10 +148,23 @@ check "table1.md: provenance, the tables, the refusal, no nan" \
            grep -q 'Reference floor: relMSE of' $R/table1/table1.md && ! grep -qi 'nan' $R/table1/table1.md"
 check "equal-error: Markdown with fronts and targets, CSV by name" pycheck '
 e = pd.read_csv(f"{R}/table1/equal-error.csv")
-need = ["estimate", "relmse_target", "conventional_s", "precomputed_s", "speedup", "speedup_ci95_lo", "speedup_ci95_hi"]
+need = ["estimate", "kind", "target", "speedup", "lo", "hi", "defined_fraction", "conventional_s", "precomputed_s"]
 assert not [c for c in need if c not in e.columns], e.columns
-assert len(e) == 2 and (e["estimate"] == "paper").all() and list(e["relmse_target"]) == [0.1, 0.05], e
+t = e[e["kind"] == "target"]
+assert len(t) == 2 and (e["estimate"] == "paper").all() and list(t["target"]) == [0.1, 0.05], e
+c, tight = e[e["kind"] == "curve"], e[e["kind"] == "tightest"]
 md = open(f"{R}/table1/equal-error.md").read()
+# 41 targets over the common range of the fronts (one when that range is a
+# single error, none when the millisecond times of this tiny grid leave the fronts no common range)
+if len(tight):
+    assert len(c) in (1, 41) and len(tight) == 1 and tight["target"].iloc[0] == c["target"].min(), e
+    assert (c["target"].diff().dropna() > 0).all() and c["defined_fraction"].between(0, 1).all()
+    d = c[np.isfinite(c["lo"])]
+    assert ((d["lo"] <= d["speedup"] * 1.000001) | (d["defined_fraction"] < 1)).all() and (d["lo"] <= d["hi"]).all()
+    assert os.path.getsize(f"{R}/table1/equal-error.png") > 5000
+    assert "The tightest target both fronts reach" in md and "The curve" in md, md
+else:
+    assert len(c) == 0 and "no tightest target both reach, and no curve" in md, md
 assert "# Speed-up at equal error" in md and "## paper estimate" in md and "| relMSE target |" in md, md
 assert "| 0.1 |" in md and "| 0.05 |" in md and "EE_TARGETS=0.1 0.05" in md, md
 assert "nan" not in md.lower()
@@ -131,8 +176,10 @@ check "reproduce-table: a second run renders nothing and rewrites the tables" \
   bash -c "! grep -q '^run ' $TMP/grid2.log && grep -q 'wrote .*table1.md' $TMP/grid2.log"
 rm "$ROOT/conventional-paper-p2000-n20/seed2.run.json"
 make -s reproduce-table "${ARGS[@]}" > "$TMP/grid3.log" 2>&1
-check "reproduce-table: resumes only the missing render" \
-  bash -c "[ \$(grep -c '^run ' $TMP/grid3.log) -eq 1 ] && grep -q '^run 11/24 conventional paper P_e=2000 n=20 seed 2: total' $TMP/grid3.log"
+check "reproduce-table: resumes only the missing render's pair, both renders, back to back in the seed's order" \
+  bash -c "[ \$(grep -c '^run ' $TMP/grid3.log) -eq 2 ] &&
+           grep '^run ' $TMP/grid3.log | head -n 1 | grep -q '^run 12/24 precomputed paper P_e=2000 n=20 seed 2: not applicable' &&
+           grep '^run ' $TMP/grid3.log | tail -n 1 | grep -q '^run 11/24 conventional paper P_e=2000 n=20 seed 2: total'"
 make -s reproduce-table "${ARGS[@]}" SEEDS=4 > "$TMP/grid4.log" 2>&1
 check "reproduce-table: SEEDS=4 adds the fourth seed's renders only" \
   bash -c "[ \$(grep -c '^run .* seed 4: ' $TMP/grid4.log) -eq 8 ] && [ \$(grep -c '^run ' $TMP/grid4.log) -eq 8 ] &&

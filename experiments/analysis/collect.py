@@ -10,7 +10,9 @@ runs.csv, one row per render of the requested grid (a render that has not
 been made yet is a row with status "missing"): the settings, the status
 ("ok", "refused": the renderer rejected the combination with exit 2, i.e.
 not applicable, or "missing"), the renderer's per-phase times, the CPU
-seconds of the process, photon counts, and the image's relMSE/RMSE/PSNR
+seconds of the process, its place in a back-to-back pair (pair_pos: 1 or 2,
+rendered first or second by experiments/pair.sh; 0: not paired), photon
+counts, and the image's relMSE/NMSE/RMSE/PSNR
 against the reference and its relMSE against the conventional image of the
 same seed and estimate (0 for the conventional image itself), and its role:
 "grid" (a render of the requested grid) or "comparison" (a conventional
@@ -37,8 +39,8 @@ RUN_COLUMNS = [
     "scene", "size", "width", "height", "subpixels", "threads", "tag", "method", "estimate",
     "photons", "nn", "seed", "rep_every", "rep_count", "status", "exit", "message",
     "trace_s", "build_s", "precompute_s", "render_s", "total_s", "cpu_s", "user_s", "sys_s",
-    "photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "loadavg_1min",
-    "relmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "role", "run",
+    "photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "loadavg_1min", "pair_pos",
+    "relmse_ref", "nmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "role", "run",
 ]
 CELL_COLUMNS = [
     "scene", "size", "subpixels", "tag", "method", "estimate", "photons", "nn",
@@ -70,6 +72,7 @@ def read_run(root, method, estimate, photons, nn, seed):
     for key in layout.RECORD_KEYS:
         row[key] = math.nan if rec[key] is None else rec[key]
     row["message"] = rec.get("message", "")
+    row["pair_pos"] = rec.get("pair_pos", 0)  # records before pair.sh have none: not paired
     if status == layout.REFUSED:
         row["status"] = status
         return row
@@ -103,6 +106,7 @@ def measure(row, x, ref, ref_path, conv_imgs):
             raise ValueError(f"{row['run']}.exr is {x.shape[1]}x{x.shape[0]}, "
                              f"the reference {ref_path} {ref.shape[1]}x{ref.shape[0]}")
         row["relmse_ref"] = metrics.relmse(x, ref)
+        row["nmse_ref"] = metrics.nmse(x, ref)
         row["rmse_ref"] = metrics.rmse(x, ref)
         row["psnr_ref"] = metrics.psnr(x, ref)
     if row["seed"] in conv_imgs:

@@ -67,6 +67,38 @@ def auto_targets(fronts, count=5):
     return sorted({float(f"{x:.2g}") for x in raw}, reverse=True)
 
 
+# points of the equal-error curve, spaced evenly in log relMSE over the
+# whole range both fronts span
+CURVE_POINTS = 41
+
+
+def common_range(fronts):
+    """(lo, hi): the relMSE range every front in FRONTS (lists of errors)
+    spans: lo = the largest of the fronts' smallest errors, the tightest
+    target both reach; hi = the smallest of their largest errors. None when
+    a front is empty or the ranges do not overlap."""
+    if any(len(e) == 0 for e in fronts):
+        return None
+    lo = max(min(e) for e in fronts)
+    hi = min(max(e) for e in fronts)
+    return (lo, hi) if lo <= hi else None
+
+
+def curve_targets(fronts, count=CURVE_POINTS):
+    """COUNT relMSE targets spaced evenly in log over common_range(FRONTS),
+    both ends included, tightest (smallest) first; [] without a common
+    range, [lo] when it is one value."""
+    rng_ = common_range(fronts)
+    if rng_ is None:
+        return []
+    lo, hi = rng_
+    if lo == hi:
+        return [lo]
+    x = [float(v) for v in np.exp(np.linspace(math.log(lo), math.log(hi), count))]
+    x[0], x[-1] = lo, hi  # the ends exactly: the tightest target is a front's own cell
+    return x
+
+
 def bootstrap_times(samples, targets, rng, replicates):
     """(replicates, len(targets)) array: the front time at each target for
     each bootstrap resample of the cells' seeds (nan where undefined)."""
@@ -90,7 +122,8 @@ def bootstrap_times(samples, targets, rng, replicates):
 def analyse(runs, estimate, time_col, targets_arg, rng, replicates):
     """Everything one estimate's section needs: a dict with the cells, the
     fronts, the targets and, per target, times and speed-up with intervals."""
-    res = {"estimate": estimate, "cells": {}, "fronts": {}, "targets": [], "rows": [], "samples": {}}
+    res = {"estimate": estimate, "cells": {}, "fronts": {}, "targets": [], "rows": [], "samples": {},
+           "curve": [], "tightest": None, "range": None}
     samples = res["samples"]
     for m in METHODS:
         samples[m] = cell_samples(runs, estimate, m, time_col)
@@ -99,11 +132,18 @@ def analyse(runs, estimate, time_col, targets_arg, rng, replicates):
         res["fronts"][m] = stats.pareto_front(t, e)
     if any(len(samples[m]) == 0 for m in METHODS):
         return res
+    front_errors = [list(res["cells"][m][2][res["fronts"][m]]) for m in METHODS]
     if targets_arg.strip() in ("", "auto"):
-        targets = auto_targets([list(res["cells"][m][2][res["fronts"][m]]) for m in METHODS])
+        targets = auto_targets(front_errors)
     else:
         targets = sorted({float(x) for x in targets_arg.split()}, reverse=True)
     res["targets"] = targets
+    curve = curve_targets(front_errors)
+    res["range"] = common_range(front_errors)
+    # the tightest target both reach, the curve over the common range, the
+    # requested targets: one computation, told apart by "kind"
+    kinds = (["tightest"] if curve else []) + ["curve"] * len(curve) + ["target"] * len(targets)
+    targets = (curve[:1] + curve if curve else []) + targets
     if not targets:
         return res
     point, between = {}, {}
@@ -115,16 +155,19 @@ def analyse(runs, estimate, time_col, targets_arg, rng, replicates):
         between[m] = ["" if sg is None else " .. ".join(dict.fromkeys(label(keys[f[k]]) for k in sg)) for sg in segs]
     boot = {m: bootstrap_times(samples[m], targets, rng, replicates) for m in METHODS}
     speed = boot["conventional"] / boot["precomputed"]
+    res["curve"], res["tightest"] = [], None
     for i, x in enumerate(targets):
-        row = {"estimate": estimate, "relmse_target": x, "time": time_col}
+        row = {"estimate": estimate, "kind": kinds[i], "target": x, "time": time_col}
         for m in METHODS:
             lo, hi, d = stats.percentile_interval(boot[m][:, i])
-            row[f"{m}_s"], row[f"{m}_ci95_lo"], row[f"{m}_ci95_hi"], row[f"{m}_defined"] = point[m][i], lo, hi, d
+            row[f"{m}_s"], row[f"{m}_lo"], row[f"{m}_hi"], row[f"{m}_defined"] = point[m][i], lo, hi, d
             row[f"{m}_between"] = between[m][i]
         lo, hi, d = stats.percentile_interval(speed[:, i])
         row["speedup"] = point["conventional"][i] / point["precomputed"][i] if point["precomputed"][i] > 0 else math.nan
-        row["speedup_ci95_lo"], row["speedup_ci95_hi"], row["speedup_defined"] = lo, hi, d
-        res["rows"].append(row)
+        row["lo"], row["hi"], row["defined_fraction"] = lo, hi, d
+        {"target": res["rows"], "curve": res["curve"]}.get(kinds[i], []).append(row)
+        if kinds[i] == "tightest":
+            res["tightest"] = row
     return res
 
 
@@ -150,8 +193,23 @@ def section(res, time_col):
         for j in res["fronts"][m]:
             rows.append([m, label(keys[j]), fmt(t[j]), report.fmt_pm(e[j], h[j])])
     out += report.md_table(["method", "cell", "time s", "relMSE"], rows, ["l", "l", "r", "r"])
+    t = res.get("tightest")
+    if t is None:
+        out += ["", "The two fronts reach no common relMSE: no tightest target both reach, and no curve."]
+    else:
+        lo_r, hi_r = res["range"]
+        sp = [r["speedup"] for r in res["curve"] if report.isnum(r["speedup"])]
+        out += ["", f"**The tightest target both fronts reach**: relMSE {fmt(t['target'])}, the larger of the two "
+                "fronts' smallest errors (defined as such, not chosen from the curve): conventional "
+                f"{fmt(t['conventional_s'])} s ({t['conventional_between']}), precomputed {fmt(t['precomputed_s'])} s "
+                f"({t['precomputed_between']}); speed-up **{fmt(t['speedup'])}** {fmt_interval(t['lo'], t['hi'])}, "
+                f"defined in {100 * t['defined_fraction']:.0f}% of the resamples (at the end of a front a resample "
+                "often does not reach it: the interval is over those that do).", "",
+                f"**The curve** (`kind` = curve in the CSV, {len(res['curve'])} targets evenly in log over the whole "
+                f"range both fronts span, {fmt(lo_r)} to {fmt(hi_r)}; figure `{os.path.basename(res['figure'])}`): "
+                + (f"speed-up from {fmt(min(sp))} to {fmt(max(sp))} over the range; a single number is one point of "
+                   "it, and its peak is not a summary." if sp else "undefined everywhere.")]
     if not res["targets"]:
-        out += ["", "The two fronts reach no common relMSE: no error at which both can be timed."]
         return out
     out += ["", "At each relMSE target: the time each method needs (its front interpolated in log-log between the "
             "two front cells named below it), and the speed-up = conventional time / precomputed time; [95% "
@@ -161,35 +219,35 @@ def section(res, time_col):
             "the time in between is a model, and a finer grid there is the way to check it.", ""]
     rows = []
     for r in res["rows"]:
-        rows.append([fmt(r["relmse_target"]),
-                     f"{fmt(r['conventional_s'])} {fmt_interval(r['conventional_ci95_lo'], r['conventional_ci95_hi'])}"
+        rows.append([fmt(r["target"]),
+                     f"{fmt(r['conventional_s'])} {fmt_interval(r['conventional_lo'], r['conventional_hi'])}"
                      f"<br>{r['conventional_between'] or 'outside the front'}",
-                     f"{fmt(r['precomputed_s'])} {fmt_interval(r['precomputed_ci95_lo'], r['precomputed_ci95_hi'])}"
+                     f"{fmt(r['precomputed_s'])} {fmt_interval(r['precomputed_lo'], r['precomputed_hi'])}"
                      f"<br>{r['precomputed_between'] or 'outside the front'}",
-                     f"**{fmt(r['speedup'])}** {fmt_interval(r['speedup_ci95_lo'], r['speedup_ci95_hi'])}",
-                     f"{100 * r['speedup_defined']:.0f}%"])
+                     f"**{fmt(r['speedup'])}** {fmt_interval(r['lo'], r['hi'])}",
+                     f"{100 * r['defined_fraction']:.0f}%"])
     out += report.md_table(["relMSE target", "conventional s<br>(between cells)", "precomputed s<br>(between cells)",
                             "speed-up", "defined"], rows)
 
     # rank only where the interval is trustworthy: defined in >= 95% of the
     # resamples (else it is conditional on the resamples that reach the target)
-    solid = [r for r in res["rows"] if r["speedup_defined"] >= 0.95]
-    faster = [r for r in solid if report.isnum(r["speedup_ci95_lo"]) and r["speedup_ci95_lo"] > 1]
-    slower = [r for r in solid if report.isnum(r["speedup_ci95_hi"]) and r["speedup_ci95_hi"] < 1]
+    solid = [r for r in res["rows"] if r["defined_fraction"] >= 0.95]
+    faster = [r for r in solid if report.isnum(r["lo"]) and r["lo"] > 1]
+    slower = [r for r in solid if report.isnum(r["hi"]) and r["hi"] < 1]
     unranked = [r for r in solid if r not in faster and r not in slower]
     thin = [r for r in res["rows"] if r not in solid]
     out.append("")
     if faster:
-        out.append(f"- The precomputed method needs less time at relMSE {', '.join(fmt(r['relmse_target']) for r in faster)} "
+        out.append(f"- The precomputed method needs less time at relMSE {', '.join(fmt(r['target']) for r in faster)} "
                    "(the speed-up's interval lies above 1).")
     if slower:
-        out.append(f"- The conventional method needs less time at relMSE {', '.join(fmt(r['relmse_target']) for r in slower)} "
+        out.append(f"- The conventional method needs less time at relMSE {', '.join(fmt(r['target']) for r in slower)} "
                    "(the interval lies below 1).")
     if unranked:
-        out.append(f"- No ranking at relMSE {', '.join(fmt(r['relmse_target']) for r in unranked)}: the interval "
+        out.append(f"- No ranking at relMSE {', '.join(fmt(r['target']) for r in unranked)}: the interval "
                    "contains 1.")
     if thin:
-        out.append(f"- No ranking at relMSE {', '.join(fmt(r['relmse_target']) for r in thin)} either: fewer than 95% "
+        out.append(f"- No ranking at relMSE {', '.join(fmt(r['target']) for r in thin)} either: fewer than 95% "
                    "of the resamples reach the target on both fronts, so the interval describes only those that do "
                    "(the cells around the target swap places on the fronts from resample to resample).")
     seeds = min(min((len(v[0]) for v in res["samples"][m].values()), default=0) for m in METHODS)
@@ -198,6 +256,40 @@ def section(res, time_col):
                    "distinct resamples, so these intervals run narrow; rerun with more seeds (`SEEDS`, default 5) "
                    "before quoting them.")
     return out
+
+
+def figure(results, path, note):
+    """The equal-error curve of each estimate (speed-up against relMSE
+    target, log-log) with its 95% bootstrap band and the tightest target
+    both fronts reach marked, as a PNG at PATH (nothing when no estimate has
+    a curve)."""
+    from experiments.analysis import plotting
+
+    have = [r for r in results if r.get("curve")]
+    if not have:
+        return
+    fig, axes = plotting.plt.subplots(1, len(have), figsize=(5.2 * len(have), 4.2), squeeze=False)
+    for ax, res in zip(axes[0], have):
+        c = res["curve"]
+        x = np.array([r["target"] for r in c])
+        y, lo, hi = (np.array([r[k] for r in c], dtype=np.float64) for k in ("speedup", "lo", "hi"))
+        colour = plotting.METHOD_COLOUR["precomputed"]
+        ax.fill_between(x, lo, hi, color=colour, alpha=0.25, linewidth=0, label="95% bootstrap band")
+        ax.plot(x, y, color=colour, label="speed-up (conventional / precomputed time)")
+        t = res["tightest"]
+        ax.errorbar([t["target"]], [t["speedup"]], yerr=[[max(t["speedup"] - t["lo"], 0) if report.isnum(t["lo"]) else 0],
+                                                         [max(t["hi"] - t["speedup"], 0) if report.isnum(t["hi"]) else 0]],
+                    fmt="o", color="black", capsize=3, label=f"tightest target both reach ({fmt(t['target'])})")
+        ax.axhline(1.0, color="#888888", linewidth=0.8)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("relMSE target")
+        ax.set_ylabel("speed-up at equal error")
+        ax.set_title(f"{res['estimate']} estimate")
+        ax.legend(loc="best")
+    fig.subplots_adjust(bottom=0.26, wspace=0.3)
+    plotting.footer(fig, note)
+    plotting.save(fig, path)
 
 
 def main():
@@ -224,6 +316,8 @@ def main():
     grid = runs[runs["role"] == "grid"]
     estimates = list(dict.fromkeys(grid["estimate"]))
     results = [analyse(runs, e, args.time, args.targets, rng, args.bootstrap) for e in estimates]
+    for res in results:
+        res["figure"] = args.out + ".png"
 
     ok = grid[grid["status"] == "ok"]
     seeds = ok.groupby(["method", "estimate", "photons", "nn"])["seed"].nunique()
@@ -252,11 +346,13 @@ def main():
         out += ["", "No render has an error against a reference (no reference of this size): nothing to compare."]
     for res in results:
         out += section(res, args.time)
-    rows = [r for res in results for r in res["rows"]]
-    columns = ["estimate", "relmse_target", "time"] + [f"{m}_{k}" for m in METHODS for k in
-                                                       ("s", "ci95_lo", "ci95_hi", "defined", "between")] + \
-              ["speedup", "speedup_ci95_lo", "speedup_ci95_hi", "speedup_defined"]
+    rows = [r for res in results for r in ([res["tightest"]] if res.get("tightest") else []) + res.get("curve", [])
+            + res["rows"]]
+    columns = ["estimate", "kind", "target", "speedup", "lo", "hi", "defined_fraction", "time"] + \
+              [f"{m}_{k}" for m in METHODS for k in ("s", "lo", "hi", "defined", "between")]
     report.write_csv_atomic(pd.DataFrame(rows, columns=columns), args.out + ".csv", "%.6g")
+    figure(results, args.out + ".png", f"Data: {args.out}.csv from {args.runs_csv} ({grid['size'].iloc[0]}; "
+           f"{args.bootstrap} bootstrap resamples over seeds); time: {TIME_LABEL[args.time]}.")
     report.write_atomic(args.out + ".md", "\n".join(out) + "\n")
     print(f"wrote {args.out}.md and {args.out}.csv ({len(rows)} targets)")
 

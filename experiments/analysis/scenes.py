@@ -95,7 +95,8 @@ def main():
                 report.die(f, "missing (run make scenes)")
         table = report.read_csv(table_csv, ["method", "photons", "nn"], "scenes.py")
         runs = report.read_csv(runs_csv, ["method", "estimate", "photons", "nn", "seed", "status", "role", "run"], "scenes.py")
-        ee = report.read_csv(ee_csv, ["estimate", "speedup_defined"], "scenes.py")
+        ee = report.read_csv(ee_csv, ["estimate", "kind", "target", "speedup", "lo", "hi", "defined_fraction"],
+                             "scenes.py")
         share, speed = knn_share(table, cell_p, cell_n)
         shares = [knn_share(table, p, n)[0] for p, n in table[["photons", "nn"]].drop_duplicates().itertuples(index=False)]
         ref = metrics.read_exr(ref_path)
@@ -107,17 +108,17 @@ def main():
                "diff_seeds": seeds,
                "empty_estimates_prec": float(empty.iloc[0].empty_estimates) if not empty.empty else float("nan")}
         for est in ("paper", "corrected"):
-            e = ee[(ee.estimate == est) & (ee.speedup_defined == 1)]
+            e = ee[(ee.estimate == est) & (ee.kind == "target") & (ee.defined_fraction == 1)]
             if e.empty:
                 row[f"ee_{est}"] = "no target both fronts reach"
                 row[f"ee_{est}_median"] = float("nan")
                 continue
-            parts = [f"{fmt(r.relmse_target, 2)}: {fmt_ci(r.speedup, r.speedup_ci95_lo, r.speedup_ci95_hi)}"
+            parts = [f"{fmt(r.target, 2)}: {fmt_ci(r.speedup, r.lo, r.hi)}"
                      for r in e.itertuples()]
             row[f"ee_{est}"] = "; ".join(parts)
             row[f"ee_{est}_median"] = float(e.speedup.median())
-            row[f"ee_{est}_min_lo"] = float(e.speedup_ci95_lo.min())
-            row[f"ee_{est}_max_hi"] = float(e.speedup_ci95_hi.max())
+            row[f"ee_{est}_min_lo"] = float(e.lo.min())
+            row[f"ee_{est}_max_hi"] = float(e.hi.max())
         rows.append(row)
         images.append((name, ref, diff))
 

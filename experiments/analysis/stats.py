@@ -232,3 +232,104 @@ def fieller_ratio(num, se_num, den, se_den, dof, level=LEVEL):
     disc = qb * qb - 4.0 * qa * qc
     root = math.sqrt(max(disc, 0.0))
     return ratio, (-qb - root) / (2.0 * qa), (-qb + root) / (2.0 * qa)
+
+
+def paired_log_ratio(a, b, level=LEVEL):
+    """(ratio, lo, hi, pairs) of A over B from paired samples: A[s] and B[s]
+    are measured together (one seed, back to back), so the ratio is
+    exp(mean_s log(A[s] / B[s])), the geometric mean of the per-pair ratios,
+    with the Student-t interval of that mean over the pairs, exponentiated.
+    A pair with a nan, or a non-positive value, is dropped; the interval is
+    nan with fewer than two pairs, everything with none."""
+    a = np.asarray(a, dtype=np.float64)
+    b = np.asarray(b, dtype=np.float64)
+    if a.shape != b.shape:
+        raise ValueError(f"paired_log_ratio: {a.shape} against {b.shape} values: not pairs")
+    ok = np.isfinite(a) & np.isfinite(b) & (a > 0) & (b > 0)
+    d = np.log(a[ok] / b[ok])
+    m, h = t_interval(d, level)
+    if math.isnan(m):
+        return math.nan, math.nan, math.nan, 0
+    if math.isnan(h):
+        return math.exp(m), math.nan, math.nan, int(d.size)
+    return math.exp(m), math.exp(m - h), math.exp(m + h), int(d.size)
+
+
+def holm(pvalues):
+    """Holm's step-down adjusted p-values of PVALUES (family-wise error
+    control over all of them): sorted ascending p_(1) <= ... <= p_(m),
+    adjusted p_(i) = max_{j <= i} min(1, (m - j + 1) p_(j)); a hypothesis is
+    rejected at level alpha when its adjusted p is below alpha. nan entries
+    stay nan and do not count in m."""
+    p = np.asarray(pvalues, dtype=np.float64)
+    out = np.full(p.shape, math.nan)
+    idx = np.flatnonzero(np.isfinite(p))
+    m = idx.size
+    running = 0.0
+    for rank_i, i in enumerate(idx[np.argsort(p[idx], kind="stable")]):
+        running = max(running, min(1.0, (m - rank_i) * p[i]))
+        out[i] = running
+    return out
+
+
+# the default equivalence margin of a paired error comparison: a difference
+# within 2% of the baseline's mean error is "no difference that matters"
+EQUIVALENCE_MARGIN = 0.02
+
+
+def paired_difference(a, b, margin=EQUIVALENCE_MARGIN, level=LEVEL):
+    """The paired comparison of A against B (A[s], B[s] of one seed: the
+    same photon map): a dict with
+      pairs, mean (of d = A - B), lo, hi (its Student-t interval at LEVEL),
+      p (two-sided paired t-test of mean d = 0), delta (the equivalence
+      margin: MARGIN x |mean B|), equivalent (True when the interval at
+      LEVEL lies inside (-delta, delta): |diff| < delta at LEVEL, the
+      two one-sided tests at (1 - LEVEL) / 2 each, so conservative), and
+      relative (mean / mean B).
+    Pairs with a nan are dropped; with fewer than two pairs lo, hi, p are
+    nan and equivalent is False. A zero spread of d gives p = 0 for a
+    non-zero mean, 1 for a zero one."""
+    a = np.asarray(a, dtype=np.float64)
+    b = np.asarray(b, dtype=np.float64)
+    if a.shape != b.shape:
+        raise ValueError(f"paired_difference: {a.shape} against {b.shape} values: not pairs")
+    ok = np.isfinite(a) & np.isfinite(b)
+    d, base = a[ok] - b[ok], b[ok]
+    out = {"pairs": int(d.size), "mean": math.nan, "lo": math.nan, "hi": math.nan, "p": math.nan,
+           "delta": math.nan, "equivalent": False, "relative": math.nan}
+    if d.size == 0:
+        return out
+    m, h = t_interval(d, level)
+    bm = float(base.mean())
+    out.update(mean=m, delta=margin * abs(bm), relative=m / bm if bm != 0 else math.nan)
+    if d.size < 2:
+        return out
+    sd = float(d.std(ddof=1))
+    if sd == 0:
+        p = 0.0 if m != 0 else 1.0
+    else:
+        p = float(2 * sps.t.sf(abs(m) / (sd / math.sqrt(d.size)), d.size - 1))
+    out.update(lo=m - h, hi=m + h, p=p, equivalent=bool(-out["delta"] < m - h and m + h < out["delta"]))
+    return out
+
+
+def compare_family(comparisons, alpha=1 - LEVEL):
+    """The verdicts of a family of paired comparisons (paired_difference
+    dicts, e.g. one per cell of a table), Holm-corrected over the family:
+    adds to each dict p_holm and verdict, one of
+      "higher" / "lower"  A is ranked above / below B (p_holm < ALPHA),
+      "equivalent"        not ranked, and |diff| < delta at 95%,
+      "undetermined"      neither (too few pairs or too wide an interval),
+    and returns the list. The one rule every sentence that compares two
+    methods' paired values follows: "no difference" only as "equivalent
+    within delta", never from overlapping intervals."""
+    adj = holm([c["p"] for c in comparisons])
+    for c, q in zip(comparisons, adj):
+        c["p_holm"] = float(q)
+        if np.isfinite(q) and q < alpha:
+            c["verdict"] = "higher" if c["mean"] > 0 else "lower"
+        elif c["equivalent"]:
+            c["verdict"] = "equivalent"
+        else:
+            c["verdict"] = "undetermined"
+    return comparisons

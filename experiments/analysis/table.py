@@ -7,10 +7,14 @@ over seeds with min-max; the precomputed/conventional ratio of medians with
 a bootstrap interval), per-phase medians, and per estimate the error
 against the reference (mean over seeds with a 95% t-interval, bias and
 variance over seeds from cells.csv), the error against the conventional
-image of the same seed, and the reference floor. Columns of the estimate
+image of the same seed, the reference floor, and the paired comparisons with
+the conventional cell (time ratios over the pairs of renders of one seed,
+the drift control, the relMSE difference with its Holm-corrected verdict).
+Columns of the estimate
 "paper" have no suffix, those of another estimate E the suffix _E
-(relmse_ref_mean_corrected, ...). The Markdown ranks two numbers only when
-their 95% intervals are disjoint.
+(relmse_ref_mean_corrected, ...). The Markdown compares the two methods
+paired (stats.compare_family) and ranks other numbers only when their 95%
+intervals are disjoint.
 """
 
 import argparse
@@ -36,7 +40,7 @@ def read_inputs(runs_csv, cells_csv, paper_csv):
     """The three tables, with the columns this script needs checked by name."""
     frames = []
     for path, need in ((runs_csv, ["method", "estimate", "photons", "nn", "seed", "status", "role", "total_s",
-                                   "cpu_s", "relmse_ref", "relmse_conv", "message"]),
+                                   "cpu_s", "trace_s", "relmse_ref", "relmse_conv", "message"]),
                        (cells_csv, ["method", "estimate", "photons", "nn", "bias_ref", "variance_ref",
                                     "relmse_ref_floor", "ref", "ref_fast"]),
                        (paper_csv, ["emitted_kphotons", "nn", "conventional_s", "proposed_s", "ratio_percent"])):
@@ -92,9 +96,21 @@ def summarize(runs, cells, paper, rng, replicates):
                 r, lo, hi = stats.median_ratio(ok_values(sel, col), ok_values(conv, col), rng, replicates)
                 row[f"{name}_percent{sfx}"] = 100 * r
                 row[f"{name}_ci95_lo{sfx}"], row[f"{name}_ci95_hi{sfx}"] = 100 * lo, 100 * hi
+            a, b = paired_values(sel, conv, ("total_s", "cpu_s", "trace_s", "relmse_ref"))
+            row[f"pairs{sfx}"] = len(a["total_s"])
+            for col, name in PAIRED_RATIOS:
+                r, lo, hi, _ = stats.paired_log_ratio(a[col], b[col])
+                row[f"{name}_percent{sfx}"] = 100 * r
+                row[f"{name}_ci95_lo{sfx}"], row[f"{name}_ci95_hi{sfx}"] = 100 * lo, 100 * hi
+            d = stats.paired_difference(a["relmse_ref"], b["relmse_ref"])
+            for k in ("mean", "lo", "hi", "p", "delta", "relative"):
+                row[f"relmse_diff_{k}{sfx}"] = d[k]
+            row[f"relmse_diff_equivalent{sfx}"] = d["equivalent"]
             for col in ("photons_stored", "representatives", "empty_estimates"):
                 row[f"{col}{sfx}"] = stats.median_range(ok_values(sel, col))[0]
-            for col in ("relmse_ref", "psnr_ref", "relmse_conv"):
+            for col in ("relmse_ref", "nmse_ref", "psnr_ref", "relmse_conv"):
+                if col not in sel:  # a runs.csv from before NMSE
+                    continue
                 v = ok_values(sel, col)
                 v = v[np.isfinite(v)]
                 row[f"{col}_mean{sfx}"], row[f"{col}_ci95{sfx}"] = stats.t_interval(v)
@@ -112,7 +128,36 @@ def summarize(runs, cells, paper, rng, replicates):
             row[f"variance_ref{sfx}"] = cell["variance_ref"].iloc[0] if len(cell) else math.nan
         row["relmse_ref_floor"] = cells["relmse_ref_floor"].iloc[0] if len(cells) else math.nan
         rows.append(row)
+    # the paired error comparisons of a table are one family: Holm over its cells
+    for est in estimates:
+        sfx = suffix(est)
+        fam = [r for r in rows if r["method"] != "conventional"]
+        comps = stats.compare_family([{"p": r[f"relmse_diff_p{sfx}"], "mean": r[f"relmse_diff_mean{sfx}"],
+                                       "equivalent": r[f"relmse_diff_equivalent{sfx}"]} for r in fam])
+        for r in rows:
+            r[f"relmse_diff_p_holm{sfx}"], r[f"relmse_diff_verdict{sfx}"] = math.nan, ""
+        for r, c in zip(fam, comps):
+            r[f"relmse_diff_p_holm{sfx}"] = c["p_holm"]
+            r[f"relmse_diff_verdict{sfx}"] = c["verdict"] if r[f"pairs{sfx}"] else ""
     return pd.DataFrame(rows), estimates
+
+
+# the paired time ratios (precomputed / conventional, the same seed, rendered
+# back to back): the renderer's own total, the process CPU (secondary) and
+# the drift control, the photon trace (the same code in both methods: 1 when
+# the machine did not drift between the two renders of a pair)
+PAIRED_RATIOS = (("total_s", "paired_ratio"), ("cpu_s", "paired_cpu_ratio"), ("trace_s", "trace_ratio"))
+
+
+def paired_values(sel, conv, columns):
+    """({column: values}, {column: values}) of the seeds where both SEL
+    (one cell) and CONV (its conventional cell) rendered ok, in the same
+    seed order: the pairs of a paired comparison."""
+    a = sel[sel["status"] == "ok"].drop_duplicates("seed").set_index("seed")
+    b = conv[conv["status"] == "ok"].drop_duplicates("seed").set_index("seed")
+    seeds = sorted(set(a.index) & set(b.index))
+    return ({c: a.loc[seeds, c].to_numpy(np.float64) for c in columns},
+            {c: b.loc[seeds, c].to_numpy(np.float64) for c in columns})
 
 
 def interval(row, col, sfx=""):
@@ -146,7 +191,7 @@ def rank_sentences(table, estimates):
     if "paper" in estimates and prec:
         below, above, other = [], [], []
         for p in prec:
-            lo, hi = p.get("cpu_ratio_ci95_lo", math.nan), p.get("cpu_ratio_ci95_hi", math.nan)
+            lo, hi = p.get("paired_ratio_ci95_lo", math.nan), p.get("paired_ratio_ci95_hi", math.nan)
             if isnum(hi) and hi < 100:
                 below.append(cell_label(p))
             elif isnum(lo) and lo > 100:
@@ -156,20 +201,12 @@ def rank_sentences(table, estimates):
         parts = [f"lies below 100% (precomputed faster) in {len(below)} of {len(prec)} cells",
                  ranked_clauses([("above 100% (precomputed slower)", above),
                                  ("contains 100% or is unknown (no ranking)", other)])]
-        lines.append("- **Time** (paper estimate, CPU seconds): the precomputed/conventional ratio's 95% interval "
+        lines.append("- **Time** (paper estimate, the renderer's own timer, paired over seeds): the "
+                     "precomputed/conventional ratio's 95% interval "
                      + "; ".join(p for p in parts if p) + ".")
-    for est in estimates:
-        sfx = suffix(est)
-        by = {"higher": [], "lower": [], "overlap": [], "unknown": []}
-        for p in prec:
-            by[stats.rank(interval(p, "relmse_ref", sfx), interval(p, "conv_relmse_ref", sfx))].append(cell_label(p))
-        higher, lower, overlap, na = by["higher"], by["lower"], by["overlap"], by["unknown"]
-        if higher or lower or overlap:
-            s = (f"- **Error against the reference, {est} estimate** (relMSE, 95% t-intervals over seeds), "
-                 "precomputed vs conventional: ")
-            parts = ranked_clauses([("precomputed higher", higher), ("precomputed lower", lower),
-                                    ("intervals overlap (no ranking)", overlap)])
-            lines.append(s + parts + "." + (f" No interval in {cell_list(na)}." if na else ""))
+    if prec:
+        lines.append("- **Error, precomputed vs conventional**: the paired comparison above (same seed, Holm over "
+                     "the cells; \"equivalent\" only within its margin delta).")
     if "paper" in estimates and len(estimates) > 1:
         for est in [e for e in estimates if e != "paper"]:
             sfx = suffix(est)
@@ -199,6 +236,55 @@ def rank_sentences(table, estimates):
                 lines.append(f"- **Reference floor** ({est} estimate): every bias term is above the floor "
                              f"({fmt(floor)}).")
     return lines
+
+
+VERDICT_TEXT = {"higher": "precomputed higher", "lower": "precomputed lower",
+                "equivalent": "equivalent within ±delta", "undetermined": "undetermined"}
+
+
+def paired_section(table, estimates):
+    """Markdown lines of the paired comparisons: per precomputed cell and
+    estimate the paired time ratios (with the drift control) and the paired
+    relMSE difference with its Holm-corrected verdict (stats.compare_family)."""
+    out = []
+    for est in estimates:
+        sfx = suffix(est)
+        prec = [r for _, r in table.iterrows() if r["method"] != "conventional" and r.get(f"pairs{sfx}", 0) > 0]
+        if not prec:
+            continue
+        out += ["", f"## Paired: precomputed against conventional, the same seed ({est} estimate)", "",
+                "Per seed the two renders share the photon map and ran back to back (`experiments/pair.sh`: the "
+                "order alternates with the seed). Time ratios: exp of the mean over seeds of log(precomputed / "
+                "conventional), with the exponentiated 95% t-interval of that mean; s: the renderer's own total "
+                "(`time_s.total`: no start-up, no image writing), CPU: the process (`/usr/bin/time`, secondary); "
+                "trace: the photon-trace phase, the same code in both methods, the **drift control** (100% when the "
+                "machine did not change between the two renders of a pair). relMSE difference: mean over seeds of "
+                "precomputed − conventional relMSE against the reference, 95% t-interval, two-sided paired t-test "
+                f"with Holm's correction over the {len(prec)} cells of this table (p Holm); \"equivalent\" only when "
+                f"the 95% interval lies inside ±delta, delta = {100 * stats.EQUIVALENCE_MARGIN:g}% of the "
+                "conventional mean relMSE (`stats.EQUIVALENCE_MARGIN`); otherwise \"undetermined\" "
+                "(`stats.compare_family`).", ""]
+        rows = []
+        for r in prec:
+            g = (lambda k: r.get(f"{k}{sfx}", math.nan))
+            rows.append([r["photons"], r["nn"], int(g("pairs")),
+                         fmt_ci(g("paired_ratio_percent"), g("paired_ratio_ci95_lo"), g("paired_ratio_ci95_hi"), 1),
+                         fmt_ci(g("paired_cpu_ratio_percent"), g("paired_cpu_ratio_ci95_lo"),
+                                g("paired_cpu_ratio_ci95_hi"), 1),
+                         fmt_ci(g("trace_ratio_percent"), g("trace_ratio_ci95_lo"), g("trace_ratio_ci95_hi"), 1),
+                         f"{fmt(g('relmse_diff_mean'))} {report.fmt_interval(g('relmse_diff_lo'), g('relmse_diff_hi'))}",
+                         fmt(100 * g("relmse_diff_relative")), fmt(g("relmse_diff_delta")), fmt(g("relmse_diff_p_holm")),
+                         VERDICT_TEXT.get(g("relmse_diff_verdict"), "")])
+        out += report.md_table(["P_e", "n", "pairs", "time ratio % [95% CI]", "CPU ratio % [95% CI]",
+                                "trace ratio % (drift) [95% CI]", "relMSE prec. − conv. [95% CI]", "diff. %",
+                                "delta", "p Holm", "verdict"], rows, ["r"] * 10 + ["l"])
+        by = {}
+        for r in prec:
+            by.setdefault(r.get(f"relmse_diff_verdict{sfx}", ""), []).append(cell_label(r))
+        parts = ranked_clauses([(VERDICT_TEXT[v], by.get(v, [])) for v in ("higher", "lower", "equivalent",
+                                                                             "undetermined")])
+        out += ["", f"- **Error, paired** ({est} estimate, Holm over {len(prec)} cells): {parts}."]
+    return out
 
 
 def markdown(table, runs, estimates, args):
@@ -322,6 +408,7 @@ def markdown(table, runs, estimates, args):
         out += report.md_table(["P_e", "n", "method", "seeds", "relMSE vs ref", "bias", "variance",
                                 "relMSE vs conv. (same seed)"], rows, ["r", "r", "l", "r", "r", "r", "r", "r"])
 
+    out += paired_section(table, estimates)
     out += ["", "## What the intervals allow us to say", "",
             "Generated from the intervals above; two numbers are ranked only when their 95% intervals are "
             "disjoint (a conservative test: with few seeds, real differences can stay unranked).", ""]
@@ -357,6 +444,14 @@ def markdown(table, runs, estimates, args):
             "P_e, n and estimate; `*_ci95_lo`, `*_ci95_hi`: 2.5% and 97.5% quantiles of that ratio over "
             f"{args.bootstrap} bootstrap resamples (the seeds of each of the two cells drawn with replacement, "
             f"independently; random seed {args.bootstrap_seed}).",
+            "- `paired_ratio_percent`, `paired_cpu_ratio_percent`, `trace_ratio_percent` (`_ci95_lo`, `_ci95_hi`): "
+            "100 x exp(mean over the seeds both cells rendered of log(precomputed / conventional)) of `total_s`, "
+            "`cpu_s` and `trace_s`, with the exponentiated 95% t-interval of that mean (`stats.paired_log_ratio`); "
+            "the two renders of a seed ran back to back (`pair_pos` in `runs.csv`). `relmse_diff_*`: the paired "
+            "difference precomputed − conventional of `relmse_ref` (`stats.paired_difference`), `_p_holm` Holm's "
+            "adjustment over the precomputed cells, `_verdict` from `stats.compare_family`.",
+            "- `nmse_ref_mean`, `nmse_ref_ci95`: the same for NMSE = mean((x-r)^2) / mean(r^2), the error that "
+            "stays relative in dark pixels (`metrics.py` says why relMSE stays the primary one).",
             "- `relmse_ref_mean`, `relmse_ref_ci95`: mean over seeds and the half-width of its 95% Student-t "
             "interval (t_{0.975, S-1} sd / sqrt(S), S seeds); the same for `psnr_ref` and `relmse_conv`.",
             "- `bias_ref`, `variance_ref` (from `cells.csv`): with xbar the per-pixel mean image over the S seeds, "
