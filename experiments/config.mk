@@ -70,6 +70,9 @@ FIGURES = $(RESULTS)/figures
 T_ARG = $(if $(strip $(THREADS)),$(strip $(THREADS)),0)
 T_LABEL = $(if $(strip $(THREADS)),t$(strip $(THREADS)),tall)
 SCENE_NAME = $(basename $(notdir $(SCENE)))
+# make names a render's files after its scene: a path with a space would
+# split into two targets
+$(if $(word 2,$(SCENE)),$(error SCENE=$(SCENE): a path with a space cannot name make targets; link or copy the scene to a path without spaces))
 WIDTH = $(call size_w,$(SIZE))
 HEIGHT = $(call size_h,$(SIZE))
 REF_FILE = $(or $(REF),$(shell bash experiments/findref.sh $(SIZE) $(SCENE)))

@@ -36,6 +36,14 @@ if [ -n "$TASKS" ]; then
     /[ \t]/ { printf "sweep-slurm: %s:%d: one make target per line, got \"%s\"\n", f, NR, $0 > "/dev/stderr"; bad = 1; next }
     { print }
     END { exit bad ? 2 : 0 }' "$TASKS" > "$list" || exit 2
+  # every task must be a target this make can make: one dry run of them all
+  # (-k goes on past the first) lists those it has no rule for
+  if [ -s "$list" ]; then
+    mapfile -t targets < "$list"
+    missing=$("$MAKE_CMD" -C "$REPO" --no-print-directory -n -k "${vars[@]}" "${targets[@]}" 2>&1 >/dev/null |
+      sed -n "s/.*No rule to make target '\([^']*\)'.*/\1/p" | sort -u | tr '\n' ' ' || true)
+    [ -z "$missing" ] || die "TASKS=$TASKS: no make rule for: ${missing% }"
+  fi
 else
   case "$SWEEP" in *[[:space:]]*|"") die "SWEEP=$SWEEP: one target name" ;; esac
   # make's database: "TARGET: PREREQS | ORDER-ONLY" (rules merged over every

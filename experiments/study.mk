@@ -39,8 +39,9 @@ run_cells = $(foreach p,$(1),$(foreach n,$(2),$(foreach m,$(3),$(foreach e,$(4),
 run_names = $(foreach s,$(2),$(foreach c,$(1),$(c)/seed$(s)))
 # seeds N: 1..N (N checked: a positive integer)
 seeds = $(if $(filter-out 0,$(shell echo '$(strip $(1))' | grep -xE '[0-9]+')),$(shell seq 1 $(1)),$(error SEEDS=$(1): a positive number of seeds))
-# size_w / size_h WxH: the width and height (checked: W x H, both positive)
-size_ok = $(if $(shell echo '$(strip $(1))' | grep -xE '[1-9][0-9]*x[1-9][0-9]*'),$(1),$(error SIZE=$(1): not WxH (e.g. 512x384)))
+# size_w / size_h WxH: the width and height (checked: W x H, both positive
+# and at most the renderer's largest side, 16384)
+size_ok = $(if $(shell echo '$(strip $(1))' | grep -xE '[1-9][0-9]*x[1-9][0-9]*'),$(if $(shell echo '$(strip $(1))' | awk -Fx '$$1 <= 16384 && $$2 <= 16384'),$(1),$(error SIZE=$(1): each side must be at most 16384, the renderer's --width and --height range)),$(error SIZE=$(1): not WxH (e.g. 512x384)))
 size_w = $(word 1,$(subst x, ,$(call size_ok,$(1))))
 size_h = $(word 2,$(subst x, ,$(call size_ok,$(1))))
 

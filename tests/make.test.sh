@@ -44,6 +44,15 @@ check "resolution refuses REF= (it takes RES_REF=ours or pov)" expect_exit 2 "RE
 check "SIZE=0x0 and SEEDS=abc are refused" bash -c "
   ! make -n reproduce-runs SIZE=0x0 > $TMP/s.log 2>&1 && grep -q 'SIZE=0x0: not WxH' $TMP/s.log &&
   ! make -n reproduce-runs SEEDS=abc > $TMP/e.log 2>&1 && grep -q 'SEEDS=abc: a positive number' $TMP/e.log"
+check "SIZE=99999x1 is refused with the renderer's range (16384x1 is not)" bash -c "
+  ! make -n reproduce-runs SIZE=99999x1 REF=x.exr > $TMP/w.log 2>&1 && grep -q 'SIZE=99999x1: each side must be at most 16384' $TMP/w.log &&
+  make -n reproduce-runs SIZE=16384x1 REF=x.exr > /dev/null 2>&1"
+mkdir -p "$TMP/sp ace"
+cp scenes/cornell.scene "$TMP/sp ace/my room.scene"
+check "a SCENE path with a space is refused, naming it (control: the same scene without)" bash -c "
+  ! make -n reproduce-runs SCENE='$TMP/sp ace/my room.scene' REF=x.exr > $TMP/sp.log 2>&1 &&
+  grep -q 'a path with a space cannot name make targets' $TMP/sp.log &&
+  make -n reproduce-runs SCENE=scenes/cornell.scene REF=x.exr > /dev/null 2>&1"
 
 # a scene without a reference: stop before rendering, say what to give
 cp scenes/cornell.scene "$TMP/my.scene"

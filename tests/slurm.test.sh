@@ -211,6 +211,14 @@ check "sweep-slurm SWEEP=a target without prerequisites fails" expect_exit 2 "ha
 printf 'a b\n' > "$TMP/spaces.txt"
 check "sweep-slurm: a line with two words fails, naming file:line" expect_exit 2 "spaces.txt:1: one make target per line" \
   make -s sweep-slurm TASKS="$TMP/spaces.txt" SLURM_DIR="$TMP/e5"
+printf 'build/photonmap\r\n\r\nbuild/obj/image.o\r\n' > "$TMP/crlf.txt"
+check "sweep-slurm: a task file with CRLF line ends gives the same tasks" bash -c "
+  make -s sweep-slurm TASKS='$TMP/crlf.txt' SLURM_DIR='$TMP/e7' > /dev/null &&
+  diff <(printf 'build/photonmap\nbuild/obj/image.o\n') '$TMP/e7/tasks'"
+printf 'build/photonmap\nno-such-target\n' > "$TMP/missing.txt"
+check "sweep-slurm: a task make has no rule for fails, naming it, and writes no job" bash -c "
+  ! make -s sweep-slurm TASKS='$TMP/missing.txt' SLURM_DIR='$TMP/e8' > '$TMP/e8.log' 2>&1 &&
+  grep -q 'no make rule for: no-such-target' '$TMP/e8.log' && [ ! -e '$TMP/e8/sweep.sbatch' ]"
 : > "$TMP/empty.txt"
 check "sweep-slurm: an empty task file fails" expect_exit 2 "no targets" make -s sweep-slurm TASKS="$TMP/empty.txt" SLURM_DIR="$TMP/e6"
 finish
