@@ -62,7 +62,7 @@ check "slabs (precomputed) vs POV-Ray reference: block metric, channel means" sl
 check "slabs: closed room, no photon escapes" no_escape "$TMP/slabs.json"
 oiiotool "$TMP/slabs.exr" --mulc 0.8 -o "$TMP/slabs-x08.exr"
 check "slabs control: brightness x0.8 fails" fails slabs_cmp "$TMP/slabs-x08.exr"
-# the variants beyond the paper (README, "the two estimates"): lazy renders
+# the variants beyond the paper (renderer/README.md, "the two estimates"): lazy renders
 # the paper's image bit for bit; each gate passes the same check
 $PM render scenes/slabs.scene "${SLABS[@]}" --method precomputed --rep-eval lazy --quiet -o "$TMP/slabs-lazy.exr"
 check "slabs (precomputed, --rep-eval lazy): the paper's image bit for bit" cmp "$TMP/slabs.exr" "$TMP/slabs-lazy.exr"
@@ -92,7 +92,7 @@ check "library vs POV-Ray reference: block metric, channel means" library_cmp "$
 check "library: closed room, no photon escapes" no_escape "$TMP/library.json"
 # the paper's method and the variant that holds here (--rep-gate plane, whose
 # precompute drops the adjacent faces' photons at the books' concave edges,
-# does not: p99 0.34, README)
+# does not: p99 0.34, renderer/README.md)
 $PM render scenes/library.scene "${LIBRARY[@]}" --method precomputed --quiet -o "$TMP/library-pre.exr"
 check "library (precomputed) vs POV-Ray reference" library_cmp "$TMP/library-pre.exr"
 $PM render scenes/library.scene "${LIBRARY[@]}" --method precomputed --rep-eval lazy --rep-gate plane-lookup --quiet \
