@@ -45,6 +45,20 @@ typedef struct {
  * of the point at leaf position i. Returns 0, or -1 when memory runs out
  * (the tree is then empty and safe to kd_free). n may be 0. */
 int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint32_t *perm, unsigned threads);
+/* An item of kd_build_items: a point and 20 bytes that are the caller's,
+ * which move with it (32 bytes in all). */
+typedef struct {
+    float p[3];
+    unsigned char payload[20];
+} kd_build_item;
+
+/* As kd_build over the items' points in their order (the same tree), but
+ * in place: the items are reordered into the tree's leaf order (item i
+ * holds leaf-order point i and its payload), and the build holds no
+ * memory beyond the items and the tree's own arrays (kd_tree_bytes).
+ * Returns 0, or -1 when memory runs out (the tree is then empty and the
+ * items untouched). n may be 0. */
+int kd_build_items(kd_tree *t, kd_build_item *items, uint32_t n, uint32_t leaf_size, unsigned threads);
 /* Frees the tree's arrays; the struct is left empty. A zeroed tree is fine. */
 void kd_free(kd_tree *t);
 /* Bytes of memory the tree holds. */

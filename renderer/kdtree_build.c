@@ -1,8 +1,10 @@
 /* kdtree_build: the tree's construction and its memory: kd_build (a
  * recursive median split on the widest axis, each median found by a
  * Floyd-Rivest sampled quickselect on a contiguous working copy of the
- * points), the height at which searches switch to range scans, kd_free,
- * kd_bytes and kd_build_peak_bytes.
+ * points; kd_build_items the same on the caller's own items, in place),
+ * the height at which searches switch to range scans, kd_free, kd_bytes
+ * and kd_build_peak_bytes. The splitting itself is kdtree_build.inc, once
+ * per item type.
  *
  * Threads: a node's split depends only on the items of its own range and
  * their order, and every node's range follows from n alone (each splits at
@@ -41,23 +43,6 @@ static uint32_t scan_height(uint32_t n, uint32_t nleaves)
     return h;
 }
 
-/* The build partitions a working copy of the points with their input
- * indices (16 bytes each), so every pass reads memory in order. */
-typedef struct {
-    float p[3];
-    uint32_t id;
-} kd_item;
-
-typedef struct {
-    kd_item *it;
-    kd_tree *t;
-} kd_builder;
-
-static float coord(const kd_builder *b, uint32_t i, int axis)
-{
-    return b->it[i].p[axis];
-}
-
 /* The k-th smallest (from 0) of the n floats v[] (reordered). */
 static float select_float(float *v, uint32_t n, uint32_t k)
 {
@@ -88,150 +73,6 @@ static float select_float(float *v, uint32_t n, uint32_t k)
     return v[lo];
 }
 
-/* Moves the items of p[lo..hi) whose `axis` coordinate is below v (strict)
- * or at most v (!strict) to the front, the rest after them; returns where
- * the rest begins. Branch-free (Lomuto's scheme with an unconditional swap):
- * the comparison only decides how far the front grows, so the loop runs at
- * the same speed whatever the data (a branch per item mispredicts half the
- * time on unordered points). */
-static uint32_t partition2(kd_item *p, uint32_t lo, uint32_t hi, int axis, float v, int strict)
-{
-    uint32_t front = lo;
-    for (uint32_t i = lo; i < hi; i++) {
-        kd_item x = p[i];
-        float c = x.p[axis];
-        p[i] = p[front];
-        p[front] = x;
-        front += strict ? c < v : c <= v;
-    }
-    return front;
-}
-
-/* Three-way partition of it[lo..hi) by `axis`: below p1 | from p1 to p2 |
- * above p2, as two branch-free passes. Sets *lt and *gt to the bounds of
- * the middle part. */
-static void partition3(kd_item *p, uint32_t lo, uint32_t hi, int axis, float p1, float p2, uint32_t *lt_out,
-                       uint32_t *gt_out)
-{
-    uint32_t lt = partition2(p, lo, hi, axis, p1, 1);
-    *lt_out = lt;
-    *gt_out = partition2(p, lt, hi, axis, p2, 0);
-}
-
-/* Reorders it[lo..hi) so that the element at position k is the one a full
- * sort by `axis` would put there, with smaller-or-equal ones before it.
- * Long ranges are first split around two values that a sample of them
- * places just below and just above the k-th (Floyd & Rivest), so that the
- * quickselect after works on a small middle part instead of half the
- * range each pass. */
-#define KD_SAMPLE_MIN 4096u /* ranges at least this long are sampled */
-#define KD_SAMPLE_MAX 1023u
-
-static void select_kth(kd_builder *b, uint32_t lo, uint32_t hi, uint32_t k, int axis)
-{
-    kd_item *p = b->it;
-    assert(lo <= k && k < hi);
-    if (hi - lo >= KD_SAMPLE_MIN) {
-        uint32_t len = hi - lo, ns = len / 64 < KD_SAMPLE_MAX ? len / 64 : KD_SAMPLE_MAX;
-        float sample[KD_SAMPLE_MAX];
-        for (uint32_t j = 0; j < ns; j++)
-            sample[j] = p[lo + (uint32_t)((uint64_t)len * (2 * j + 1) / (2 * ns))].p[axis];
-        /* the k-th's rank in the sample, give or take 3 standard deviations */
-        uint32_t at = (uint32_t)((uint64_t)(k - lo) * ns / len), d = (uint32_t)(1.5f * sqrtf((float)ns)) + 1;
-        float p1 = select_float(sample, ns, at > d ? at - d : 0);
-        float p2 = select_float(sample, ns, at + d < ns ? at + d : ns - 1);
-        uint32_t lt, gt;
-        partition3(p, lo, hi, axis, p1, p2, &lt, &gt);
-        if (k < lt)
-            hi = lt;
-        else if (k >= gt)
-            lo = gt;
-        else {
-            lo = lt;
-            hi = gt;
-        }
-    }
-    while (hi - lo > 1) {
-        /* median of three pivot */
-        uint32_t mid = lo + (hi - lo) / 2;
-        float a = coord(b, lo, axis), m = coord(b, mid, axis), c = coord(b, hi - 1, axis);
-        float pivot = a < m ? (m < c ? m : (a < c ? c : a)) : (a < c ? a : (m < c ? c : m));
-        uint32_t lt, gt;
-        partition3(p, lo, hi, axis, pivot, pivot, &lt, &gt);
-        if (k < lt)
-            hi = lt;
-        else if (k >= gt)
-            lo = gt;
-        else
-            return;
-    }
-}
-
-/* Bounds of it[lo..hi) (lo < hi). */
-static void bounds(const kd_item *it, uint32_t lo, uint32_t hi, float mn[3], float mx[3])
-{
-#if defined(__SSE2__)
-    __m128 vmn = _mm_loadu_ps(it[lo].p), vmx = vmn; /* lane 3 holds the id's bits: ignored */
-    for (uint32_t i = lo + 1; i < hi; i++) {
-        __m128 v = _mm_loadu_ps(it[i].p);
-        vmn = _mm_min_ps(v, vmn); /* v < mn ? v : mn */
-        vmx = _mm_max_ps(v, vmx); /* v > mx ? v : mx */
-    }
-    float a[4], c[4];
-    _mm_storeu_ps(a, vmn);
-    _mm_storeu_ps(c, vmx);
-    for (int k = 0; k < 3; k++) {
-        mn[k] = a[k];
-        mx[k] = c[k];
-    }
-#else
-    for (int a = 0; a < 3; a++)
-        mn[a] = mx[a] = it[lo].p[a];
-    for (uint32_t i = lo + 1; i < hi; i++)
-        for (int a = 0; a < 3; a++) {
-            float v = it[i].p[a];
-            mn[a] = v < mn[a] ? v : mn[a];
-            mx[a] = v > mx[a] ? v : mx[a];
-        }
-#endif
-}
-
-/* Splits inner node `node` over it[lo..hi): its axis and split value, the
- * range reordered so that [lo, mid) and [mid, hi) are its children's. */
-static void split_node(kd_builder *b, uint32_t node, uint32_t lo, uint32_t hi)
-{
-    kd_tree *t = b->t;
-    float mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
-    if (hi > lo)
-        bounds(b->it, lo, hi, mn, mx);
-    int axis = 0;
-    for (int a = 1; a < 3; a++)
-        if (mx[a] - mn[a] > mx[axis] - mn[axis])
-            axis = a;
-    uint32_t mid = lo + (hi - lo) / 2;
-    if (hi > lo) {
-        select_kth(b, lo, hi, mid, axis);
-        t->split[node] = mid < hi ? coord(b, mid, axis) : mx[axis];
-    } else {
-        t->split[node] = 0.0f;
-    }
-    t->axis[node] = (uint8_t)axis;
-}
-
-static void build_node(kd_builder *b, uint32_t node, uint32_t lo, uint32_t hi, uint32_t level_leaves)
-{
-    kd_tree *t = b->t;
-    if (level_leaves == 1) {
-        uint32_t leaf = node - (t->nleaves - 1);
-        t->leaf_start[leaf] = lo;
-        return;
-    }
-    split_node(b, node, lo, hi);
-    uint32_t mid = lo + (hi - lo) / 2;
-    build_node(b, 2 * node + 1, lo, mid, level_leaves / 2);
-    build_node(b, 2 * node + 2, mid, hi, level_leaves / 2);
-}
-
 /* The range of node j (from 0, left to right) of level `level` in a tree
  * over n points: the halvings from the root that build_node makes. */
 static void node_range(uint32_t n, uint32_t level, uint64_t j, uint32_t *lo_out, uint32_t *hi_out)
@@ -248,22 +89,44 @@ static void node_range(uint32_t n, uint32_t level, uint64_t j, uint32_t *lo_out,
     *hi_out = hi;
 }
 
+/* kd_build partitions a working copy of the points with their input
+ * indices (16 bytes each), so every pass reads memory in order;
+ * kd_build_items partitions the caller's items in place. */
+typedef struct {
+    float p[3];
+    uint32_t id;
+} kd_item;
+
+#define KD_T kd_item
+#define KD_S(name) name##_id
+#include "kdtree_build.inc"
+#undef KD_T
+#undef KD_S
+
+#define KD_T kd_build_item
+#define KD_S(name) name##_items
+#include "kdtree_build.inc"
+#undef KD_T
+#undef KD_S
+
 #define KD_BLOCK 65536u /* items per block of the parallel copies */
 
 typedef struct {
-    kd_builder *b;
-    const float *pts;
-    uint32_t *perm;
+    const float *pts;    /* kd_build's input points */
+    kd_item *it;         /* kd_build's working copy */
+    const char *items;   /* the items in leaf order (either kind) */
+    size_t stride;       /* bytes from one item to the next */
+    uint32_t *perm;      /* kd_build's perm, or NULL */
+    kd_tree *t;
     uint32_t n;
-    uint32_t level;         /* the level being split, or the subtrees' level */
-    float (*box)[2][3];     /* per block of the copy-out: min, max */
+    float (*box)[2][3];  /* per block of the copy-out: min, max */
 } kd_par;
 
 static void fill_block(uint64_t blk, unsigned thread, void *arg)
 {
     (void)thread;
     kd_par *kp = arg;
-    kd_item *it = kp->b->it;
+    kd_item *it = kp->it;
     uint32_t lo = (uint32_t)(blk * KD_BLOCK), hi = kp->n - lo < KD_BLOCK ? kp->n : lo + KD_BLOCK;
     for (uint32_t i = lo; i < hi; i++) {
         it[i].p[0] = kp->pts[3 * (size_t)i];
@@ -273,21 +136,20 @@ static void fill_block(uint64_t blk, unsigned thread, void *arg)
     }
 }
 
-/* Writes perm, x, y, z of one block and the block's bounds (min and max by
- * strict comparisons in item order, so blocks merged in block order give
- * what one pass over all items gives). */
+/* Writes x, y, z (and perm, for kd_build) of one block and the block's
+ * bounds (min and max by strict comparisons in item order, so blocks
+ * merged in block order give what one pass over all items gives). */
 static void out_block(uint64_t blk, unsigned thread, void *arg)
 {
     (void)thread;
     kd_par *kp = arg;
-    const kd_item *it = kp->b->it;
-    kd_tree *t = kp->b->t;
+    kd_tree *t = kp->t;
     uint32_t lo = (uint32_t)(blk * KD_BLOCK), hi = kp->n - lo < KD_BLOCK ? kp->n : lo + KD_BLOCK;
     float mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (uint32_t i = lo; i < hi; i++) {
-        const float *p = it[i].p;
+        const float *p = (const float *)(const void *)(kp->items + (size_t)i * kp->stride);
         if (kp->perm)
-            kp->perm[i] = it[i].id;
+            kp->perm[i] = kp->it[i].id;
         t->x[i] = p[0];
         t->y[i] = p[1];
         t->z[i] = p[2];
@@ -300,31 +162,13 @@ static void out_block(uint64_t blk, unsigned thread, void *arg)
     memcpy(kp->box[blk][1], mx, sizeof mx);
 }
 
-static void split_level_node(uint64_t j, unsigned thread, void *arg)
-{
-    (void)thread;
-    kd_par *kp = arg;
-    uint32_t lo, hi;
-    node_range(kp->n, kp->level, j, &lo, &hi);
-    split_node(kp->b, (uint32_t)((1u << kp->level) - 1 + j), lo, hi);
-}
-
-static void build_subtree(uint64_t j, unsigned thread, void *arg)
-{
-    (void)thread;
-    kd_par *kp = arg;
-    uint32_t lo, hi;
-    node_range(kp->n, kp->level, j, &lo, &hi);
-    build_node(kp->b, (uint32_t)((1u << kp->level) - 1 + j), lo, hi, kp->b->t->nleaves >> kp->level);
-}
-
-int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint32_t *perm, unsigned threads)
+/* Sets up t for n points (its shape and arrays) and kp's block bounds.
+ * Returns 0, or -1 when memory runs out (t is then empty). */
+static int tree_begin(kd_tree *t, uint32_t n, uint32_t leaf_size, kd_par *kp)
 {
     memset(t, 0, sizeof *t);
     if (leaf_size == 0)
         leaf_size = KD_DEFAULT_LEAF;
-    if (threads == 0)
-        threads = 1;
     uint32_t nleaves = 1;
     while ((uint64_t)nleaves * leaf_size < n)
         nleaves *= 2;
@@ -332,50 +176,75 @@ int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint3
     t->nleaves = nleaves;
     t->scan_h = scan_height(n, nleaves);
     uint64_t nblocks = ((uint64_t)n + KD_BLOCK - 1) / KD_BLOCK;
-    kd_item *it = mem_alloc(sizeof(kd_item) * (n ? n : 1));
-    float(*box)[2][3] = malloc(sizeof *box * (nblocks ? nblocks : 1));
+    kp->t = t;
+    kp->n = n;
+    kp->box = malloc(sizeof *kp->box * (nblocks ? nblocks : 1));
     t->split = mem_alloc(sizeof(float) * nleaves);
     t->axis = mem_alloc(nleaves);
     t->leaf_start = mem_alloc(sizeof(uint32_t) * (nleaves + 1));
     t->x = mem_zalloc(((size_t)n + KD_CHUNK) * sizeof(float));
     t->y = mem_zalloc(((size_t)n + KD_CHUNK) * sizeof(float));
     t->z = mem_zalloc(((size_t)n + KD_CHUNK) * sizeof(float));
-    if (!it || !box || !t->split || !t->axis || !t->leaf_start || !t->x || !t->y || !t->z) {
-        mem_free(it);
-        free(box);
+    if (!kp->box || !t->split || !t->axis || !t->leaf_start || !t->x || !t->y || !t->z) {
+        free(kp->box);
+        kp->box = NULL;
         kd_free(t);
         return -1;
     }
-    kd_builder b = {it, t};
-    kd_par kp = {&b, pts, perm, n, 0, box};
-    parallel_for(threads, nblocks, fill_block, &kp);
-    uint32_t depth = (uint32_t)__builtin_ctz(nleaves);
-    if (threads == 1 || depth == 0) {
-        build_node(&b, 0, 0, n, nleaves);
-    } else {
-        /* 2^top subtrees: eight or more per thread, for balance */
-        uint32_t top = 3;
-        while ((1u << (top - 3)) < threads && top < 16)
-            top++;
-        top = top < depth ? top : depth;
-        for (kp.level = 0; kp.level < top; kp.level++)
-            parallel_for(threads, (uint64_t)1 << kp.level, split_level_node, &kp);
-        kp.level = top;
-        parallel_for(threads, (uint64_t)1 << top, build_subtree, &kp);
-    }
-    t->leaf_start[nleaves] = n;
-    parallel_for(threads, nblocks, out_block, &kp);
+    return 0;
+}
+
+/* Copies the points (in leaf order in kp->items) out to the tree's arrays
+ * and sets its bounds; frees kp's block bounds. */
+static void tree_end(kd_par *kp, unsigned threads)
+{
+    kd_tree *t = kp->t;
+    uint64_t nblocks = ((uint64_t)kp->n + KD_BLOCK - 1) / KD_BLOCK;
+    parallel_for(threads, nblocks, out_block, kp);
     for (int a = 0; a < 3; a++) {
         t->lo[a] = INFINITY;
         t->hi[a] = -INFINITY;
     }
     for (uint64_t k = 0; k < nblocks; k++)
         for (int a = 0; a < 3; a++) {
-            t->lo[a] = box[k][0][a] < t->lo[a] ? box[k][0][a] : t->lo[a];
-            t->hi[a] = box[k][1][a] > t->hi[a] ? box[k][1][a] : t->hi[a];
+            t->lo[a] = kp->box[k][0][a] < t->lo[a] ? kp->box[k][0][a] : t->lo[a];
+            t->hi[a] = kp->box[k][1][a] > t->hi[a] ? kp->box[k][1][a] : t->hi[a];
         }
-    free(box);
-    mem_free(it);
+    free(kp->box);
+    kp->box = NULL;
+}
+
+int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint32_t *perm, unsigned threads)
+{
+    kd_par kp = {pts, NULL, NULL, sizeof(kd_item), perm, t, n, NULL};
+    if (tree_begin(t, n, leaf_size, &kp))
+        return -1;
+    kp.it = mem_alloc(sizeof(kd_item) * (n ? n : 1));
+    if (!kp.it) {
+        free(kp.box);
+        kd_free(t);
+        return -1;
+    }
+    kp.items = (const char *)kp.it;
+    threads = threads ? threads : 1;
+    parallel_for(threads, ((uint64_t)n + KD_BLOCK - 1) / KD_BLOCK, fill_block, &kp);
+    builder_id b = {kp.it, t};
+    build_all_id(&b, n, threads);
+    tree_end(&kp, threads);
+    mem_free(kp.it);
+    return 0;
+}
+
+int kd_build_items(kd_tree *t, kd_build_item *items, uint32_t n, uint32_t leaf_size, unsigned threads)
+{
+    assert(items || n == 0);
+    kd_par kp = {NULL, NULL, (const char *)items, sizeof(kd_build_item), NULL, t, n, NULL};
+    if (tree_begin(t, n, leaf_size, &kp))
+        return -1;
+    threads = threads ? threads : 1;
+    builder_items b = {items, t};
+    build_all_items(&b, n, threads);
+    tree_end(&kp, threads);
     return 0;
 }
 

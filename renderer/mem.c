@@ -120,6 +120,21 @@ void mem_free(void *p)
         free(h);
 }
 
+void mem_release(void *p, size_t off, size_t len)
+{
+    if (!p || len == 0)
+        return;
+    mem_head *h = head_of(p);
+    assert(off <= h->bytes && len <= h->bytes - off);
+    if (!h->map)
+        return;
+    uintptr_t a = (uintptr_t)p + off, b = a + len;
+    a = (a + 4095u) & ~(uintptr_t)4095u;
+    b &= ~(uintptr_t)4095u;
+    if (b > a)
+        (void)madvise((void *)a, (size_t)(b - a), MADV_DONTNEED);
+}
+
 void *mem_realloc(void *p, size_t bytes)
 {
     if (!p)
@@ -128,7 +143,9 @@ void *mem_realloc(void *p, size_t bytes)
     if (bytes > SIZE_MAX - MEM_ALIGN - MEM_HEAD)
         return NULL;
     size_t total = bytes + MEM_HEAD;
-    if (h->map && total >= MEM_HUGE_MIN) {
+    if (h->map && (total >= MEM_HUGE_MIN || page_round(total) <= h->map)) {
+        /* a mapping stays one, also when it shrinks below MEM_HUGE_MIN:
+         * moving it to malloc would copy it into fresh small pages */
         size_t map = page_round(total);
         if (map == h->map) {
             h->bytes = bytes;

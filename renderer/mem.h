@@ -31,9 +31,18 @@ void *mem_alloc(size_t bytes);
 void *mem_zalloc(size_t bytes);
 /* Grows or shrinks p (NULL: as mem_alloc) to `bytes`, keeping the first
  * min(old, bytes) bytes; large buffers move by remapping, not copying,
- * where the system can. Returns the new pointer, or NULL when memory runs
+ * where the system can, and shrink in place (also below MEM_HUGE_MIN),
+ * their tail's pages going back to the system. Returns the new pointer, or NULL when memory runs
  * out (p is then unchanged and still valid). */
 void *mem_realloc(void *p, size_t bytes);
+/* Gives back to the system the whole 4 KiB pages of p's bytes
+ * [off, off + len) (off + len <= the buffer's size), which read as zero
+ * afterwards; the buffer stays valid. Lets a pass that consumes a large
+ * buffer in order hand its memory back as it goes. Does nothing for a
+ * buffer from malloc (below MEM_HUGE_MIN). Never fails (the advice may be
+ * ignored, which costs memory, never correctness of what is still to be
+ * read). */
+void mem_release(void *p, size_t off, size_t len);
 /* Frees a buffer of mem_alloc/mem_zalloc/mem_realloc; NULL is fine. */
 void mem_free(void *p);
 

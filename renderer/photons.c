@@ -66,6 +66,11 @@ typedef struct {
  * runs out (c is then unchanged). */
 static int chunk_reserve(photons_chunk *c, uint64_t want)
 {
+    /* never below what mem_round makes a mapping of: a chunk's memory
+     * then goes back to the system when the join frees it (malloc would
+     * keep it for reuse, so the chunks and the list would both be held) */
+    uint64_t least = MEM_HUGE_MIN / 2 / sizeof(photons_record) + 1;
+    want = want > least ? want : least;
     size_t pos_bytes = mem_round(want * 3 * sizeof(double)), ph_bytes = mem_round(want * sizeof(photons_record));
     uint64_t a = pos_bytes / (3 * sizeof(double)), b = ph_bytes / sizeof(photons_record);
     double *np = mem_realloc(c->pos, pos_bytes);
@@ -170,6 +175,15 @@ static void trace_chunk(uint64_t chunk, unsigned thread, void *arg)
     for (uint64_t i = lo; i < hi && !c.failed; i++) {
         if (trace_one(tc, i, &c))
             c.failed = 1;
+    }
+    if (!c.failed && c.cap > c.count) {
+        /* the buffers' unused tails go back: their last huge page is
+         * backed whole once touched, a waste of up to 2 MiB each while the
+         * chunk waits to be joined (a failed shrink keeps them as they are) */
+        double *np = mem_realloc(c.pos, (c.count ? c.count : 1) * 3 * sizeof(double));
+        c.pos = np ? np : c.pos;
+        photons_record *nph = mem_realloc(c.ph, (c.count ? c.count : 1) * sizeof(photons_record));
+        c.ph = nph ? nph : c.ph;
     }
     tc->chunks[chunk] = c;
     progress_add(tc->prog, hi - lo);
@@ -292,13 +306,22 @@ static void map_frame(uint64_t count, const double lo[3], const double hi[3], ve
  * is merged in block order, which gives what one pass in order gives. */
 #define PHOTONS_BLOCK 65536u
 
+/* The conversion into the tree's items runs over this many segments of
+ * blocks, in order; after each, the list's pages it has read go back to
+ * the system, so the list and the items are never both whole. */
+#define PHOTONS_SEGMENTS 32u
+
+_Static_assert(sizeof(photons_record) == sizeof(((kd_build_item *)0)->payload),
+               "a record is a tree item's payload");
+
 typedef struct {
     const photons_list *l;
     uint8_t leave_out;
     photons_map *m;
     photons_list *left;
-    float *pts;
-    uint32_t *src, *perm;
+    kd_build_item *items; /* the tree's input, then (in place) its leaf order */
+    uint64_t first;       /* split_block: the segment's first block; compact_block: the round's first item */
+    uint64_t end;         /* compact_block: the round's end */
     double (*box)[2][3];  /* per block: min, max */
     uint32_t (*at)[2];    /* per block: its photons' first tree input, first left-out */
 } build_ctx;
@@ -331,12 +354,14 @@ static void scan_block(uint64_t blk, unsigned thread, void *arg)
     bc->at[blk][1] = out;
 }
 
-/* A block's photons into the tree's input (map frame) or the left-out list. */
-static void split_block(uint64_t blk, unsigned thread, void *arg)
+/* Block first + k's photons into the tree's items (map frame, the record
+ * as payload) or the left-out list. */
+static void split_block(uint64_t k, unsigned thread, void *arg)
 {
     (void)thread;
     build_ctx *bc = arg;
     const photons_list *l = bc->l;
+    uint64_t blk = bc->first + k;
     uint32_t lo, hi, j = bc->at[blk][0], r = bc->at[blk][1];
     block_range(blk, l->count, &lo, &hi);
     for (uint32_t i = lo; i < hi; i++) {
@@ -346,20 +371,47 @@ static void split_block(uint64_t blk, unsigned thread, void *arg)
             continue;
         }
         vec3 x = vec_make(l->pos[3 * (size_t)i], l->pos[3 * (size_t)i + 1], l->pos[3 * (size_t)i + 2]);
-        photons_map_point(bc->m, x, bc->pts + 3 * (size_t)j);
-        bc->src[j++] = i;
+        photons_map_point(bc->m, x, bc->items[j].p);
+        memcpy(bc->items[j].payload, &l->ph[i], sizeof(photons_record));
+        j++;
     }
 }
 
-/* A block of the payload in the tree's leaf order. */
-static void gather_block(uint64_t blk, unsigned thread, void *arg)
+/* Moves the payload of items [lo, hi) to records [lo, hi) of the same
+ * buffer (record i at byte 20 i, item i at byte 32 i). */
+static void compact_range(kd_build_item *items, uint32_t lo, uint32_t hi)
+{
+    char *base = (char *)items;
+    for (uint32_t i = lo; i < hi; i++)
+        memmove(base + (size_t)i * sizeof(photons_record), items[i].payload, sizeof(photons_record));
+}
+
+/* One block of a compaction round [first, end). */
+static void compact_block(uint64_t k, unsigned thread, void *arg)
 {
     (void)thread;
     build_ctx *bc = arg;
-    uint32_t lo, hi;
-    block_range(blk, bc->m->count, &lo, &hi);
-    for (uint32_t i = lo; i < hi; i++)
-        bc->m->ph[i] = bc->l->ph[bc->src[bc->perm[i]]];
+    uint64_t lo = bc->first + k * PHOTONS_BLOCK, hi = lo + PHOTONS_BLOCK < bc->end ? lo + PHOTONS_BLOCK : bc->end;
+    compact_range(bc->items, (uint32_t)lo, (uint32_t)hi);
+}
+
+/* Turns the n items, in leaf order, into n records at the front of their
+ * own buffer. A round over items [a, b) writes bytes [20 a, 20 b) and reads
+ * [32 a, 32 b): with b <= 1.6 a no write of a round lands on an item that
+ * is still to be read, so a round's blocks run in parallel. */
+static void compact_items(build_ctx *bc, uint32_t n, unsigned threads)
+{
+    uint64_t a = n < PHOTONS_BLOCK ? n : PHOTONS_BLOCK;
+    compact_range(bc->items, 0, (uint32_t)a); /* in order: the first items' records overlap them */
+    while (a < n) {
+        uint64_t b = a + a * 3 / 5;
+        b = b < n ? b : n;
+        assert(b * sizeof(photons_record) <= a * sizeof(kd_build_item));
+        bc->first = a;
+        bc->end = b;
+        parallel_for(threads, (b - a + PHOTONS_BLOCK - 1) / PHOTONS_BLOCK, compact_block, bc);
+        a = b;
+    }
 }
 
 void photons_map_point(const photons_map *m, vec3 x, float q[3])
@@ -368,6 +420,23 @@ void photons_map_point(const photons_map *m, vec3 x, float q[3])
     q[0] = (float)((x.x - m->centre.x) * inv);
     q[1] = (float)((x.y - m->centre.y) * inv);
     q[2] = (float)((x.z - m->centre.z) * inv);
+}
+
+/* Converts the list's blocks into the tree's items and the left-out list,
+ * a segment at a time, handing the list's pages back after each. */
+static void convert_list(build_ctx *bc, uint64_t nblocks, unsigned threads)
+{
+    const photons_list *l = bc->l;
+    uint64_t per = nblocks / PHOTONS_SEGMENTS ? nblocks / PHOTONS_SEGMENTS : 1, done = 0;
+    for (uint64_t s = 0; s < nblocks; s += per) {
+        uint64_t e = s + per < nblocks ? s + per : nblocks;
+        bc->first = s;
+        parallel_for(threads, e - s, split_block, bc);
+        uint64_t upto = e * PHOTONS_BLOCK < l->count ? e * PHOTONS_BLOCK : l->count;
+        mem_release(l->pos, done * 3 * sizeof(double), (upto - done) * 3 * sizeof(double));
+        mem_release(l->ph, done * sizeof(photons_record), (upto - done) * sizeof(photons_record));
+        done = upto;
+    }
 }
 
 pm_status photons_build_map(photons_list *l, uint8_t leave_out, unsigned threads, photons_map *m, photons_list *left)
@@ -383,7 +452,7 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, unsigned threads
     m->unit = l->unit;
     m->stored = l->count;
     uint64_t nblocks = (l->count + PHOTONS_BLOCK - 1) / PHOTONS_BLOCK;
-    build_ctx bc = {l, leave_out, m, left, NULL, NULL, NULL, NULL, NULL};
+    build_ctx bc = {l, leave_out, m, left, NULL, 0, 0, NULL, NULL};
     bc.box = malloc(sizeof *bc.box * (nblocks ? nblocks : 1));
     bc.at = malloc(sizeof *bc.at * (nblocks ? nblocks : 1));
     int rc = (!bc.box || !bc.at) ? -1 : 0;
@@ -404,11 +473,8 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, unsigned threads
             nout += out;
         }
         map_frame(l->count, lo, hi, &m->centre, &m->scale, &m->extent);
-        bc.pts = mem_alloc(sizeof(float) * 3 * (n ? n : 1));
-        bc.src = mem_alloc(sizeof(uint32_t) * (n ? n : 1)); /* tree input index -> list index */
-        bc.perm = mem_alloc(sizeof(uint32_t) * (n ? n : 1));
-        m->ph = mem_alloc(sizeof(photons_record) * (n ? n : 1));
-        rc = (!bc.pts || !bc.src || !bc.perm || !m->ph) ? -1 : 0;
+        bc.items = mem_alloc(sizeof(kd_build_item) * (n ? n : 1));
+        rc = !bc.items ? -1 : 0;
     }
     if (rc == 0 && left) {
         left->pos = mem_alloc(sizeof(double) * 3 * (nout ? nout : 1));
@@ -418,22 +484,25 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, unsigned threads
     }
     assert(rc != 0 || left || nout == 0);
     if (rc == 0) {
-        parallel_for(threads, nblocks, split_block, &bc);
+        convert_list(&bc, nblocks, threads);
         if (left)
             left->count = nout;
-        rc = kd_build(&m->tree, bc.pts, n, KD_DEFAULT_LEAF, bc.perm, threads);
-    }
-    if (rc == 0) {
-        m->count = n;
-        parallel_for(threads, (n + PHOTONS_BLOCK - 1) / PHOTONS_BLOCK, gather_block, &bc);
     }
     free(bc.box);
     free(bc.at);
-    mem_free(bc.pts);
-    mem_free(bc.src);
-    mem_free(bc.perm);
     photons_list_free(l);
-    if (rc != 0) {
+    if (rc == 0)
+        rc = kd_build_items(&m->tree, bc.items, n, KD_DEFAULT_LEAF, threads);
+    if (rc == 0) {
+        m->count = n;
+        compact_items(&bc, n, threads);
+        /* the records' tail of the items' buffer goes back (a shrink
+         * keeps the buffer where it is; should a copy fail, the buffer
+         * stays as it is, larger than it needs) */
+        photons_record *ph = mem_realloc(bc.items, sizeof(photons_record) * (n ? n : 1));
+        m->ph = ph ? ph : (photons_record *)(void *)bc.items;
+    } else {
+        mem_free(bc.items);
         photons_map_free(m);
         if (left)
             photons_list_free(left);
@@ -455,17 +524,20 @@ size_t photons_map_bytes(const photons_map *m)
 
 double photons_peak_bytes(double stored)
 {
-    /* The trace: while the chunks are joined, the chunk buffers and the
-     * joined list (double positions). The build: the list, the tree's
-     * input (map-frame floats) and the two permutations stay alive
-     * throughout; beside them first kd_build's working copy and the tree,
-     * then the tree and the payload gathered into leaf order (kd_build's
-     * copy is freed before the payload is written). */
+    /* The trace: the chunks (each shrunk to its photons when done) and
+     * the joined list, each chunk freed as soon as it is copied: one list
+     * (double positions and a record) at once. The conversion: the list,
+     * its pages handed back a segment at a time, beside the tree's items
+     * (or the left-out list) written so far: at most one segment of both.
+     * The build: the items, reordered in place, beside the tree's arrays;
+     * then the records compacted into the items' buffer, which shrinks. */
     double list = 3.0 * sizeof(double) + sizeof(photons_record);
-    double held = stored * (list + 3.0 * sizeof(float) + 2.0 * sizeof(uint32_t));
-    double tree = kd_tree_bytes(stored, KD_DEFAULT_LEAF);
-    double gather = tree + stored * sizeof(photons_record);
-    return fmax(stored * 2.0 * list, held + fmax(kd_build_peak_bytes(stored, KD_DEFAULT_LEAF), gather));
+    /* beside them, while chunks are traced, the last huge page of each
+     * buffer of a chunk in flight (two buffers, on two threads) */
+    double inflight = 4.0 * (double)MEM_HUGE_MIN;
+    double convert = stored * list * (1.0 + 1.0 / PHOTONS_SEGMENTS) + inflight;
+    double build = stored * (double)sizeof(kd_build_item) + kd_tree_bytes(stored, KD_DEFAULT_LEAF);
+    return fmax(convert, build);
 }
 
 double photons_stored_per_emitted(const scene *sc, const photons_params *p)

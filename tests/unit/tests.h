@@ -15,6 +15,10 @@
     X(kdtree_query_avx2) \
     X(kdtree_build_memory) \
     X(kdtree_build_threads) \
+    /* test_scale.c */ \
+    X(kdtree_build_items) \
+    X(photons_map_matches_plain_build) \
+    X(photons_peak_memory) \
     /* test_kdtree_select.c */ \
     X(kdtree_select_base) \
     X(kdtree_select_avx2) \
