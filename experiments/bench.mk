@@ -29,3 +29,16 @@ bench: bench-bin
 .PHONY: bench-quick
 bench-quick: bench-bin
 	bash experiments/bench/run.sh --quick
+
+# `make bench-scaling` (also run by `make bench`): each phase's cost and the
+# peak memory per stored photon against the emitted photons, with fitted
+# log-log slopes -> results/bench/scaling.{csv,md}, results/figures/bench-scaling.png
+# (experiments/bench/scaling.sh; SCALING_PHOTONS: the counts, e.g. add
+# 10000000 20000000 for the full range; SCALING_THREADS: threads, 2).
+SCALING_PHOTONS ?= 50000 100000 200000 500000 1000000 2000000 5000000
+SCALING_THREADS ?= 2
+.PHONY: bench-scaling
+bench-scaling: $(BUILD)/photonmap
+	SCALING_PHOTONS="$(SCALING_PHOTONS)" SCALING_THREADS="$(SCALING_THREADS)" PYTHON="$(PYTHON)" \
+	  bash experiments/bench/scaling.sh $(BUILD)/photonmap
+bench: bench-scaling
