@@ -44,7 +44,7 @@ endef
 
 REF_SMALL := cornell-direct-129x96 cornell-fast-128x96 cornell-nocaustic-128x96 caustic-fast-128x96 caustic-reference-128x96 caustic-nocaustic-128x96 cornell-fast-16x12 \
              cornell-direct-256x192 cornell-fast-256x192 cornell-reference-256x192
-REF_LARGE := cornell-reference-1024x768 cornell-fast-1024x768
+REF_LARGE := cornell-reference-1024x768 cornell-reference-2x2-1024x768 cornell-fast-1024x768
 
 # direct light only, for the per-pixel check: an odd width and a 3x3 grid, so
 # that no sample ray hits a room edge exactly (the camera is centred in the
@@ -62,6 +62,9 @@ $(eval $(call ref_render,cornell-direct-256x192,$(REF_SCENE),256,192,2,--no-radi
 $(eval $(call ref_render,cornell-fast-256x192,$(REF_SCENE),256,192,2,--quality fast,))
 $(eval $(call ref_render,cornell-reference-256x192,$(REF_SCENE),256,192,2,--quality reference,))
 $(eval $(call ref_render,cornell-reference-1024x768,$(REF_SCENE),1024,768,1,--quality reference,))
+# the same with the renders' own 2x2 subpixel rays (F = 2: rendered at
+# 2048x1536 and box-downsampled), so that per-pixel metrics are valid against it
+$(eval $(call ref_render,cornell-reference-2x2-1024x768,$(REF_SCENE),1024,768,2,--quality reference,))
 # the same pixels at fast quality: its difference from the reference-quality
 # render is the reference's own floor in the table's error columns
 $(eval $(call ref_render,cornell-fast-1024x768,$(REF_SCENE),1024,768,1,--quality fast,))
