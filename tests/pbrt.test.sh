@@ -86,6 +86,13 @@ pathmin() {
 }
 check "path with --min-bounces 9: mindepth 10" pathmin
 
+help_ok() {
+  $PM export-pbrt --help > "$TMP/h.txt" && for o in --width --height --integrator --bounces --min-bounces --spp --fixed-subpixels -o; do
+    grep -A1 -E "^  $o( |\$)" "$TMP/h.txt" | grep -q "(default: " || { echo "$o without a default"; return 1; }
+  done && $PM --help | grep -q 'usage: photonmap export-pbrt'
+}
+check "export-pbrt --help: every option with its default; photonmap --help lists it" help_ok
+
 # --- refusals ---------------------------------------------------------------
 refused() { # SED PATTERN [OPTIONS]: the edited scene is refused, exit 2, cause named, no file left
   local s=$1 pat=$2; shift 2
