@@ -6,7 +6,8 @@
 #     2x2 subpixel points against `render --direct shadow-rays --photons 0`,
 #     the per-pixel ratio's median and spread;
 #  2. the converged photonmap renders (PM_PHOTONS photons, n = PM_NN,
-#     --bias-correction, --direct shadow-rays, seeds 1..PM_SEEDS) in
+#     --bias-correction, --direct shadow-rays, seeds 1..PM_SEEDS; and the same
+#     at half the photons, for the kernel bias) in
 #     build/reference/pbrt-measure/, then reference/pbrt/agreement.py's
 #     region table, written to reference/pbrt/agreement.md and spliced into
 #     reference/README.md between its two agreement markers.
@@ -14,7 +15,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PY=${PYTHON:-/usr/bin/python3}
-PM_PHOTONS=${PM_PHOTONS:-2000000} PM_NN=${PM_NN:-200} PM_SEEDS=${PM_SEEDS:-4}
+PM_PHOTONS=${PM_PHOTONS:-5000000} PM_NN=${PM_NN:-200} PM_SEEDS=${PM_SEEDS:-4}
 out=build/reference/pbrt-measure; mkdir -p "$out"
 make -s build/photonmap
 pbrt=${PBRT:-$(command -v pbrt || true)}
@@ -49,15 +50,18 @@ for s in cornell:256:192:reference/cornell/cornell-reference-256x192.exr \
          library:128:96:reference/library/library-reference-128x96.exr; do
   IFS=: read -r scene w h pov <<< "$s"
   ls reference/$scene/$scene-pbrt-bdpt-256x192-seed*.exr > /dev/null 2>&1 || continue
-  d=$out/$scene-pm-${w}x${h}; mkdir -p "$d"
-  for seed in $(seq 1 "$PM_SEEDS"); do
-    f=$d/seed$seed.exr
-    [ -f "$f" ] && continue
-    nice -n 5 build/photonmap render scenes/$scene.scene --photons "$PM_PHOTONS" --nn "$PM_NN" --bias-correction \
-      --direct shadow-rays --width "$w" --height "$h" --seed "$seed" --quiet -o "$d/tmp.exr"
-    mv "$d/tmp.exr" "$f"
+  # the converged renders, and the same at half the photons (kernel bias)
+  for p in $PM_PHOTONS $((PM_PHOTONS / 2)); do
+    d=$out/$scene-pm$p-nn$PM_NN-${w}x${h}; mkdir -p "$d"
+    for seed in $(seq 1 "$PM_SEEDS"); do
+      f=$d/seed$seed.exr
+      [ -f "$f" ] && continue
+      nice -n 5 build/photonmap render scenes/$scene.scene --photons "$p" --nn "$PM_NN" --bias-correction \
+        --direct shadow-rays --width "$w" --height "$h" --seed "$seed" --quiet -o "$d/tmp.exr"
+      mv "$d/tmp.exr" "$f"
+    done
   done
-  specs+=("$scene:$w:$h:$pov:$d")
+  specs+=("$scene:$w:$h:$pov:$out/$scene-pm$PM_PHOTONS-nn$PM_NN-${w}x${h}:$out/$scene-pm$((PM_PHOTONS / 2))-nn$PM_NN-${w}x${h}")
 done
 "$PY" reference/pbrt/agreement.py "$out/agreement.md" "${specs[@]}"
 { echo "<!-- pbrt-agreement begin: written by reference/measure-pbrt.sh -->"

@@ -1,7 +1,7 @@
 """agreement.py: the three references' agreement, region by region.
 
 Usage (reference/measure-pbrt.sh runs it):
-  python3 reference/pbrt/agreement.py OUT.md SCENE:W:H:POV_EXR:PM_DIR ...
+  python3 reference/pbrt/agreement.py OUT.md SCENE:W:H:POV_EXR:PM_DIR:PM_HALF_DIR ...
 
 For each scene: the regions are the pixels whose four subpixel rays (the
 renderer's 2x2 points (x + (s + 0.5)/2) / W) all hit one shape first; this
@@ -11,7 +11,11 @@ In each region it takes the mean of the RGB mean over its pixels, per
 image, and reports, as ratios to pbrt (BDPT to 10 bounces + path tracing
 11-64, the mean over its seeds):
   - photonmap converged (every PM_DIR/*.exr: one per seed), mean of seeds;
-  - POV-Ray's reference preset (one render, no seed noise known).
+  - POV-Ray's reference preset (one render, no seed noise known);
+  - photonmap's kernel bias: the corrected estimate's bias falls as the
+    kernel's area, i.e. as 1/photons at fixed n, so (half - full)/pbrt, the
+    mean of PM_HALF_DIR's seeds less PM_DIR's, estimates the bias of the
+    full-photon render itself.
 Intervals: t intervals (95%) over seeds of the per-seed region means (pbrt,
 photonmap), combined in quadrature for the ratio. BDPT fireflies: a region
 mean of one seed is an average over many pixels, and the interval comes
@@ -153,7 +157,7 @@ def main():
     out = sys.argv[1]
     lines = []
     for spec in sys.argv[2:]:
-        scene, w, h, pov, pmdir = spec.split(":")
+        scene, w, h, pov, pmdir, halfdir = spec.split(":")
         w, h = int(w), int(h)
         pb_files = sorted(glob.glob(f"reference/{scene}/{scene}-pbrt-bdpt-256x192-seed*.exr"))
         pm_files = sorted(glob.glob(os.path.join(pmdir, "*.exr")))
@@ -162,6 +166,8 @@ def main():
             continue
         pb = np.stack([box_down(read_exr(f), w, h).mean(axis=2) for f in pb_files])
         pm = np.stack([box_down(read_exr(f), w, h).mean(axis=2) for f in pm_files])
+        half_files = sorted(glob.glob(os.path.join(halfdir, "*.exr")))
+        ph = np.stack([box_down(read_exr(f), w, h).mean(axis=2) for f in half_files]) if half_files else None
         pv = read_exr(pov).mean(axis=2) if pov != "-" else None
         ids, shapes = shape_ids(f"scenes/{scene}.scene", w, h)
         mats = {}
@@ -184,8 +190,8 @@ def main():
         lines.append(f"\n**{scene}** at {w}x{h}: pbrt {len(pb_files)} seeds, photonmap {len(pm_files)} seeds, "
                      f"POV-Ray `{os.path.basename(pov) if pv is not None else 'none'}`; "
                      f"{one.mean() * 100:.1f}% of the pixels lie in one shape.\n")
-        lines.append("| region | pixels | pbrt mean | pbrt ±95% | robust | photonmap / pbrt | POV-Ray / pbrt | holds |")
-        lines.append("|---|---|---|---|---|---|---|---|")
+        lines.append("| region | pixels | pbrt mean | pbrt ±95% | robust | photonmap / pbrt | photonmap kernel bias | POV-Ray / pbrt | holds |")
+        lines.append("|---|---|---|---|---|---|---|---|---|")
         for name, m, kname in regions:
             pbm = pb[:, m].mean(axis=1)
             pmm = pm[:, m].mean(axis=1)
@@ -196,8 +202,9 @@ def main():
             robust = np.median(pb, axis=0)[m].mean() / ref
             rpov = pv[m].mean() / ref if pv is not None else None
             pov_s = f"{rpov:.4f}" if rpov is not None else "-"
+            bias_s = f"{(ph[:, m].mean() - pmm.mean()) / ref:+.4f}" if ph is not None else "-"
             lines.append(f"| {name} | {int(m.sum())} | {ref:.5f} | {e_pb * 100:.2f}% | {robust:.3f} | "
-                         f"{rpm:.4f} ± {e_pm:.4f} | {pov_s} | {verdict(kname, rpm, e_pm, rpov, 0)} |")
+                         f"{rpm:.4f} ± {e_pm:.4f} | {bias_s} | {pov_s} | {verdict(kname, rpm, e_pm, rpov, 0)} |")
     tmp = out + ".tmp"
     with open(tmp, "w") as f:
         f.write("\n".join(lines) + "\n")
