@@ -42,7 +42,7 @@ TEST_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/dbg/test_%.o)
 TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
-.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small fuzz sweep-slurm
+.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm
 all: $(BUILD)/photonmap ## build build/photonmap
 deps: $(DEPS_STAMP) $(DEPS_TEST) $(DEPS_CLUSTER) ## install the missing Debian packages of every tier (scripts/install-deps.sh)
 test: all unit-tests $(BUILD)/san/photonmap $(DEPS_TEST) $(DEPS_CLUSTER) ## every test; ends with "N passed, N failed, N skipped" (README)
@@ -62,6 +62,7 @@ bench-quick: ## only the kNN against FLANN, cKDTree and nanoflann, about a minut
 bench-scaling: ## each phase's cost and peak bytes per stored photon against the photons, log-log slopes -> results/bench/scaling.md (SCALING_PHOTONS)
 reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one
+reference-pbrt: ## re-render the pbrt-v3 references (needs pbrt: PBRT=path; reference/pbrt/README.md)
 fuzz: ## run the scene parser's libFuzzer target for FUZZ_SECONDS (60)
 sweep-slurm: ## a Slurm job array of make targets: TASKS=FILE or SWEEP=TARGET -> SLURM_DIR/sweep.sbatch
 help: ## this list

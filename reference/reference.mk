@@ -44,7 +44,7 @@ endef
 
 REF_SMALL := cornell-direct-129x96 cornell-fast-128x96 cornell-nocaustic-128x96 caustic-fast-128x96 caustic-reference-128x96 caustic-nocaustic-128x96 cornell-fast-16x12 \
              cornell-direct-256x192 cornell-fast-256x192 cornell-reference-256x192
-REF_LARGE := cornell-reference-1024x768 cornell-fast-1024x768
+REF_LARGE := cornell-reference-1024x768 cornell-reference-2x2-1024x768 cornell-fast-1024x768
 
 # direct light only, for the per-pixel check: an odd width and a 3x3 grid, so
 # that no sample ray hits a room edge exactly (the camera is centred in the
@@ -62,6 +62,9 @@ $(eval $(call ref_render,cornell-direct-256x192,$(REF_SCENE),256,192,2,--no-radi
 $(eval $(call ref_render,cornell-fast-256x192,$(REF_SCENE),256,192,2,--quality fast,))
 $(eval $(call ref_render,cornell-reference-256x192,$(REF_SCENE),256,192,2,--quality reference,))
 $(eval $(call ref_render,cornell-reference-1024x768,$(REF_SCENE),1024,768,1,--quality reference,))
+# the same with the renders' own 2x2 subpixel rays (F = 2: rendered at
+# 2048x1536 and box-downsampled), so that per-pixel metrics are valid against it
+$(eval $(call ref_render,cornell-reference-2x2-1024x768,$(REF_SCENE),1024,768,2,--quality reference,))
 # the same pixels at fast quality: its difference from the reference-quality
 # render is the reference's own floor in the table's error columns
 $(eval $(call ref_render,cornell-fast-1024x768,$(REF_SCENE),1024,768,1,--quality fast,))
@@ -99,3 +102,21 @@ REF_SMALL += $(foreach s,slabs library tworooms,$(s)-direct-129x96 $(s)-fast-128
 
 reference-small: $(foreach n,$(REF_SMALL),$(call ref_path,$(n)).exr)
 reference: reference-small $(foreach n,$(REF_LARGE),$(call ref_path,$(n)).exr)
+
+# ---- pbrt-v3 references (reference/pbrt/README.md) ----
+# SCENE:BDPT_SPP:SEEDS for each scene (seeds 1..SEEDS, PBRT_SEED); every seed is
+# BDPT to 10 bounces plus the path tracer for 11-64 (reference/pbrt/render.sh),
+# written to reference/SCENE/SCENE-pbrt-bdpt-256x192-seedK.{exr,log}.
+# pbrt is not a Debian package: without it (PBRT=/path/to/pbrt or on PATH)
+# the target refuses, and nothing else needs it.
+# (fewer seeds for the last three: what fitted the time on a loaded machine)
+REF_PBRT_SCENES := cornell:64:4 tworooms:64:4 caustic:32:3 slabs:32:2 library:32:2
+REF_PBRT_PATH_SPP := 64
+.PHONY: reference-pbrt
+reference-pbrt: $(BUILD)/photonmap
+	@pbrt="$${PBRT:-$$(command -v pbrt || true)}"; \
+	if [ -z "$$pbrt" ] || [ ! -x "$$pbrt" ]; then \
+	  echo "make reference-pbrt: pbrt-v3 not found; build it as reference/pbrt/README.md says and run make reference-pbrt PBRT=/path/to/pbrt" >&2; exit 1; fi; \
+	for s in $(REF_PBRT_SCENES); do scene=$${s%%:*}; r=$${s#*:}; spp=$${r%%:*}; n=$${r#*:}; for k in $$(seq 1 $$n); do \
+	  PBRT="$$pbrt" bash reference/pbrt/render.sh $$scene 256 192 $$spp $(REF_PBRT_PATH_SPP) $$k || exit 1; \
+	done; done

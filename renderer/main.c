@@ -1,5 +1,6 @@
 /* main: the command line. `photonmap render SCENE [options]` renders;
- * `photonmap export-pov SCENE [options]` writes POV-Ray SDL. Each
+ * `photonmap export-pov SCENE [options]` writes POV-Ray SDL;
+ * `photonmap export-pbrt SCENE [options]` writes a pbrt-v3 scene. Each
  * subcommand's options are one table (cli.h) that drives parsing, range
  * errors and `--help`. main writes every output file. Every step returns a
  * pm_status; the exit code is pm_status_exit's (status.h): 0 success, 1
@@ -22,6 +23,7 @@
 #include "image.h"
 #include "outfile.h"
 #include "parallel.h"
+#include "pbrt.h"
 #include "povray.h"
 #include "render.h"
 #include "scene.h"
@@ -541,6 +543,96 @@ static pm_status cmd_export_pov(int argc, char **argv)
     return exit_code;
 }
 
+/* ---- export-pbrt ---- */
+
+typedef struct {
+    pbrt_options pbrt;
+    const char *scene, *out;
+} pbrt_args;
+
+static const char *const pbrt_integrator_names[] = {"bdpt", "path", "directlighting", NULL};
+_Static_assert(sizeof(pbrt_integrator) == sizeof(int), "pbrt_integrator is int-sized");
+
+#define PB(field) offsetof(pbrt_args, field)
+static const cli_option pbrt_options_table[] = {
+    {.name = "--width", .kind = CLI_U32, .metavar = "W", .offset = PB(pbrt.width), .ulo = 1, .uhi = CONFIG_MAX_SIDE,
+     .help = "the film width"},
+    {.name = "--height", .kind = CLI_U32, .metavar = "H", .offset = PB(pbrt.height), .ulo = 1, .uhi = CONFIG_MAX_SIDE,
+     .help = "the film height"},
+    {.name = "--integrator", .kind = CLI_CHOICE, .offset = PB(pbrt.integrator), .choices = pbrt_integrator_names,
+     .help = "pbrt's integrator: bidirectional, path tracing, or direct light only (reference/pbrt/README.md)"},
+    {.name = "--bounces", .kind = CLI_U32, .metavar = "B", .offset = PB(pbrt.bounces), .ulo = 1,
+     .uhi = PBRT_BOUNCES_MAX,
+     .help = "indirect bounces: pbrt's maxdepth B+1, the same light paths as render --photon-depth B+1"},
+    {.name = "--min-bounces", .kind = CLI_U32, .metavar = "M", .offset = PB(pbrt.min_bounces), .ulo = 0,
+     .uhi = PBRT_BOUNCES_MAX,
+     .help = "path only: keep paths of more than M indirect bounces (mindepth M+1, a local change to pbrt; "
+             "0: all)"},
+    {.name = "--spp", .kind = CLI_U32, .metavar = "N", .offset = PB(pbrt.spp), .ulo = 1, .uhi = PBRT_SPP_MAX,
+     .help = "samples per pixel (a stratified square grid: rounded up to a square)"},
+    {.name = "--fixed-subpixels", .kind = CLI_FLAG, .offset = PB(pbrt.fixed_subpixels), .flag_value = 1,
+     .help = "samples at fixed grid points, not jittered: the renderer's --subpixels sqrt(N) rays"},
+    {.name = "-o", .kind = CLI_STRING, .metavar = "FILE.pbrt", .offset = PB(out),
+     .help = "where to write the scene",
+     .default_text = "standard output"},
+};
+#undef PB
+
+static const cli_command pbrt_command = {
+    .name = "export-pbrt",
+    .summary = "writes SCENE as a pbrt-v3 scene radiometrically matched to the renderer",
+    .positional = "SCENE",
+    .positional_what = "scene file",
+    .positional_offset = offsetof(pbrt_args, scene),
+    .options = pbrt_options_table,
+    .noptions = sizeof pbrt_options_table / sizeof pbrt_options_table[0]};
+
+static pbrt_args pbrt_defaults_args(void)
+{
+    pbrt_args a;
+    memset(&a, 0, sizeof a);
+    a.pbrt = pbrt_defaults();
+    return a;
+}
+
+/* `photonmap export-pbrt`. Returns the first failure's status (printed):
+ * PM_ERR_INPUT for a scene pbrt cannot render alike (pbrt_check's cause). */
+static pm_status cmd_export_pbrt(int argc, char **argv)
+{
+    pbrt_args a = pbrt_defaults_args();
+    pm_status rc = cli_parse(&pbrt_command, argc, argv, 2, &a);
+    if (rc != PM_OK)
+        return rc;
+    scene *sc = NULL;
+    if ((rc = load_scene(a.scene, &sc)))
+        return rc;
+    char err[1024];
+    pm_status exit_code = pbrt_check(sc, &a.pbrt, err, sizeof err);
+    if (exit_code != PM_OK) {
+        fprintf(stderr, "photonmap: export-pbrt: %s: %s\n", a.scene, err);
+    } else if (!a.out) {
+        if (pbrt_write(stdout, sc, a.scene, &a.pbrt) || fflush(stdout)) {
+            fprintf(stderr, "photonmap: writing standard output: %s\n", strerror(errno));
+            exit_code = PM_ERR_IO;
+        }
+    } else {
+        outfile f;
+        if (outfile_begin(&f, a.out, 1, err, sizeof err)) {
+            fprintf(stderr, "photonmap: %s\n", err);
+            exit_code = PM_ERR_IO;
+        } else if (pbrt_write(f.f, sc, a.scene, &a.pbrt)) {
+            fprintf(stderr, "photonmap: %s: write error\n", a.out);
+            outfile_abort(&f);
+            exit_code = PM_ERR_IO;
+        } else if (outfile_commit(&f, err, sizeof err)) {
+            fprintf(stderr, "photonmap: %s\n", err);
+            exit_code = PM_ERR_IO;
+        }
+    }
+    scene_free(sc);
+    return exit_code;
+}
+
 /* ---- the program ---- */
 
 static void print_usage(FILE *f)
@@ -550,6 +642,9 @@ static void print_usage(FILE *f)
     cli_usage(f, &render_command, &r);
     fputc('\n', f);
     cli_usage(f, &pov_command, &p);
+    pbrt_args b = pbrt_defaults_args();
+    fputc('\n', f);
+    cli_usage(f, &pbrt_command, &b);
 }
 
 int main(int argc, char **argv)
@@ -562,6 +657,8 @@ int main(int argc, char **argv)
         return pm_status_exit(cmd_render(argc, argv));
     if (!strcmp(argv[1], "export-pov"))
         return pm_status_exit(cmd_export_pov(argc, argv));
-    fprintf(stderr, "photonmap: unknown command '%s' (expected render or export-pov; see photonmap --help)\n", argv[1]);
+    if (!strcmp(argv[1], "export-pbrt"))
+        return pm_status_exit(cmd_export_pbrt(argc, argv));
+    fprintf(stderr, "photonmap: unknown command '%s' (expected render, export-pov or export-pbrt; see photonmap --help)\n", argv[1]);
     return pm_status_exit(PM_ERR_INPUT);
 }
