@@ -42,7 +42,7 @@ the bias cannot be removed, its sign is unknown).
 Command line:
   python3 -m experiments.analysis.reference build --pm PM --scene S --width W --height H
       --subpixels K --photons P --nn N --direct shadow-rays|photons --seeds "A B ..."
-      --grid-seeds "1 2 3" --dir DIR --out OUT.exr
+      --grid-seeds "1 2 3" --dir DIR --out OUT.exr [--pm-args "--photon-depth 3"]
   renders each seed at P and P/2 in DIR (kept: a rerun renders only what is
   missing), writes OUT.exr (the mean at P), OUT.png and OUT.json; exit 2 on
   a usage error (a seed the grid uses, fewer than two seeds), 1 on a render
@@ -179,7 +179,7 @@ def describe(exr, tightest=None):
     return out
 
 
-def render(pm, scene, w, h, sub, photons, nn, direct, seed, out):
+def render(pm, scene, w, h, sub, photons, nn, direct, seed, out, extra=()):
     """One render of the reference's settings to OUT (a temp name, then
     renamed); skips it when OUT exists. Raises RuntimeError on failure."""
     if os.path.exists(out):
@@ -187,7 +187,7 @@ def render(pm, scene, w, h, sub, photons, nn, direct, seed, out):
     tmp = out + ".tmp.exr"
     cmd = [pm, "render", scene, "--method", "conventional", "--bias-correction", "--direct", direct,
            "--photons", str(photons), "--nn", str(nn), "--seed", str(seed), "--width", str(w),
-           "--height", str(h), "--subpixels", str(sub), "--threads", "0", "-o", tmp, "--quiet"]
+           "--height", str(h), "--subpixels", str(sub), "--threads", "0", *extra, "-o", tmp, "--quiet"]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         if os.path.exists(tmp):
@@ -249,7 +249,7 @@ def build(a):
             for p, acc in ((a.photons, full), (half_p, half)):
                 f = os.path.join(a.dir, f"p{p}-seed{s}.exr")
                 print(f"reference: {a.scene} at {a.width}x{a.height}: P_e={p} n={a.nn} seed {s}", flush=True)
-                render(a.pm, a.scene, a.width, a.height, a.subpixels, p, a.nn, a.direct, s, f)
+                render(a.pm, a.scene, a.width, a.height, a.subpixels, p, a.nn, a.direct, s, f, a.pm_args.split())
                 acc.append(metrics.read_exr(f))
     except (RuntimeError, ValueError) as e:
         print(f"reference: {e}", file=sys.stderr)
@@ -259,7 +259,7 @@ def build(a):
                  "settings": {"scene": a.scene, "width": a.width, "height": a.height, "subpixels": a.subpixels,
                               "method": "conventional", "estimate": "corrected", "direct": a.direct,
                               "photons": a.photons, "half_photons": half_p, "nn": a.nn, "seeds": seeds,
-                              "grid_seeds": sorted(grid)},
+                              "grid_seeds": sorted(grid), "pm_args": a.pm_args},
                  "how": "noise: the seed halves' difference, scaled to the mean of all seeds; bias: the "
                         "mean at P/2 against the mean at P, less the noise of that difference "
                         "(experiments/analysis/reference.py)"})
@@ -293,6 +293,7 @@ def main(argv=None):
     b.add_argument("--grid-seeds", default="")
     b.add_argument("--dir", required=True)
     b.add_argument("--out", required=True)
+    b.add_argument("--pm-args", default="", help="extra render options (e.g. --photon-depth 3)")
     d = sub.add_parser("describe")
     d.add_argument("exr")
     d.add_argument("--tightest", type=float)
