@@ -48,7 +48,8 @@ ev SCENE=tests/evaluate/box.scene OUT="$OUT" > "$TMP/rerun.log" 2>&1 || rc=$?
 check "a rerun renders nothing again" bash -c "[ $rc -eq 0 ] && ! grep -q 'rendered at\|^run \|P_e=.* seed ' '$TMP/rerun.log'"
 # the same scene in another OUT: POV-Ray from the cache
 rc=0
-ev SCENE=tests/evaluate/box.scene OUT="$TMP/box2" > "$TMP/box2.log" 2>&1 || rc=$?
+nice -n 5 make --no-print-directory evaluate-references "${KNOBS[@]}" SCENE=tests/evaluate/box.scene OUT="$TMP/box2" \
+  > "$TMP/box2.log" 2>&1 || rc=$?
 check "the POV-Ray cache serves another OUT" bash -c "[ $rc -eq 0 ] && [ \$(grep -c ': cached' '$TMP/box2.log') -eq 2 ]"
 
 # negative control: photons escape through the missing ceiling
@@ -87,4 +88,25 @@ check "thickness: a shape 1 mm behind a lit face gets a thinner box" bash -c \
   "[ \$(/usr/bin/python3 -m experiments.analysis.evaluate thickness --scene '$TMP/near.scene' --out '$TMP/near.json') = 0.0001 ]"
 check "thickness: the room of box.scene keeps the default" bash -c \
   "[ \$(/usr/bin/python3 -m experiments.analysis.evaluate thickness --scene tests/evaluate/box.scene --out '$TMP/b.json') = 0.001 ]"
+# reference.py's error terms against known values (synthetic seeds of
+# variance sigma^2, the half-photon mean's bias twice the full one's), with
+# a control without bias, and corrected() / check()
+check "reference: noise and bias of synthetic seeds match their known values" /usr/bin/python3 -c '
+import numpy as np
+from experiments.analysis import reference as R
+rng = np.random.default_rng(5)
+r = np.full((200, 200, 3), 0.5); sig = 0.05; b = 0.02
+w = 1 / ((0.5 + b) ** 2 + 0.01)  # relMSE weight at the mean
+for S in (2, 3, 4):
+    full = [r + b + rng.normal(0, sig, r.shape) for _ in range(S)]
+    half = [r + 2 * b + rng.normal(0, sig, r.shape) for _ in range(S)]
+    m = R.measure(full, half)
+    assert abs(m["noise"] / (w * sig**2 / S) - 1) < 0.05, (S, m)
+    assert abs(m["bias"] / (w * b**2) - 1) < 0.15, (S, m)
+full = [r + rng.normal(0, sig, r.shape) for _ in range(2)]
+half = [r + rng.normal(0, sig, r.shape) for _ in range(2)]
+assert abs(R.measure(full, half)["bias_raw"]) < 0.05 * w * b**2, R.measure(full, half)
+assert R.corrected(0.01, {"noise": 0.002}) == 0.008 and R.corrected(0.01, None) == 0.01
+assert R.check({"noise": 0.002, "bias": 0.0}, 0.01)[0] is False
+assert R.check({"noise": 0.0005, "bias": 0.0009}, 0.01)[0] is True'
 finish
