@@ -56,6 +56,11 @@ check "the POV-Ray cache serves another OUT" bash -c "[ $rc -eq 0 ] && [ \$(grep
 rc=0
 ev SCENE=tests/evaluate/open.scene OUT="$TMP/open" > "$TMP/open.log" 2>&1 || rc=$?
 check "control: an open scene is stopped at the pilot" bash -c "[ $rc -ne 0 ] && grep -q 'photons escape the scene' '$TMP/open.log' && [ ! -e '$TMP/open/pov' ] && [ ! -e '$TMP/open/report.md' ] && [ ! -e '$TMP/open/pilot/pilot.json' ]"
+# negative control: the camera shut inside an opaque sphere
+{ grep -v '^#' tests/evaluate/box.scene; echo "sphere center 0 1 0.9  radius 0.08  material white"; } > "$TMP/shut.scene"
+rc=0
+ev SCENE="$TMP/shut.scene" OUT="$TMP/shut" > "$TMP/shut.log" 2>&1 || rc=$?
+check "control: a camera shut in a sphere is stopped at the pilot" bash -c "[ $rc -ne 0 ] && grep -q 'shut inside an opaque sphere' '$TMP/shut.log' && [ ! -e '$TMP/shut/pov' ]"
 # negative control: POV-Ray renders a scene with another material
 rc=0
 nice -n 5 make --no-print-directory evaluate-references "${KNOBS[@]}" SCENE=tests/evaluate/box.scene \

@@ -254,6 +254,7 @@ make -s scenes RESULTS="$TMP/sc" SCENES="scenes/cornell.scene scenes/slabs.scene
 scenes_ok() {
   [ -s "$TMP/sc/figures/scenes.png" ] && grep -q '^| cornell | ' "$TMP/sc/scenes/scenes.md" && grep -q '^| slabs | ' "$TMP/sc/scenes/scenes.md" &&
   [ -s "$TMP/sc/scenes/table-slabs.csv" ] && [ -s "$TMP/sc/scenes/equal-error-cornell.csv" ] &&
+  [ "$(grep -c 'Its own error in relmse: noise [0-9]' "$TMP/sc/scenes/scenes.md")" -eq 2 ] &&
   "${PYTHON:-/usr/bin/python3}" -c 'import pandas as pd, sys; d = pd.read_csv(sys.argv[1]); assert list(d.scene) == ["cornell", "slabs"], d; assert (d.diff_seeds == 2).all(), d' "$TMP/sc/scenes/scenes.csv"
 }
 check "scenes: one row per scene, its tables, the difference figure" scenes_ok

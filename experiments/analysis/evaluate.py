@@ -415,8 +415,7 @@ def cmd_report(a):
     ee = pd.read_csv(a.equal_error_csv)
     tbl = pd.read_csv(a.table_csv)
     # the tightest target the reference judges: the smallest target of any curve
-    tight = ee[ee["kind"].isin(["tightest", "curve"])]["target"]
-    tightest = float(tight.min()) if len(tight) else None
+    tightest = refmod.tightest_of(a.equal_error_csv)
     ok, why = refmod.check(info, tightest)
     # images: both methods at the grid's largest P_e and n, corrected estimate, seed 1
     ok_runs = runs[(runs["status"] == "ok")]

@@ -173,6 +173,21 @@ def check(info, tightest, margin=MARGIN):
                    "raise CONV_REF_PHOTONS or CONV_REF_SEEDS")
 
 
+def tightest_of(equal_error_csv):
+    """The tightest target a reference judges in a study: the smallest
+    relMSE of the equal-error curves in EQUAL_ERROR_CSV (its `kind`
+    tightest and curve rows), or None when there is none or no file."""
+    import pandas as pd
+
+    try:
+        ee = pd.read_csv(equal_error_csv)
+    except (OSError, ValueError):
+        return None
+    t = ee[ee["kind"].isin(["tightest", "curve"])]["target"].astype(float)
+    t = t[np.isfinite(t)]
+    return float(t.min()) if len(t) else None
+
+
 def describe(exr, tightest=None):
     """The sentence a report prints about the reference at EXR: its settings
     and measured error (and, given TIGHTEST, the check against it)."""

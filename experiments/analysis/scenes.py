@@ -159,7 +159,7 @@ def main():
           "`scenes/table-<scene>.md` and `scenes/equal-error-<scene>.md`; data: "
           f"[`{os.path.basename(a.out)}.csv`]({os.path.basename(a.out)}.csv).", "",
           "## The references' own error", ""] + [
-          "- " + reference.describe(sc[4]) for sc in a.scene] + ["",
+          "- " + reference.describe(sc[4], reference.tightest_of(sc[3])) for sc in a.scene] + ["",
           "## Speed-up at equal error", "",
           "The precomputed method's time against the conventional one's at the same relMSE (each method's "
           "Pareto front of (median CPU time, mean relMSE over seeds), interpolated; 95% bootstrap interval over "
