@@ -42,7 +42,7 @@ TEST_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/dbg/test_%.o)
 TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
-.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm
+.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm evaluate
 all: $(BUILD)/photonmap ## build build/photonmap
 deps: $(DEPS_STAMP) $(DEPS_TEST) $(DEPS_CLUSTER) ## install the missing Debian packages of every tier (scripts/install-deps.sh)
 test: all unit-tests $(BUILD)/san/photonmap $(DEPS_TEST) $(DEPS_CLUSTER) ## every test; ends with "N passed, N failed, N skipped" (README)
@@ -64,6 +64,7 @@ reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one
 reference-pbrt: ## re-render the pbrt-v3 references (needs pbrt: PBRT=path; reference/pbrt/README.md)
 fuzz: ## run the scene parser's libFuzzer target for FUZZ_SECONDS (60)
+evaluate: ## does the method pay on SCENE=my.scene? pilot, POV-Ray and converged references, grid, verdict -> OUT/report.md (experiments/evaluate.mk)
 sweep-slurm: ## a Slurm job array of make targets: TASKS=FILE or SWEEP=TARGET -> SLURM_DIR/sweep.sbatch
 help: ## this list
 	@awk -F':.*## ' '/^[a-z][a-z-]*:.*## / { printf "  make %-17s %s\n", $$1, $$2 }' $(firstword $(MAKEFILE_LIST))
@@ -126,5 +127,6 @@ include experiments/studies.mk
 include experiments/figures.mk
 include experiments/bench.mk
 include experiments/slurm.mk
+include experiments/evaluate.mk
 include reference/reference.mk
 include tests/fuzz/fuzz.mk

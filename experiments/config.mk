@@ -82,21 +82,33 @@ REF_FAST_FILE = $(or $(REF_FAST),$(if $(REF),,$(shell bash experiments/findref.s
 config_renamed := REPEATS=SEEDS SEED_LIST=SEEDS WIDTH=SIZE HEIGHT=SIZE EE_TIME=TIME FIG_TIME=TIME \
   SCENES_SIZE=SIZE SCENES_SEEDS=SEEDS CAUSTIC_SIZE=SIZE CAUSTIC_SEEDS=SEEDS CAUSTIC_PHOTONS=PHOTONS \
   CAUSTIC_NNS=NNS CAUSTIC_SCENE=SCENE CAUSTIC_REF=REF RES_SEEDS=SEEDS REP_SEEDS=SEEDS BIAS_SEEDS=SEEDS \
-  BIAS_SIZE=SIZE BIAS_NNS=NNS BIAS_PHOTONS=PHOTONS BIAS_SCENE=SCENE BIAS_DIR=RESULTS
+  BIAS_SIZE=SIZE BIAS_NNS=NNS BIAS_PHOTONS=PHOTONS BIAS_SCENE=SCENE BIAS_DIR=RESULTS \
+  RES_REF_PHOTONS=CONV_REF_PHOTONS RES_REF_NN=CONV_REF_NN RES_REF_SEED=CONV_REF_SEEDS
 $(foreach r,$(config_renamed),$(if $(filter command line environment,$(origin $(word 1,$(subst =, ,$(r))))),\
   $(error $(word 1,$(subst =, ,$(r))) is gone: every study target reads $(word 2,$(subst =, ,$(r))) (e.g. make scenes SIZE=128x96 SEEDS=2))))
 
 # make resolution: every size of RES_SIZES (SIZE given on the command line:
 # that size only), cheapest settings per relMSE target of RES_TARGETS, against
 # our converged reference per size (RES_REF=ours) or the POV-Ray one where
-# reference/ has one (RES_REF=pov); the converged reference: RES_REF_PHOTONS
-# photons, n = RES_REF_NN, --seed RES_REF_SEED (one no grid uses)
+# reference/ has one (RES_REF=pov)
 RES_SIZES ?= 256x192 512x384 1024x768
 RES_TARGETS ?= 0.05 0.03 0.02 0.015 0.01 0.0075
-RES_REF_PHOTONS ?= 2000000
-RES_REF_NN ?= 200
 RES_REF ?= ours
-RES_REF_SEED ?= 1000000
+
+# our converged reference (make resolution, scenes, evaluate;
+# experiments/analysis/reference.py): method-neutral, the corrected estimate
+# with direct light by CONV_REF_DIRECT at CONV_REF_PHOTONS photons (empty:
+# CONV_REF_FACTOR times the grid's largest P_e), n = CONV_REF_NN, the mean of
+# the seeds CONV_REF_SEEDS (at least two, none a grid seed), each rendered
+# again at half the photons to measure its kernel bias; its noise and bias
+# must each be at most CONV_REF_MARGIN of the tightest target it judges
+# (reports warn otherwise)
+CONV_REF_PHOTONS ?=
+CONV_REF_FACTOR ?= 20
+CONV_REF_NN ?= 200
+CONV_REF_SEEDS ?= 1000001 1000002
+CONV_REF_DIRECT ?= shadow-rays
+CONV_REF_MARGIN ?= 0.1
 
 # make scenes: every scene's grid at a smaller size, against our own
 # converged render of it; SCENES_CELL is the (P_e, n) of the difference images

@@ -93,21 +93,27 @@ caustic: caustic-table
 	  --window $(CAUSTIC_WINDOW) --window-at $(CAUSTIC_WINDOW_AT) --cells "$(FIG3_CELLS)" --out $(CAUSTIC) \
 	  --figure $(FIGURES)/caustic.png
 
-# ---- our converged reference of a scene at a size (resolution, scenes): the
-# corrected conventional estimate (unbiased), RES_REF_PHOTONS photons,
-# n = RES_REF_NN, all cores, --seed RES_REF_SEED (a seed no grid uses: photon
-# i of seed s is the same path whatever P_e, so a grid seed would flatter it)
+# ---- our converged reference of a scene at a size (resolution, scenes,
+# evaluate): method-neutral, its own error measured
+# (experiments/analysis/reference.py): the corrected estimate with shadow-ray
+# direct light at CONV_REF_P photons (CONV_REF_PHOTONS, or CONV_REF_FACTOR x
+# the grid's largest P_e), n = CONV_REF_NN, the mean of the seeds
+# CONV_REF_SEEDS (none a grid seed), each also at half the photons (its
+# kernel bias); WxH.json beside WxH.exr holds noise, bias and the settings
 # converged_ref SCENE,WxH: the file
-converged_ref = $(RESULTS)/runs/$(basename $(notdir $(1)))-refhigh-p$(RES_REF_PHOTONS)-n$(RES_REF_NN)-s$(SUBPIXELS)-seed$(RES_REF_SEED)/$(2).exr
+CONV_REF_P = $(or $(strip $(CONV_REF_PHOTONS)),$(shell echo $(PHOTONS) | tr ' ' '\n' | sort -n | tail -n 1 | awk -v f=$(CONV_REF_FACTOR) '{ print $$1 * f }'))
+conv_ref_tag = p$(CONV_REF_P)-n$(CONV_REF_NN)-$(CONV_REF_DIRECT)-s$(SUBPIXELS)-seeds$(subst $(space),_,$(strip $(CONV_REF_SEEDS)))
+space := $(subst ,, )
+converged_ref = $(RESULTS)/runs/$(basename $(notdir $(1)))-convref-$(conv_ref_tag)/$(2).exr
+# the seeds every grid may use (the reference must share none of them)
+conv_ref_grid_seeds = $(sort $(call seeds,$(SEEDS)) $(call seeds,$(rep_seeds)) $(call seeds,$(scenes_seeds)) $(EVAL_GRID_SEEDS))
 define converged_ref_rule
-$(dir $(call converged_ref,$(1),WxH))%.exr: | $$(BUILD)/photonmap
-	$$(if $$(filter $$(RES_REF_SEED),$$(call seeds,$$(SEEDS)) $$(call seeds,$$(rep_seeds)) $$(call seeds,$$(scenes_seeds))),\
-	  $$(error RES_REF_SEED=$$(RES_REF_SEED) is one of the grid's seeds: the reference would share photon paths with the renders it judges))
-	@mkdir -p $$(dir $$@)
-	@echo "reference: $(1), conventional, corrected, P_e=$$(RES_REF_PHOTONS) n=$$(RES_REF_NN) at $$*, all cores"
-	$$(PM) render $(1) --method conventional --bias-correction --photons $$(RES_REF_PHOTONS) --nn $$(RES_REF_NN) \
-	  --seed $$(RES_REF_SEED) --width $$(call size_w,$$*) --height $$(call size_h,$$*) --subpixels $$(SUBPIXELS) --threads 0 \
-	  -o $$@ --png $$(@:.exr=.png) --stats $$(@:.exr=.stats.json) --quiet
+$(dir $(call converged_ref,$(1),WxH))%.exr: $(1) | $$(BUILD)/photonmap $$(DEPS_TEST)
+	@echo "reference: $(1) at $$*, conventional, corrected, --direct $$(CONV_REF_DIRECT), P_e=$$(CONV_REF_P) n=$$(CONV_REF_NN), seeds $$(CONV_REF_SEEDS), all cores"
+	@$$(PYTHON) -m experiments.analysis.reference build --pm $$(PM) --scene $(1) --width $$(call size_w,$$*) \
+	  --height $$(call size_h,$$*) --subpixels $$(SUBPIXELS) --photons $$(CONV_REF_P) --nn $$(CONV_REF_NN) \
+	  --direct $$(CONV_REF_DIRECT) --seeds "$$(CONV_REF_SEEDS)" --grid-seeds "$$(conv_ref_grid_seeds)" \
+	  --dir $$(dir $$@)$$* --out $$@
 endef
 $(foreach s,$(sort $(SCENE) $(SCENES)),$(eval $(call converged_ref_rule,$(s))))
 
@@ -117,7 +123,7 @@ res_seeds = $(call knob,SEEDS,$(SEEDS))
 # res_ref WxH: the reference of one size (RES_REF=pov: the POV-Ray one where there is one)
 res_pov = $(if $(filter pov,$(RES_REF)),$(shell bash experiments/findref.sh $(1) $(SCENE)))
 res_ref = $(or $(call res_pov,$(1)),$(call converged_ref,$(SCENE),$(1)))
-res_ref_desc = $(if $(call res_pov,$(1)),POV-Ray `$(call res_pov,$(1))`,ours: conventional$(comma) P_e=$(RES_REF_PHOTONS)$(comma) n=$(RES_REF_NN)$(comma) seed $(RES_REF_SEED) (no grid render uses it)$(comma) same scene and settings$(comma) `$(call res_ref,$(1))` ($(if $(filter pov,$(RES_REF)),no POV-Ray reference of this size in reference/,RES_REF=ours: one kind of reference at every size)))
+res_ref_desc = $(if $(call res_pov,$(1)),POV-Ray `$(call res_pov,$(1))`,ours: corrected$(comma) --direct $(CONV_REF_DIRECT)$(comma) P_e=$(CONV_REF_P)$(comma) n=$(CONV_REF_NN)$(comma) mean of seeds $(CONV_REF_SEEDS) (no grid render uses them)$(comma) same scene and settings$(comma) `$(call res_ref,$(1))` ($(if $(filter pov,$(RES_REF)),no POV-Ray reference of this size in reference/,RES_REF=ours: one kind of reference at every size)))
 comma := ,
 define res_study
 res-$(1)_SCENE = $$(SCENE)
@@ -171,8 +177,8 @@ scenes-runs: $(foreach s,$(SCENES),$(scene-$(call scene_id,$(s))_RUN_FILES) $(sc
 scenes: $(foreach s,$(SCENES),scene-$(call scene_id,$(s))-table)
 	@$(PYTHON) -m experiments.analysis.scenes $(foreach s,$(SCENES),--scene $(s) $(scene-$(call scene_id,$(s))_TABLE).csv \
 	  $(scene-$(call scene_id,$(s))_RUNS_CSV) $(scene-$(call scene_id,$(s))_EQUAL_ERROR).csv $(scene-$(call scene_id,$(s))_REF)) \
-	  --cell "$(SCENES_CELL)" --size "$(scenes_size)" --ref-photons "$(RES_REF_PHOTONS)" --ref-nn "$(RES_REF_NN)" \
-	  --ref-seed "$(RES_REF_SEED)" \
+	  --cell "$(SCENES_CELL)" --size "$(scenes_size)" --ref-photons "$(CONV_REF_P)" --ref-nn "$(CONV_REF_NN)" \
+	  --ref-seed "$(CONV_REF_SEEDS)" \
 	  --grid "P_e in {$(PHOTONS)} x n in {$(NNS)} x {$(METHODS)} x estimates {$(ESTIMATES)}, seeds 1..$(scenes_seeds), threads: $(or $(THREADS),all)" \
 	  --figures "$(FIGURES)" --out "$(SCENES_DIR)/scenes"
 

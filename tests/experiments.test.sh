@@ -243,17 +243,18 @@ assert "corrected vs paper estimate, conventional" in md and "## corrected estim
 '
 
 make -s resolution "PHOTONS=2000 4000" "NNS=10 20" ESTIMATES=paper RESULTS="$R" BOOTSTRAP=200 "EE_TARGETS=0.1 0.05" \
-  PM="$PM" SEEDS=2 RES_SIZES="16x12 32x24" RES_REF_PHOTONS=5000 RES_REF_NN=20 \
+  PM="$PM" SEEDS=2 RES_SIZES="16x12 32x24" CONV_REF_PHOTONS=5000 CONV_REF_NN=20 \
   RES_TARGETS="1 0.000001" > "$TMP/res.log" 2>&1
 check "resolution: table with one row per target and a column per size" \
   bash -c "grep -q '^| 1 | [a-z]*\./paper, P_e=[24]k, n=[0-9]*: .* | [a-z]*\./paper, P_e=[24]k' $R/resolution/resolution.md &&
            grep -q '^| 1.00e-06 | none in grid | none in grid |$' $R/resolution/resolution.md && [ -s $R/resolution/table-16x12.csv ]"
 # the cross-scene study on two scenes, tiny
 make -s scenes RESULTS="$TMP/sc" SCENES="scenes/cornell.scene scenes/slabs.scene" SIZE=32x24 PHOTONS=2000 \
-  NNS="10 20" SEEDS=2 RES_REF_PHOTONS=20000 RES_REF_NN=20 SCENES_CELL=p2000-n20 > "$TMP/sc.log" 2>&1
+  NNS="10 20" SEEDS=2 CONV_REF_PHOTONS=20000 CONV_REF_NN=20 SCENES_CELL=p2000-n20 > "$TMP/sc.log" 2>&1
 scenes_ok() {
   [ -s "$TMP/sc/figures/scenes.png" ] && grep -q '^| cornell | ' "$TMP/sc/scenes/scenes.md" && grep -q '^| slabs | ' "$TMP/sc/scenes/scenes.md" &&
   [ -s "$TMP/sc/scenes/table-slabs.csv" ] && [ -s "$TMP/sc/scenes/equal-error-cornell.csv" ] &&
+  [ "$(grep -c 'Its own error in relmse: noise [0-9]' "$TMP/sc/scenes/scenes.md")" -eq 2 ] &&
   "${PYTHON:-/usr/bin/python3}" -c 'import pandas as pd, sys; d = pd.read_csv(sys.argv[1]); assert list(d.scene) == ["cornell", "slabs"], d; assert (d.diff_seeds == 2).all(), d' "$TMP/sc/scenes/scenes.csv"
 }
 check "scenes: one row per scene, its tables, the difference figure" scenes_ok
