@@ -1,0 +1,306 @@
+#!/usr/bin/python3
+"""beyond.py: the representative variants at equal error (`make beyond`) ->
+STEM.md, STEM.csv and a figure.
+
+Owns the comparison of the paper's representative rule with the variants
+beyond it (lazy evaluation, the gated lookup, both) on every case (a scene at
+a size): per (case, variant) the equal-error speed-up over the conventional
+method at the tightest relMSE target both fronts reach, with its bootstrap
+interval (equal_error.analyse, one call per variant's runs.csv), the fallback
+rate (rep_fallbacks / eye samples, pooled over the variant's renders), the
+share of the representatives evaluated (reps_evaluated / representatives,
+pooled), where the time goes (median over renders of the precompute and the
+eye pass as shares of the total) and how much error the representatives add
+(the variant's mean relMSE over the conventional one's, cell by cell at the
+same seeds). Per case the verdict of the goal: the best variant (the largest
+speed-up point estimate other than the paper's) has its interval above 1.0
+and not below the paper's (stats.rank: an overlap is "not below", never
+"above"). A variant whose grid renders are missing is refused (exit 1): a
+half-run study never reads as a result. Every number in STEM.md is written
+here from the runs CSVs and the stats JSONs they name.
+"""
+
+import argparse
+import json
+import math
+import os
+
+import numpy as np
+import pandas as pd
+
+from experiments.analysis import equal_error
+from experiments.analysis import plotting
+from experiments.analysis import report
+from experiments.analysis import stats
+from experiments.analysis.plotting import plt
+from experiments.analysis.report import fmt
+
+WHERE = "beyond.py"
+NEED = ["role", "status", "estimate", "method", "photons", "nn", "seed", "relmse_ref", "precompute_s",
+        "render_s", "total_s", "cpu_s", "run", "size", "loadavg_1min"]
+COLUMNS = ["case", "scene", "size", "variant", "args", "estimate", "target", "speedup", "lo", "hi",
+           "defined_fraction", "fallback_rate", "evaluated_share", "precompute_share", "render_share",
+           "conv_render_share", "error_ratio", "renders", "best", "above_one", "vs_paper", "goal_met"]
+
+
+def read_stats(run):
+    """The stats JSON of the render whose path stem is RUN; exits 1 when it
+    is missing or not JSON."""
+    path = run + ".stats.json"
+    try:
+        with open(path, encoding="utf-8") as f:
+            return json.load(f)
+    except (OSError, ValueError) as e:
+        report.die(WHERE, f"{path}: {e}")
+    return None
+
+
+def counters(ok):
+    """(fallback rate, evaluated share) pooled over the precomputed renders
+    OK (rows of runs.csv): sum rep_fallbacks / sum samples and sum
+    reps_evaluated / sum representatives; nan where a key is absent or a
+    denominator is 0."""
+    sums = {"rep_fallbacks": 0.0, "samples": 0.0, "reps_evaluated": 0.0, "representatives": 0.0}
+    for run in ok["run"]:
+        js = read_stats(run)
+        for k in sums:
+            v = js.get(k)
+            sums[k] = sums[k] + float(v) if report.isnum(v) and report.isnum(sums[k]) else math.nan
+    fb = sums["rep_fallbacks"] / sums["samples"] if sums["samples"] > 0 else math.nan
+    ev = sums["reps_evaluated"] / sums["representatives"] if sums["representatives"] > 0 else math.nan
+    return fb, ev
+
+
+def error_ratio(runs, estimate):
+    """Mean over the cells of (mean relMSE of the precomputed renders) /
+    (mean relMSE of the conventional renders of the same cell and seeds):
+    the error the representatives add at equal settings; nan without a
+    common cell."""
+    sel = runs[(runs["status"] == "ok") & (runs["estimate"] == estimate)]
+    pre = sel[(sel["method"] == "precomputed") & (sel["role"] == "grid")]
+    conv = sel[sel["method"] == "conventional"]
+    m = pre.merge(conv, on=["photons", "nn", "seed"], suffixes=("", "_c"))
+    m = m[np.isfinite(m["relmse_ref"].astype(float)) & np.isfinite(m["relmse_ref_c"].astype(float))]
+    if m.empty:
+        return math.nan
+    g = m.groupby(["photons", "nn"])[["relmse_ref", "relmse_ref_c"]].mean()
+    return float((g["relmse_ref"] / g["relmse_ref_c"]).mean())
+
+
+def share(frame, col):
+    """Median over FRAME's renders of COL / total_s (nan when empty)."""
+    t = frame["total_s"].astype(float)
+    v = frame[col].astype(float) / t.where(t > 0)
+    v = v[np.isfinite(v)]
+    return float(np.median(v)) if len(v) else math.nan
+
+
+def measure(case, scene, size, variant, args, runs_csv, time_col, rng, replicates):
+    """The rows (one per estimate) of one variant of one case. Exits 1 when
+    the CSV lacks a column, or when any of the variant's grid renders is
+    missing (a study not finished) or none rendered."""
+    runs = report.read_csv(runs_csv, NEED, WHERE, hint="make beyond renders and collects it")
+    grid = runs[(runs["role"] == "grid") & (runs["method"] == "precomputed")]
+    if grid.empty:
+        report.die(WHERE, f"{runs_csv}: {case} {variant}: no precomputed render in the grid")
+    missing = grid[grid["status"] == "missing"]
+    if len(missing):
+        report.die(WHERE, f"{runs_csv}: {case} {variant}: {len(missing)} of {len(grid)} renders missing "
+                   f"(e.g. {missing['run'].iloc[0]}): run make beyond again")
+    conv = runs[(runs["method"] == "conventional") & (runs["status"] == "missing")]
+    if len(conv):
+        report.die(WHERE, f"{runs_csv}: {case} {variant}: {len(conv)} conventional renders missing")
+    out = []
+    for est in dict.fromkeys(grid["estimate"]):
+        ok = grid[(grid["status"] == "ok") & (grid["estimate"] == est)]
+        res = equal_error.analyse(runs, est, time_col, "auto", rng, replicates)
+        tight = res.get("tightest") or {}
+        fb, ev = counters(ok) if len(ok) else (math.nan, math.nan)
+        conv_ok = runs[(runs["method"] == "conventional") & (runs["status"] == "ok") & (runs["estimate"] == est)]
+        out.append({"case": case, "scene": scene, "size": size, "variant": variant, "args": args, "estimate": est,
+                    "target": tight.get("target", math.nan), "speedup": tight.get("speedup", math.nan),
+                    "lo": tight.get("lo", math.nan), "hi": tight.get("hi", math.nan),
+                    "defined_fraction": tight.get("defined_fraction", math.nan),
+                    "fallback_rate": fb, "evaluated_share": ev,
+                    "precompute_share": share(ok, "precompute_s"), "render_share": share(ok, "render_s"),
+                    "conv_render_share": share(conv_ok, "render_s"),
+                    "error_ratio": error_ratio(runs, est), "renders": int(len(ok)),
+                    "load": runs["loadavg_1min"].astype(float).median()})
+    return out
+
+
+def verdicts(table):
+    """Fill best, above_one, vs_paper and goal_met per (case, estimate):
+    best = the variant other than the paper's with the largest speed-up
+    point estimate; above_one: its interval's lower end > 1; vs_paper:
+    stats.rank of its interval against the paper's ("higher", "overlap",
+    "lower", "unknown"); goal_met: above_one and vs_paper is higher or
+    overlap. The paper's row carries above_one for itself. Returns TABLE."""
+    for c in ("best", "above_one", "goal_met"):
+        table[c] = False
+    table["vs_paper"] = ""
+    for (_case, _est), g in table.groupby(["case", "estimate"], sort=False):
+        for i in g.index:
+            table.loc[i, "above_one"] = bool(report.isnum(g.loc[i, "lo"]) and g.loc[i, "lo"] > 1.0)
+        paper = g[g["variant"] == "paper"]
+        others = g[(g["variant"] != "paper") & np.isfinite(g["speedup"].astype(float))]
+        if others.empty or paper.empty:
+            continue
+        b = others["speedup"].astype(float).idxmax()
+        p = paper.index[0]
+        r = stats.rank((float(table.loc[b, "lo"]), float(table.loc[b, "hi"])),
+                       (float(table.loc[p, "lo"]), float(table.loc[p, "hi"])))
+        table.loc[b, "best"] = True
+        table.loc[b, "vs_paper"] = r
+        table.loc[b, "goal_met"] = bool(table.loc[b, "above_one"] and r in ("higher", "overlap"))
+    return table
+
+
+def pct(x):
+    """'12.3%' of a fraction, 'n/a' when not a number."""
+    return f"{100 * x:.1f}%" if report.isnum(x) else "n/a"
+
+
+def interval(row):
+    """'1.23 [1.01, 1.50]' of a row's speed-up."""
+    return f"{fmt(row['speedup'])} [{fmt(row['lo'])}, {fmt(row['hi'])}]"
+
+
+def why(g, best, paper):
+    """The sentences saying why a case misses the goal: where the time goes
+    and where the error lies, for the best variant against the paper's rule."""
+    s = []
+    if not report.isnum(best["speedup"]):
+        return ["no variant reaches a common error range with the conventional method in this grid"]
+    if not best["above_one"]:
+        s.append(f"the best variant ({best['variant']}) has its interval's lower end at {fmt(best['lo'])}, not above 1.0")
+    if best["vs_paper"] == "lower":
+        s.append(f"its interval lies below the paper's rule ({interval(paper)})")
+    s.append(f"time: its precompute is {pct(best['precompute_share'])} and its eye pass {pct(best['render_share'])} of "
+             f"its total (median over renders; the paper's rule: {pct(paper['precompute_share'])} and "
+             f"{pct(paper['render_share'])}; the conventional eye pass: {pct(best['conv_render_share'])} of its total)")
+    s.append(f"error: at the same cells and seeds its relMSE is {fmt(best['error_ratio'])}x the conventional one "
+             f"(the paper's rule: {fmt(paper['error_ratio'])}x), with {pct(best['fallback_rate'])} of the eye samples "
+             f"falling back to the conventional estimate and {pct(best['evaluated_share'])} of the representatives "
+             "evaluated")
+    return s
+
+
+def figure(table, path, note):
+    """Speed-up with its interval per case and variant (log y, 1.0 marked)."""
+    cases = list(dict.fromkeys(table["case"]))
+    variants = list(dict.fromkeys(table["variant"]))
+    fig, ax = plt.subplots(figsize=(max(6.0, 1.1 * len(cases) * max(1, len(variants)) / 3), 4.2))
+    width = 0.8 / max(1, len(variants))
+    for j, v in enumerate(variants):
+        g = table[table["variant"] == v].set_index("case").reindex(cases)
+        x = np.arange(len(cases)) + (j - (len(variants) - 1) / 2) * width
+        y = g["speedup"].astype(float).to_numpy()
+        lo = g["lo"].astype(float).to_numpy()
+        hi = g["hi"].astype(float).to_numpy()
+        err = np.vstack([np.where(np.isfinite(lo), y - lo, 0), np.where(np.isfinite(hi), hi - y, 0)])
+        ax.errorbar(x, y, yerr=np.clip(err, 0, None), fmt="o", ms=4, capsize=2, label=v,
+                    color=plotting.RULE_COLOURS[j % len(plotting.RULE_COLOURS)])
+    ax.axhline(1.0, color="#888888", lw=0.8)
+    ax.set_yscale("log")
+    ax.set_xticks(np.arange(len(cases)))
+    ax.set_xticklabels(cases, rotation=20, fontsize=8)
+    ax.set_ylabel("speed-up at the tightest common relMSE")
+    ax.legend(fontsize=7, ncol=2)
+    plotting.footer(fig, note)
+    plotting.save(fig, path)
+    plt.close(fig)
+
+
+def main():
+    """Command line: --case ID SCENE SIZE REF ... --variant ID NAME ARGS RUNS_CSV ...; see
+    experiments/beyond.mk."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--case", nargs=4, action="append", default=[], metavar=("ID", "SCENE", "SIZE", "REF"))
+    ap.add_argument("--variant", nargs=4, action="append", default=[], metavar=("ID", "NAME", "ARGS", "RUNS_CSV"))
+    ap.add_argument("--time", default="total_s", choices=sorted(report.TIME_LABEL))
+    ap.add_argument("--bootstrap", type=int, default=2000)
+    ap.add_argument("--bootstrap-seed", type=int, default=1)
+    ap.add_argument("--pm", default="build/photonmap")
+    ap.add_argument("--settings", default="", help="the make command line that made the runs (quoted)")
+    ap.add_argument("--out", required=True, help="output stem: STEM.md, STEM.csv")
+    ap.add_argument("--figure", default="")
+    args = ap.parse_args()
+    cases = {c[0]: c[1:] for c in args.case}
+    if not cases:
+        report.die(WHERE, "no --case")
+    for cid in cases:
+        names = [v[1] for v in args.variant if v[0] == cid]
+        if "paper" not in names:
+            report.die(WHERE, f"case {cid}: no --variant {cid} paper (the rule every variant is compared with)")
+    rng = np.random.default_rng(args.bootstrap_seed)
+    rows = []
+    for cid, name, vargs, csv in args.variant:
+        if cid not in cases:
+            report.die(WHERE, f"--variant {cid} {name}: no --case {cid}")
+        scene, size, _ref = cases[cid]
+        rows += measure(cid, scene, size, name, vargs, csv, args.time, rng, args.bootstrap)
+    table = verdicts(pd.DataFrame(rows))
+    report.write_csv_atomic(table[COLUMNS], args.out + ".csv")
+    write_md(table, cases, args)
+    if args.figure:
+        figure(table, args.figure, f"Data: {args.out}.csv; {args.bootstrap} bootstrap resamples over seeds; "
+               f"time: {report.TIME_LABEL[args.time]}.")
+    print(f"wrote {args.out}.md and {args.out}.csv ({len(table)} rows)")
+
+
+def write_md(table, cases, args):
+    """STEM.md: settings and provenance, the table, the verdict per case."""
+    load = stats.median_range(table["load"].to_numpy(np.float64))
+    out = ["# Beyond the paper: representative variants at equal error", "",
+           f"Generated on {report.today()} by `{args.settings or 'make beyond'}` "
+           f"(data: [`{os.path.basename(args.out)}.csv`]({os.path.basename(args.out)}.csv); per-study tables "
+           f"in `studies/`). Machine: {report.machine()}; median 1-minute load average at the start of the "
+           f"renders {fmt(load[0])} (range {fmt(load[1])}-{fmt(load[2])}); commit {report.commit()}; renderer: "
+           f"{report.renderer_note(args.pm)}. Time: {report.TIME_LABEL[args.time]}.", "",
+           "Speed-up: conventional time / variant time at the tightest relMSE target both fronts reach "
+           "(`equal_error.py`; each variant against the conventional renders of the same seeds and photon maps, "
+           f"its own tightest target), with the 95% percentile interval of {args.bootstrap} bootstrap resamples "
+           f"over seeds (random seed {args.bootstrap_seed}). Reference: each scene's converged render at its size "
+           "(`converged_ref` of `experiments/studies.mk`). Fallback rate: rep_fallbacks / eye samples; evaluated: "
+           "reps_evaluated / representatives (both pooled over the variant's renders). Error ratio: the variant's "
+           "mean relMSE over the conventional one's at the same cells and seeds. The paper's rule and the "
+           "conventional renders of a case ran back to back in pairs (`pair.sh`); a variant's renders pair with "
+           "them by seed but ran later, so their time carries the drift between the two.", "",
+           "| case | variant | target relMSE | speed-up [95%] | fallback | evaluated | precompute | eye pass | error ratio |",
+           "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for _, r in table.iterrows():
+        mark = " (best)" if r["best"] else ""
+        out.append(f"| {r['case']} | {r['variant']}{mark} | {fmt(r['target'])} | {interval(r)} | "
+                   f"{pct(r['fallback_rate'])} | {pct(r['evaluated_share'])} | {pct(r['precompute_share'])} | "
+                   f"{pct(r['render_share'])} | {fmt(r['error_ratio'])} |")
+    out += ["", "## The goal per case", "",
+            "The goal: the best variant's interval lies above 1.0 and at or above the paper's rule's. The best is "
+            "the largest point estimate other than the paper's (a choice on point estimates: its interval is "
+            "what counts); \"not below\" means the two intervals overlap, which does not rank them.", ""]
+    met = 0
+    for (cid, est), g in table.groupby(["case", "estimate"], sort=False):
+        best = g[g["best"]]
+        paper = g[g["variant"] == "paper"].iloc[0]
+        if best.empty:
+            out.append(f"- **{cid}** ({est}): no variant has a speed-up here: the goal is not shown.")
+            continue
+        b = best.iloc[0]
+        rel = {"higher": "above the paper's rule", "overlap": "not below the paper's rule (the intervals overlap)",
+               "lower": "below the paper's rule", "unknown": "not comparable with the paper's rule"}[b["vs_paper"]]
+        head = (f"- **{cid}** ({est}): best {b['variant']} {interval(b)}, "
+                f"{'above' if b['above_one'] else 'not above'} 1.0 and {rel} ({interval(paper)}): ")
+        if b["goal_met"]:
+            met += 1
+            out.append(head + "the goal holds.")
+        else:
+            out.append(head + "the goal does not hold; " + "; ".join(why(g, b, paper)) + ".")
+    n = table.groupby(["case", "estimate"]).ngroups
+    out += ["", f"The goal holds in {met} of {n} cases. Not measured: the error's share in pixels that fell back "
+            "or near edges, per pixel (the renderer writes no per-pixel fallback map); the pooled fallback rate and "
+            "the error ratio above stand for it."]
+    report.write_atomic(args.out + ".md", "\n".join(out) + "\n")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# beyond.test.sh: `make beyond` end to end at a tiny size (cornell at 32x24,
+# a two-cell-wide grid, two seeds, one tau), then experiments/analysis/beyond.py
+# on doctored copies of its runs CSVs: a variant whose renders are missing,
+# or a case without the paper's rule, is refused; a variant made slower in
+# its CSV loses its speed-up (the verdict follows the data).
+cd "$(dirname "$0")/.." || exit 1
+. tests/lib.sh
+PY=${PYTHON:-/usr/bin/python3}
+if ! "$PY" -c 'import numpy, pandas, scipy, OpenImageIO, matplotlib' 2>/dev/null || [ ! -x "$PM" ]; then
+  echo "skipped: needs $PM and numpy, pandas, scipy, OpenImageIO, matplotlib"; echo "0 passed, 0 failed, 1 skipped"; exit 0
+fi
+R=$TMP/r
+ARGS=(SCENES=scenes/cornell.scene SIZE=32x24 BEYOND_SIZES=32x24 "PHOTONS=2000 4000" "NNS=10 20" SEEDS=2
+      BEYOND_TAUS=0.1 RES_REF_PHOTONS=20000 RES_REF_NN=50 BOOTSTRAP=200 RESULTS="$R" FIGURES="$R/figures")
+make -s beyond "${ARGS[@]}" > "$TMP/make.log" 2>&1; rc=$?
+check "make beyond exits 0" test "$rc" -eq 0
+[ "$rc" -eq 0 ] || sed 's/^/     /' "$TMP/make.log" | tail -n 20
+check "beyond.md, beyond.csv and the figure exist" test -s "$R/beyond/beyond.md" -a -s "$R/beyond/beyond.csv" -a -s "$R/figures/beyond.png"
+csv=$R/beyond/beyond.csv
+col() { # VARIANT COLUMN: the value in beyond.csv
+  "$PY" -c 'import pandas as pd, sys; t = pd.read_csv(sys.argv[1]); print(t.loc[t["variant"] == sys.argv[2], sys.argv[3]].iloc[0])' "$csv" "$1" "$2"
+}
+check "four variants: paper lazy gated0.1 lazygated0.1" \
+  bash -c "[ \"\$($PY -c 'import pandas as pd,sys; print(\" \".join(pd.read_csv(sys.argv[1])[\"variant\"]))' $csv)\" = 'paper lazy gated0.1 lazygated0.1' ]"
+check "the paper's rule evaluates every representative and never falls back" \
+  bash -c "[ \"$(col paper evaluated_share)\" = 1.0 ] && [ \"$(col paper fallback_rate)\" = 0.0 ]"
+check "lazy: at most every representative, same error as the paper's rule (the same images)" \
+  bash -c "awk -v e=$(col lazy evaluated_share) 'BEGIN { exit !(e > 0 && e <= 1) }' && [ \"$(col lazy error_ratio)\" = \"$(col paper error_ratio)\" ]"
+check "every row's fallback rate is a rate" \
+  "$PY" -c 'import pandas as pd, sys; t = pd.read_csv(sys.argv[1]); assert ((t.fallback_rate >= 0) & (t.fallback_rate <= 1)).all()' "$csv"
+check "the report says per case whether the goal holds" grep -qE '^- \*\*cornell-32x24\*\* .*goal (holds|does not hold)' "$R/beyond/beyond.md"
+
+S=$R/beyond/studies
+REF=$(ls "$R"/runs/cornell-refhigh-*/32x24.exr)
+run_py() { # PAPER_CSV LAZY_CSV [more args]: beyond.py on the case with these two variants
+  local p=$1 l=$2; shift 2
+  "$PY" -m experiments.analysis.beyond --case c cornell 32x24 "$REF" --variant c paper "" "$p" \
+    --variant c lazy "--rep-eval lazy" "$l" --bootstrap 200 --out "$TMP/o/beyond" "$@"
+}
+check "beyond.py on the real CSVs exits 0" run_py "$S/runs-cornell-32x24-paper.csv" "$S/runs-cornell-32x24-lazy.csv"
+# negative control 1: one of lazy's renders marked missing
+"$PY" - "$S/runs-cornell-32x24-lazy.csv" "$TMP/missing.csv" <<'P'
+import pandas as pd, sys
+t = pd.read_csv(sys.argv[1]); i = t.index[(t.role == "grid") & (t.method == "precomputed")][0]
+t.loc[i, "status"] = "missing"; t.to_csv(sys.argv[2], index=False)
+P
+check "a variant with a missing render is refused" expect_exit 1 'renders missing' \
+  run_py "$S/runs-cornell-32x24-paper.csv" "$TMP/missing.csv"
+check "a case without the paper's rule is refused" expect_exit 1 'no --variant c paper' \
+  "$PY" -m experiments.analysis.beyond --case c cornell 32x24 "$REF" --variant c lazy "" "$S/runs-cornell-32x24-lazy.csv" --out "$TMP/o/x"
+# negative control 2: lazy's renders made 100x slower: its speed-up falls 100x
+"$PY" - "$S/runs-cornell-32x24-lazy.csv" "$TMP/slow.csv" <<'P'
+import pandas as pd, sys
+t = pd.read_csv(sys.argv[1]); m = (t.role == "grid") & (t.method == "precomputed")
+t.loc[m, "total_s"] = t.loc[m, "total_s"] * 100; t.to_csv(sys.argv[2], index=False)
+P
+run_py "$S/runs-cornell-32x24-paper.csv" "$S/runs-cornell-32x24-lazy.csv" > /dev/null 2>&1 && cp "$TMP/o/beyond.csv" "$TMP/real.csv"
+check "a doctored CSV (lazy 100x slower) lowers lazy's speed-up 100x and it is no longer above 1.0" bash -c "
+  $(declare -f run_py); PY=$PY REF=$REF TMP=$TMP
+  run_py '$S/runs-cornell-32x24-paper.csv' '$TMP/slow.csv' >/dev/null && $PY -c '
+import pandas as pd, sys
+a = pd.read_csv(sys.argv[1]).set_index(\"variant\"); b = pd.read_csv(sys.argv[2]).set_index(\"variant\")
+r = a.loc[\"lazy\", \"speedup\"] / b.loc[\"lazy\", \"speedup\"]
+assert 99 < r < 101, r
+assert b.loc[\"lazy\", \"above_one\"] == False and b.loc[\"lazy\", \"goal_met\"] == False
+' $TMP/real.csv $TMP/o/beyond.csv"
+check "make beyond refuses SCENE=" expect_exit 2 'give SCENES=' make -s beyond SCENE=scenes/cornell.scene RESULTS="$R"
+finish
