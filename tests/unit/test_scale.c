@@ -200,6 +200,15 @@ void test_photons_map_matches_plain_build(void)
     scene_free(sc);
 }
 
+#if defined(__SANITIZE_ADDRESS__)
+#define SCALE_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SCALE_SANITIZED 1
+#endif
+#endif
+
+#ifndef SCALE_SANITIZED
 /* This process's resident set (VmRSS) or its peak (VmHWM) in bytes, 0 when
  * /proc says nothing. */
 static double proc_status_bytes(const char *key)
@@ -227,12 +236,6 @@ static int reset_peak(void)
     return fclose(f) != 0 || rc ? -1 : 0;
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-#define SCALE_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SCALE_SANITIZED 1
-#endif
 #endif
 
 /* The peak resident set of a trace and build of about 1.2M stored photons
