@@ -15,6 +15,9 @@ check "make help lists the study targets" bash -c "for t in reproduce-table rep-
   printf '%s\n' $(echo $targets) | grep -qx \$t || { echo \"\$t missing\"; exit 1; }; done"
 for t in $targets; do
   [ "$t" = sweep-slurm ] && continue
+  # evaluate needs the scene it evaluates
+  [ "$t" = evaluate ] && { check "make -n evaluate SCENE=tests/evaluate/box.scene: exit 0" \
+    make -n evaluate SCENE=tests/evaluate/box.scene RESULTS="$R"; continue; }
   check "make -n $t: exit 0" make -n "$t" RESULTS="$R"
 done
 check "make -n sweep-slurm SWEEP=reproduce-runs: exit 0, writes nothing" \
@@ -34,7 +37,7 @@ check "estimator-bias SEEDS=2 NNS=5: those seeds and n only" \
   bash -c "out=\$(make -n estimator-bias SEEDS=2 NNS=5 RESULTS=$R 2>&1) && grep -q 'pair.sh .*estimator-bias paper-p50000-n5/seed2' <<< \"\$out\" &&
            ! grep -q -- '-n10/' <<< \"\$out\" && ! grep -q 'seed3' <<< \"\$out\""
 check "resolution SIZE=40x30: that size only" \
-  bash -c "out=\$(make -n resolution SIZE=40x30 SEEDS=1 PHOTONS=2000 NNS=10 RESULTS=$R 2>&1) && grep -q 'refhigh.*/40x30.exr' <<< \"\$out\" &&
+  bash -c "out=\$(make -n resolution SIZE=40x30 SEEDS=1 PHOTONS=2000 NNS=10 RESULTS=$R 2>&1) && grep -q 'convref.*/40x30.exr' <<< \"\$out\" &&
            ! grep -q '256x192' <<< \"\$out\""
 for old in SCENES_SIZE=128x96 SCENES_SEEDS=2 CAUSTIC_SIZE=64x48 CAUSTIC_SEEDS=2 BIAS_SEEDS=3 REP_SEEDS=2 RES_SEEDS=2 EE_TIME=total_s WIDTH=64; do
   check "a name no target reads is refused: $old" expect_exit 2 "${old%%=*} is gone: every study target reads" make -n scenes "$old"
