@@ -15,6 +15,9 @@
     X(kdtree_query_avx2) \
     X(kdtree_build_memory) \
     X(kdtree_build_threads) \
+    /* test_kdtree_stream.c */ \
+    X(kdtree_stream_base) \
+    X(kdtree_stream_avx2) \
     /* test_kdtree_select.c */ \
     X(kdtree_select_base) \
     X(kdtree_select_avx2) \
