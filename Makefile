@@ -59,6 +59,7 @@ scenes: ## the grid on every scene: equal-error speed-up, kNN share, where the e
 stability: ## every extreme with its expected value and verdict -> results/stability/stability-extremes.md
 bench: ## kNN (against FLANN, cKDTree, nanoflann), lookup and eye-pass benchmarks -> results/bench/bench.md
 bench-quick: ## only the kNN against FLANN, cKDTree and nanoflann, about a minute, on stdout
+bench-peers: ## only the kNN against FLANN, cKDTree and nanoflann, both query streams -> results/bench/peers.md
 reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one
 fuzz: ## run the scene parser's libFuzzer target for FUZZ_SECONDS (60)

@@ -29,3 +29,9 @@ bench: bench-bin
 .PHONY: bench-quick
 bench-quick: bench-bin
 	bash experiments/bench/run.sh --quick
+
+# `make bench-peers`: the kNN against FLANN, cKDTree and nanoflann alone, both
+# query streams, k = 10 and 100, written to results/bench/peers.md.
+.PHONY: bench-peers
+bench-peers: bench-bin
+	bash experiments/bench/run.sh --peers
