@@ -41,9 +41,10 @@ peers() { # reps ks: the peers table (Markdown) on stdout
 peers_section() { # the Markdown section of the kNN against the peers ($tmp/peers.md, $load_peers)
   echo "## kNN against the peers: FLANN, scipy's cKDTree, nanoflann (one thread, 500k map)"
   echo
-  echo "The same points (the 500k map's, in its frame) on two query streams: \`tiles\`, the pixel centres in tile order as"
-  echo "above; \`subpixels\`, the eye pass's own stream (four subpixel samples per pixel of a 160x120 view, in its order:"
-  echo "tile by tile, pixel by pixel, subpixel rows). Radius cap"
+  echo "The same points (the 500k map's, in its frame) on two query streams: \`tiles\`, the first diffuse hits"
+  echo "through the pixel centres of a 320x240 view in 16x16-tile order; \`subpixels\`, the eye pass's own stream: the"
+  echo "four subpixel samples of each pixel of a 160x120 view (the same points), in its order: tile by tile, pixel by pixel,"
+  echo "subpixel rows, so that four queries in a row lie a fraction of a photon spacing apart. Radius cap"
   echo "0.05 x the photons' bounding-box diagonal, leaf size 12 for every tree. Ours: \`kd_query_knn\` with its"
   echo "state carried from query to query. FLANN 1.9: \`KDTreeSingleIndex<L2_Simple<float>>\`, one call per batch"
   echo "of its documented \`knnSearch\` (the neighbours beyond the cap dropped after) or \`radiusSearch\` with"
