@@ -59,7 +59,7 @@ peers_section() { # the Markdown section of the kNN against the peers ($tmp/peer
 }
 
 if [ "$QUICK" = 1 ]; then
-  echo "bench: quick: the kNN against the peers, 500k map, tile order, k = 10 and 100, 3 runs a cell" >&2
+  echo "bench: quick: the kNN against the peers, 500k map, tile order and subpixel stream, k = 10 and 100, 3 runs a cell" >&2
   echo "Load average $(cut -d' ' -f1-3 /proc/loadavg) before it ran; commit $(git rev-parse --short HEAD 2> /dev/null || echo '?')."
   echo
   peers 3 10,100
