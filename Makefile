@@ -61,6 +61,7 @@ stability: ## every extreme with its expected value and verdict -> results/stabi
 bench: ## kNN (against FLANN, cKDTree, nanoflann), lookup and eye-pass benchmarks -> results/bench/bench.md
 bench-quick: ## only the kNN against FLANN, cKDTree and nanoflann, about a minute, on stdout
 bench-scaling: ## each phase's cost and peak bytes per stored photon against the photons, log-log slopes -> results/bench/scaling.md (SCALING_PHOTONS)
+bench-peers: ## only the kNN against FLANN, cKDTree and nanoflann, both query streams -> results/bench/peers.md
 reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one
 reference-pbrt: ## re-render the pbrt-v3 references (needs pbrt: PBRT=path; reference/pbrt/README.md)

@@ -10,7 +10,9 @@
  *         [--ks a,b,c] [--knn-only] [--peers DIR [--python P]]
  *
  * --peers DIR: instead of the tables, the kNN against every peer on the
- * largest of --sizes, tile order: ours, nanoflann, FLANN (flann.cpp: its
+ * largest of --sizes, on two query streams: pixel centres in tile order
+ * ("tiles") and the eye pass's own, four subpixel samples per pixel of a
+ * quarter as many pixels ("subpixels"): ours, nanoflann, FLANN (flann.cpp: its
  * knnSearch and its radiusSearch) and scipy's cKDTree (ckdtree.py, a co-process run with interpreter P,
  * default /usr/bin/python3, talking through pipes; DIR holds the files it
  * reads and writes). Each rep times the five on the same queries one after
@@ -111,18 +113,22 @@ static double median(double *v, int n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/* The first diffuse hit of the camera ray through each pixel centre of a WxH
- * image, pixels visited tile by tile as the eye pass does. Mirrors reflect;
- * glass refracts (reflects on total internal reflection). */
-static qset eye_points(const scene *sc, uint32_t w, uint32_t h)
+/* The first diffuse hit of the camera ray through each of the SxS subpixel
+ * centres of each pixel of a WxH image (S = 1: the pixel centre), pixels
+ * visited tile by tile and subpixels row by row, as the eye pass does.
+ * Mirrors reflect; glass refracts (reflects on total internal reflection). */
+static qset eye_points(const scene *sc, uint32_t w, uint32_t h, uint32_t S)
 {
-    qset q = {0, malloc(sizeof(float) * 3 * w * h), malloc(sizeof(float) * 3 * w * h)};
+    size_t cap = (size_t)w * h * S * S;
+    qset q = {0, malloc(sizeof(float) * 3 * cap), malloc(sizeof(float) * 3 * cap)};
     double aspect = (double)h / w;
     for (uint32_t ty = 0; ty < (h + TILE - 1) / TILE; ty++)
         for (uint32_t tx = 0; tx < (w + TILE - 1) / TILE; tx++)
             for (uint32_t y = ty * TILE; y < h && y < ty * TILE + TILE; y++)
-                for (uint32_t x = tx * TILE; x < w && x < tx * TILE + TILE; x++) {
-                    shape_ray r = camera_ray(sc, aspect, (x + 0.5) / w, (y + 0.5) / h);
+                for (uint32_t x = tx * TILE; x < w && x < tx * TILE + TILE; x++)
+                for (uint32_t sub = 0; sub < S * S; sub++) {
+                    uint32_t sy = sub / S, sx = sub % S;
+                    shape_ray r = camera_ray(sc, aspect, (x + (sx + 0.5) / S) / w, (y + (sy + 0.5) / S) / h);
                     for (int depth = 0; depth < 16; depth++) {
                         scene_hit hit;
                         if (!scene_intersect(sc, &r, INFINITY, &hit))
@@ -454,17 +460,16 @@ static int negative_control(const float *pts, uint32_t n, const float *q, uint32
 #define BRUTE_EVERY 509u /* ours is checked against brute force on every this-th query */
 #define NWHO 5             /* ours and the peers */
 
-/* The peers comparison on the map's points `pos` and the tile-order
- * queries q (map frame): CSV rows on stdout (see report.py peers). Returns
+/* The peers comparison on the map's points `pos` and the queries q (map
+ * frame) of the stream named `order`: CSV rows on stdout (see report.py peers). Returns
  * 0, or 1 when a peer could not run or an answer did not check. */
-static int run_peers(const char *dir, const char *python, uint32_t pe, const float *pos, uint32_t n, const float *q,
-                     uint32_t nq, float cap, const uint32_t *ks, int nks, int reps)
+static int run_peers(const char *dir, const char *python, const char *order, uint32_t pe, const float *pos, uint32_t n,
+                     const float *q, uint32_t nq, float cap, const uint32_t *ks, int nks, int reps)
 {
     if (write_f32(dir, "points.f32", pos, 3 * (size_t)n) || write_f32(dir, "queries.f32", q, 3 * (size_t)nq)) {
         fprintf(stderr, "bench: --peers: cannot write to %s\n", dir);
         return 1;
     }
-    printf("pe,stored,queries,k,who,rep,seconds,found,exact,ties,mismatches\n");
     coproc ckd;
     double tb = coproc_start(&ckd, python, "experiments/bench/ckdtree.py", dir, KD_DEFAULT_LEAF);
     if (tb < 0) {
@@ -472,7 +477,7 @@ static int run_peers(const char *dir, const char *python, uint32_t pe, const flo
         coproc_stop(&ckd);
         return 1;
     }
-    printf("%u,%u,%u,0,ckdtree,build,%.6f,0,0,0,0\n", pe, n, nq, tb);
+    printf("%u,%u,%u,0,%s,ckdtree,build,%.6f,0,0,0,0\n", pe, n, nq, order, tb);
     double t0 = now_s();
     kd_tree ours;
     uint32_t *perm = malloc(sizeof(uint32_t) * (n ? n : 1));
@@ -485,9 +490,10 @@ static int run_peers(const char *dir, const char *python, uint32_t pe, const flo
     double t2 = now_s();
     void *fl = flann_peer_build(pos, n, KD_DEFAULT_LEAF);
     double t3 = now_s();
-    printf("%u,%u,%u,0,ours,build,%.6f,0,0,0,0\n%u,%u,%u,0,nanoflann,build,%.6f,0,0,0,0\n"
-           "%u,%u,%u,0,flann-knn,build,%.6f,0,0,0,0\n%u,%u,%u,0,flann-radius,build,%.6f,0,0,0,0\n",
-           pe, n, nq, t1 - t0, pe, n, nq, t2 - t1, pe, n, nq, t3 - t2, pe, n, nq, t3 - t2);
+    printf("%u,%u,%u,0,%s,ours,build,%.6f,0,0,0,0\n%u,%u,%u,0,%s,nanoflann,build,%.6f,0,0,0,0\n"
+           "%u,%u,%u,0,%s,flann-knn,build,%.6f,0,0,0,0\n%u,%u,%u,0,%s,flann-radius,build,%.6f,0,0,0,0\n",
+           pe, n, nq, order, t1 - t0, pe, n, nq, order, t2 - t1, pe, n, nq, order, t3 - t2, pe, n, nq, order,
+           t3 - t2);
     uint32_t *ref = malloc(sizeof(uint32_t) * (size_t)nq * MAXK), *got = malloc(sizeof(uint32_t) * (size_t)nq * MAXK);
     if (!ref || !got) {
         fprintf(stderr, "bench: out of memory\n");
@@ -529,7 +535,7 @@ static int run_peers(const char *dir, const char *python, uint32_t pe, const flo
         }
         check_sets("ckdtree", pos, q, nq, k, cap, ref, got, cnt[4]);
         for (int w = 0; w < NWHO; w++) {
-            printf("%u,%u,%u,%u,%s,check,0,%llu,%llu,%llu,%llu\n", pe, n, w ? nq : nb, k, who[w],
+            printf("%u,%u,%u,%u,%s,%s,check,0,%llu,%llu,%llu,%llu\n", pe, n, w ? nq : nb, k, order, who[w],
                    (unsigned long long)found[w], (unsigned long long)cnt[w][0], (unsigned long long)cnt[w][1],
                    (unsigned long long)cnt[w][2]);
             bad |= cnt[w][2] != 0;
@@ -553,7 +559,8 @@ static int run_peers(const char *dir, const char *python, uint32_t pe, const flo
             s[4] = coproc_batch(&ckd, k, cap, 0, &f[4]);
             for (int w = 0; w < NWHO; w++) {
                 bad |= s[w] < 0 || f[w] != found[w];
-                printf("%u,%u,%u,%u,%s,%d,%.6f,%llu,,,\n", pe, n, nq, k, who[w], r, s[w], (unsigned long long)f[w]);
+                printf("%u,%u,%u,%u,%s,%s,%d,%.6f,%llu,,,\n", pe, n, nq, k, order, who[w], r, s[w],
+                       (unsigned long long)f[w]);
             }
             fflush(stdout);
         }
@@ -627,7 +634,7 @@ int main(int argc, char **argv)
         return 1;
     }
     config_render cfg = config_defaults();
-    qset tiles = eye_points(sc, qw, qh);
+    qset tiles = eye_points(sc, qw, qh, 1);
     qset shuf = shuffled(&tiles, 1);
     if (icount) { /* every m-th query of each order, so the sample covers the whole view */
         uint32_t m = tiles.n / 8000 ? tiles.n / 8000 : 1, j = 0;
@@ -646,8 +653,12 @@ int main(int argc, char **argv)
             fprintf(stderr, "bench: out of memory\n");
             return 1;
         }
+        /* the renderer's own stream: the eye pass's four subpixel samples per
+         * pixel (a quarter of the pixels, so about as many queries) */
+        qset sub = eye_points(sc, qw / 2, qh / 2, 2);
         float *pos = malloc(sizeof(float) * 3 * map.count), *q = malloc(sizeof(float) * 3 * tiles.n);
-        if (!pos || !q) {
+        float *qs = malloc(sizeof(float) * 3 * sub.n);
+        if (!pos || !q || !qs) {
             fprintf(stderr, "bench: out of memory\n");
             return 1;
         }
@@ -657,9 +668,18 @@ int main(int argc, char **argv)
             const float *w = tiles.p + 3 * (size_t)i;
             photons_map_point(&map, vec_make(w[0], w[1], w[2]), q + 3 * (size_t)i);
         }
+        for (uint32_t i = 0; i < sub.n; i++) {
+            const float *w = sub.p + 3 * (size_t)i;
+            photons_map_point(&map, vec_make(w[0], w[1], w[2]), qs + 3 * (size_t)i);
+        }
         est_gather gather = est_gather_make(&map, cfg.nn, render_max_radius(sc, &cfg, &map), 0);
-        int rc = run_peers(peers_dir, python, pe, pos, map.count, q, tiles.n, (float)gather.max_r2, ks, nks, reps);
-        free(pos), free(q);
+        printf("pe,stored,queries,k,order,who,rep,seconds,found,exact,ties,mismatches\n");
+        int rc = run_peers(peers_dir, python, "tiles", pe, pos, map.count, q, tiles.n, (float)gather.max_r2, ks, nks,
+                           reps);
+        if (rc == 0)
+            rc = run_peers(peers_dir, python, "subpixels", pe, pos, map.count, qs, sub.n, (float)gather.max_r2, ks,
+                           nks, reps);
+        free(pos), free(q), free(qs), free(sub.p), free(sub.nr);
         photons_map_free(&map);
         free(tiles.p), free(tiles.nr), free(shuf.p), free(shuf.nr);
         scene_free(sc);

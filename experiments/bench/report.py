@@ -12,9 +12,11 @@ before (BEFORE_CSV).
 heavy: ROWS_FILE has one line per run "method render_s precompute_s total_s
 rss_kib"; prints one Markdown row per method: the median of each time over
 the runs and the largest RSS.
-peers: CSV is the output of `bench --peers` (one row per build, per check
-and per timed run); prints the queries/s of each tree (median over the
-runs), ours / each peer, and what the neighbour-set checks found.
+peers: CSV is the output of `bench --peers` (one row per query stream and
+build, per check and per timed run); prints the queries/s of each tree
+(median over the runs) per stream ("tiles": pixel centres in tile order;
+"subpixels": the eye pass's four samples per pixel), ours / each peer, and
+what the neighbour-set checks found.
 """
 import glob
 import sys
@@ -69,17 +71,17 @@ def peers(csv):
     d = pd.read_csv(csv)
     runs = d[~d["rep"].isin(["build", "check"])].copy()
     checks = d[d["rep"] == "check"]
-    builds = d[d["rep"] == "build"].set_index("who")["seconds"]
+    builds = d[(d["rep"] == "build") & (d["order"] == d["order"].iloc[0])].set_index("who")["seconds"]
     reps = runs["rep"].nunique()
-    print("| P_e | stored | k | ours (Mq/s) | " + " | ".join(f"{n} (Mq/s)" for _, n in PEERS) + " | "
+    print("| P_e | stored | queries | k | ours (Mq/s) | " + " | ".join(f"{n} (Mq/s)" for _, n in PEERS) + " | "
           + " | ".join(f"ours / {n}" for _, n in PEERS) + " | ours / strongest peer |")
-    print("|---:|---:|---:|---:|" + "---:|" * (2 * len(PEERS)) + "---:|")
-    for (pe, stored, k), g in runs.groupby(["pe", "stored", "k"]):
+    print("|---:|---:|---|---:|---:|" + "---:|" * (2 * len(PEERS)) + "---:|")
+    for (order, pe, stored, k), g in runs.groupby(["order", "pe", "stored", "k"], sort=False):
         med = g.groupby("who")["seconds"].median()
         nq = g["queries"].iloc[0]
         rate = {w: nq / med[w] * 1e-6 for w in med.index}
         best = max((w for w, _ in PEERS), key=lambda w: rate[w])
-        print(f"| {pe} | {stored} | {k} | {rate['ours']:.3f} | "
+        print(f"| {pe} | {stored} | {order} | {k} | {rate['ours']:.3f} | "
               + " | ".join(f"{rate[w]:.3f}" for w, _ in PEERS) + " | "
               + " | ".join(f"{med[w] / med['ours']:.2f}" for w, _ in PEERS) + " | "
               + f"{med[best] / med['ours']:.2f} ({dict(PEERS)[best]}) |")
@@ -93,14 +95,14 @@ def peers(csv):
     print("Neighbour sets, checked before the timed runs (ours against brute force on a sample of the queries; "
           "every peer against ours on all of them):")
     print()
-    print("| k | answer | checked against | queries checked | neighbours found (all queries) | same set | differ by ties only | wrong |")
-    print("|---:|---|---|---:|---:|---:|---:|---:|")
+    print("| queries | k | answer | checked against | queries checked | neighbours found (all queries) | same set | differ by ties only | wrong |")
+    print("|---|---:|---|---|---:|---:|---:|---:|---:|")
     bad = 0
-    for _, r in checks.sort_values("k", kind="stable").iterrows():
+    for _, r in checks.sort_values(["order", "k"], ascending=[False, True], kind="stable").iterrows():
         name = "ours" if r["who"] == "ours" else dict(PEERS)[r["who"]]
         against = "brute force" if r["who"] == "ours" else "ours"
         bad += int(r["mismatches"])
-        print(f"| {int(r['k'])} | {name} | {against} | {int(r['queries'])} | {int(r['found'])} | {int(r['exact'])} | "
+        print(f"| {r['order']} | {int(r['k'])} | {name} | {against} | {int(r['queries'])} | {int(r['found'])} | {int(r['exact'])} | "
               f"{int(r['ties'])} | {int(r['mismatches'])} |")
     if bad:
         sys.exit(f"report.py peers: {bad} neighbour sets did not check")

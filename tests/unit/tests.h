@@ -19,6 +19,9 @@
     X(kdtree_build_items) \
     X(photons_map_matches_plain_build) \
     X(photons_peak_memory) \
+    /* test_kdtree_stream.c */ \
+    X(kdtree_stream_base) \
+    X(kdtree_stream_avx2) \
     /* test_kdtree_select.c */ \
     X(kdtree_select_base) \
     X(kdtree_select_avx2) \
