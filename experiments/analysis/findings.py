@@ -376,8 +376,41 @@ def finding_rules(d):
     return "Which photons are representatives", lines
 
 
+def finding_metric(d):
+    """The error metric: what NMSE changes against relMSE (metrics.PRIMARY)
+    on the same renders: the cells' order and the paired verdicts."""
+    r = load(d["runs"], ["role", "status", "method", "estimate", "photons", "nn", "seed", "relmse_ref", "nmse_ref"],
+             "make reproduce-table")
+    r = r[(r["role"] == "grid") & (r["status"] == "ok")]
+    lines = []
+    for est, g in r.groupby("estimate", sort=False):
+        means = g.groupby(["method", "photons", "nn"])[["relmse_ref", "nmse_ref"]].mean()
+        rho = sps.spearmanr(means["relmse_ref"], means["nmse_ref"]).statistic
+        verdicts = {}
+        for col in ("relmse_ref", "nmse_ref"):
+            comps, keys = [], []
+            for (ph, n), h in g.groupby(["photons", "nn"]):
+                a = h[h["method"] == "precomputed"].set_index("seed")[col]
+                b = h[h["method"] == "conventional"].set_index("seed")[col]
+                seeds = sorted(set(a.index) & set(b.index))
+                if seeds:
+                    comps.append(stats.paired_difference(a.loc[seeds].to_numpy(), b.loc[seeds].to_numpy()))
+                    keys.append(cell(ph, n))
+            verdicts[col] = dict(zip(keys, (c["verdict"] for c in stats.compare_family(comps))))
+        changed = [k for k in verdicts["relmse_ref"] if verdicts["relmse_ref"][k] != verdicts["nmse_ref"].get(k)]
+        ratio = (means["nmse_ref"] / means["relmse_ref"]).to_numpy(np.float64)
+        lines.append(f"- {est} estimate, {len(means)} cells x methods: Spearman rank correlation of the cells' mean "
+                     f"relMSE and mean NMSE {fmt(rho)}; NMSE / relMSE {fmt(np.min(ratio))}-{fmt(np.max(ratio))}; "
+                     f"the paired verdicts (Holm) differ in {len(changed)} of {len(verdicts['relmse_ref'])} cells"
+                     + (": " + ", ".join(f"{k} {verdicts['relmse_ref'][k]} -> {verdicts['nmse_ref'][k]}" for k in changed)
+                        if changed else "") + ".")
+    lines.append(f"- The primary error is {metrics.PRIMARY_DEFINITION}; NMSE (mean squared error over the "
+                 "reference's mean square, relative at every brightness) is reported beside it.")
+    return "The error metric", lines
+
+
 FINDINGS = ((1, finding1), (2, finding2), (3, finding3), (4, finding4), (5, finding5), (6, finding6),
-            (7, finding7), (8, finding8), (9, finding9), ("R", finding_repro), ("S", finding_rules))
+            (7, finding7), (8, finding8), (9, finding9), ("R", finding_repro), ("S", finding_rules), ("M", finding_metric))
 
 
 def paths(root):
@@ -386,7 +419,7 @@ def paths(root):
     return {"root": root, "table": j(root, "table1", "table1.csv"), "cells": j(root, "table1", "cells.csv"),
             "equal_error": j(root, "table1", "equal-error.csv"),
             "bias": j(root, "estimator-bias", "estimator-bias.csv"), "caustic": j(root, "caustic", "caustic.csv"),
-            "scenes": j(root, "scenes", "scenes.csv"), "stability": j(root, "stability", "stability-extremes.md"),
+            "scenes": j(root, "scenes", "scenes.csv"), "runs": j(root, "table1", "runs.csv"), "stability": j(root, "stability", "stability-extremes.md"),
             "repro": j(root, "reproducibility", "reproducibility.csv"), "rep": j(root, "rep-study", "rep-study.csv")}
 
 
@@ -454,7 +487,7 @@ def main(argv=None):
     ap.add_argument("--out", help="write FINDINGS.md here")
     ap.add_argument("--check-readme", metavar="README", help="exit 1 when a number of README's findings section "
                     "appears in no results file under --results")
-    for k in ("table", "cells", "equal_error", "bias", "caustic", "scenes", "stability", "repro", "rep"):
+    for k in ("runs", "table", "cells", "equal_error", "bias", "caustic", "scenes", "stability", "repro", "rep"):
         ap.add_argument("--" + k.replace("_", "-"), default=None, help=f"override the {k} file")
     args = ap.parse_args(argv)
     d = paths(args.results)

@@ -43,13 +43,14 @@ import pandas as pd
 from scipy import optimize
 from scipy import stats as sps
 
+from experiments.analysis import metrics
 from experiments.analysis import plotting
 from experiments.analysis import report
 from experiments.analysis import stats
 from experiments.analysis.report import fmt, fmt_interval
 
 NEED = ["method", "estimate", "photons", "nn", "seed", "status", "role", "rep_every", "representatives",
-        "photons_stored", "cpu_s", "total_s", "relmse_ref", "relmse_conv", "precompute_s", "render_s", "size"]
+        "photons_stored", "cpu_s", "total_s", metrics.PRIMARY_COLUMN, "relmse_conv", "precompute_s", "render_s", "size"]
 
 
 FIT_COLUMNS = ["rule", "label", "kind", "photons", "stored", "reps", "reps_fraction", "seeds", "points",
@@ -190,7 +191,7 @@ def analyse(base, variants, paper, time_col, rng, replicates):
                 cn = conv[(conv["photons"] == p) & (conv["nn"] == n)]
                 ratio, lo, hi = stats.median_ratio(gn[time_col].to_numpy(float), cn[time_col].to_numpy(float),
                                                    rng, replicates)
-                em, eh = stats.t_interval(gn["relmse_ref"])
+                em, eh = stats.t_interval(gn[metrics.PRIMARY_COLUMN])
                 cm, ch = stats.t_interval(gn["relmse_conv"])
                 tm, tlo, thi = stats.median_range(gn[time_col])
                 pap = paper[(paper["emitted_kphotons"] * 1000 == p) & (paper["nn"] == n)]
