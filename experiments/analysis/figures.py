@@ -576,6 +576,10 @@ def ratio_vs_n(args):
     cpu = args.time == "cpu_s"
     col, lo, hi = ("cpu_ratio_percent", "cpu_ratio_ci95_lo", "cpu_ratio_ci95_hi") if cpu else \
         ("ratio_percent", "ratio_ci95_lo", "ratio_ci95_hi")
+    # the paired ratio (per-seed log ratios, t interval) where the table has it
+    paired = ("paired_" + col) in args.table_frame
+    if paired:
+        col, lo, hi = "paired_" + col, "paired_" + lo, "paired_" + hi
     fig, axes = plt.subplots(1, len(allp), figsize=(4.6 * len(allp), 5), sharey=True, squeeze=False)
     ymax = 100
     for ax, p in zip(axes[0], allp):
@@ -587,7 +591,7 @@ def ratio_vs_n(args):
             y = g[col + s].to_numpy(float)
             err = [y - g[lo + s].to_numpy(float), g[hi + s].to_numpy(float) - y]
             ax.errorbar(g["nn"] * off, y, yerr=np.nan_to_num(err), fmt=style, color=plotting.METHOD_COLOUR["precomputed"]
-                        if est == "paper" else "#e08a1e", capsize=3, ms=6, label=f"ours, {est} estimate (95% bootstrap)")
+                        if est == "paper" else "#e08a1e", capsize=3, ms=6, label=f"ours, {est} estimate (95% {'paired t' if paired else 'bootstrap'})")
             ymax = max(ymax, np.nanmax(g[hi + s]))
         if g["paper_ratio_percent"].notna().any():
             ax.plot(g["nn"], g["paper_ratio_percent"], "*-", color=plotting.PAPER_COLOUR, ms=10,
@@ -605,7 +609,9 @@ def ratio_vs_n(args):
     axes[0][0].legend(fontsize=8, loc="lower left")
     fig.suptitle("The comparable quantity: time of the precomputed method relative to the conventional one",
                  fontsize=11.5, weight="bold")
-    foot = provenance(args, "Ours: ratio of the median times, interval from resampling the seeds of both cells "
+    foot = provenance(args, ("Ours: paired ratio (the geometric mean of the per-seed ratios of the two renders of "
+                             "one seed, rendered back to back), 95% t interval over seeds. " if paired else "") +
+                      "Without paired columns: ratio of the median times, interval from resampling the seeds of both cells "
                             "(table.py); offsets along n only separate the estimates.")
     fig.subplots_adjust(left=0.07, right=0.99, top=0.86, wspace=0.08,
                         bottom=0.13 + 0.025 * plotting.footer_lines(foot, 4.6 * len(allp)))
