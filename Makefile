@@ -42,7 +42,7 @@ TEST_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/dbg/test_%.o)
 TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
-.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm evaluate beyond
+.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm evaluate beyond reproducibility findings
 all: $(BUILD)/photonmap ## build build/photonmap
 deps: $(DEPS_STAMP) $(DEPS_TEST) $(DEPS_CLUSTER) ## install the missing Debian packages of every tier (scripts/install-deps.sh)
 test: all unit-tests $(BUILD)/san/photonmap $(DEPS_TEST) $(DEPS_CLUSTER) ## every test; ends with "N passed, N failed, N skipped" (README)
@@ -55,6 +55,8 @@ rep-study: ## representative rules (REP_RULES) against the paper's cost pattern 
 caustic: ## the Fig. 3 cells on the caustic scene, caustic-window error over seeds -> results/caustic/, figures/caustic.png
 resolution: ## cheapest settings per output size -> results/resolution/
 estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias/
+reproducibility: ## the grid twice, runs interleaved: how far the paired ratios move between runs -> results/reproducibility/
+findings: ## results/FINDINGS.md from the results files; checks that README's findings numbers are in results/
 scenes: ## the grid on every scene: equal-error speed-up, kNN share, where the error lies -> results/scenes/
 beyond: ## the paper's rule, lazy, gated and lazy+gated representatives at equal error per scene and size -> results/beyond/, figures/beyond.png
 stability: ## every extreme with its expected value and verdict -> results/stability/stability-extremes.md
@@ -128,6 +130,8 @@ include experiments/study.mk
 include experiments/studies.mk
 include experiments/beyond.mk
 include experiments/figures.mk
+include experiments/reproducibility.mk
+include experiments/findings.mk
 include experiments/bench.mk
 include experiments/slurm.mk
 include experiments/evaluate.mk

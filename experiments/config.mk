@@ -185,3 +185,13 @@ TASKS ?=
 SWEEP ?=
 SLURM_DIR ?= $(BUILD)/slurm
 SBATCH_OPTS ?=
+
+# make reproducibility (experiments/reproducibility.mk): the Table-1 grid
+# twice, runs A and B interleaved pair by pair, at SIZE (default
+# REPRO_SIZE_DEFAULT), SEEDS seeds; REPRO_TASKSET: a CPU list every render is
+# pinned to with taskset (empty: none); REPRO_GOAL_PP: the goal for the median
+# |ratio A - ratio B| over the cells, in percentage points
+REPRO_DIR = $(RESULTS)/reproducibility
+REPRO_SIZE_DEFAULT := 512x384
+REPRO_TASKSET ?=
+REPRO_GOAL_PP ?= 3

@@ -577,3 +577,93 @@ def test_nmse_known_and_scale_invariant():
     assert metrics.relmse(0.01 * x, 0.01 * r) < 0.05 * metrics.relmse(x, r)
     assert math.isnan(metrics.nmse(x, 0 * r))
     assert metrics.PRIMARY in ("relmse", "nmse")
+
+
+# ---- findings: README's summary backed by the results files
+from experiments.analysis import findings, reproducibility  # noqa: E402
+
+
+def test_readme_numbers_backed():
+    """Every number of README's findings section is a number token of some
+    results file (the committed README against the committed results/)."""
+    with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as f:
+        section = findings.findings_section(f.read())
+    assert section.strip(), "README.md has no findings section"
+    assert findings.unbacked_numbers(section, findings.results_text(os.path.join(ROOT, "results"))) == []
+
+
+def test_readme_numbers_negative_control():
+    """A made-up number fails the check, a digit run inside a longer number
+    does not count as present, and a thousands separator is looked through."""
+    with tempfile.TemporaryDirectory() as d:
+        with open(os.path.join(d, "a.md"), "w", encoding="utf-8") as f:
+            f.write("ratio 85.6% at n = 10; 1800 shapes; 2.4117\n")
+        readme = "# x\n\n## What it found, in short\n\n- 85.6% at n = 10, 1,800 shapes\n\n## Next\n\n- 99.9\n"
+        sec = findings.findings_section(readme)
+        assert "99.9" not in sec
+        hay = findings.results_text(d)
+        assert findings.unbacked_numbers(sec, hay) == []
+        bad = readme.replace("85.6%", "85.7%")
+        assert findings.unbacked_numbers(findings.findings_section(bad), hay) == ["85.7"]
+        inner = readme.replace("85.6%", "2.41x")  # 2.41 is only a prefix of 2.4117
+        assert findings.unbacked_numbers(findings.findings_section(inner), hay) == ["2.41"]
+        # the command line exits 1 on the bad README
+        path = os.path.join(d, "README.md")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(bad)
+        rc = subprocess.run(["/usr/bin/python3", "-m", "experiments.analysis.findings", "--results", d,
+                             "--check-readme", path], cwd=ROOT, capture_output=True, check=False).returncode
+        assert rc == 1
+
+
+def _table(ratios, diffs):
+    """A minimal table1.csv frame: one precomputed row per (photons, nn) with
+    paired ratios (r, lo, hi) and relMSE differences (m, lo, hi)."""
+    rows = []
+    for (p, n), (r, lo, hi), (m, dlo, dhi) in zip([(50000, 10), (50000, 100), (500000, 10)], ratios, diffs):
+        row = {"photons": p, "nn": n, "method": "precomputed", "pairs": 5, "paper_ratio_percent": 70.0}
+        for stem in ("paired_ratio", "paired_cpu_ratio", "trace_ratio"):
+            row.update({f"{stem}_percent": r, f"{stem}_ci95_lo": lo, f"{stem}_ci95_hi": hi})
+        row.update(relmse_diff_mean=m, relmse_diff_lo=dlo, relmse_diff_hi=dhi, relmse_diff_verdict="higher")
+        rows.append(row)
+        rows.append({"photons": p, "nn": n, "method": "conventional"})
+    return pd.DataFrame(rows)
+
+
+def test_reproducibility_compare():
+    """Deltas in pp, overlap flags and the goal: met for close runs, not met
+    when one cell's intervals are disjoint (negative control) or the median
+    |delta| exceeds the goal."""
+    a = _table([(80, 75, 85), (40, 38, 42), (100, 95, 105)], [(0.01, 0.0, 0.02)] * 3)
+    b = _table([(81, 76, 86), (41, 39, 43), (98, 93, 103)], [(0.01, 0.0, 0.02)] * 3)
+    f = reproducibility.compare(a, b)
+    assert list(f["ratio_delta_pp"]) == [-1, -1, 2]
+    s = reproducibility.summary(f, 3.0)
+    assert s["ratio_median_abs_delta_pp"] == 1 and s["met"] and s["ratio_overlap_cells"] == 3
+    c = _table([(81, 76, 86), (50, 48, 52), (98, 93, 103)], [(0.01, 0.0, 0.02)] * 3)
+    s = reproducibility.summary(reproducibility.compare(a, c), 3.0)
+    assert s["ratio_overlap_cells"] == 2 and not s["met"]
+    s = reproducibility.summary(reproducibility.compare(a, b), 0.5)
+    assert not s["met"]
+
+
+def test_findings_wording_from_tests():
+    """Finding 1 ranks only disjoint intervals: n = 100 below n = 10 at 50k
+    (disjoint), P_e undetermined at n = 10 (overlapping); the paper's value
+    inside our interval is counted."""
+    t = _table([(80, 75, 85), (40, 38, 42), (82, 70, 95)], [(0.01, 0.0, 0.02)] * 3)
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "table1.csv")
+        t.to_csv(path, index=False)
+        _, lines = findings.finding1({"table": path})
+        text = "\n".join(lines)
+        assert "at P_e = 50000: the ratio at n = 100 is ranked below the one at n = 10" in text
+        assert "Over P_e at n = 10: the ratio at P_e = 500000 against the one at P_e = 50000: undetermined" in text
+        assert "1 of 1 cells at P_e = 500000" in text and "0 of 2 cells at P_e = 50000" in text
+        # a table without the paired columns: the finding says so, no number
+        t.drop(columns=["paired_ratio_percent"]).to_csv(path, index=False)
+        try:
+            findings.finding1({"table": path})
+            assert False, "finding1 answered without its column"
+        except findings.Missing as e:
+            assert "paired_ratio_percent" in str(e)

@@ -130,7 +130,7 @@ def provenance(args, extra=""):
     size = f"{int(first['width'])}x{int(first['height'])}, {int(first['subpixels'])}x{int(first['subpixels'])} samples"
     seeds = int(t["seeds"].max())
     return (f"Data: {args.table} and {args.runs} ({size}; {seeds} seeds per cell; the renders runs.csv names); "
-            f"reference: {args.ref_label} ({args.ref}). Time: {time_cols(args)[3]} (median, bars min-max over seeds); "
+            f"reference: {args.ref_label} ({args.ref}). Time: {time_cols(args)[3]} (panel captions: median [min-max] over seeds; the trade-off: mean, bars 95% t); "
             f"errors: mean over seeds with 95% t-interval." + (" " + extra if extra else ""))
 
 
@@ -160,12 +160,13 @@ def fig3(args):
         lr = np.maximum(plotting.luminance(crop(ref)), 1e-3)
         diff = (plotting.luminance(imgs["precomputed"]) - plotting.luminance(imgs["conventional"])) / lr
         rows.append((p, n, imgs, diff, table_row(t, p, n, "conventional"), table_row(t, p, n, "precomputed")))
-    lim = float(np.quantile(np.abs(np.concatenate([r[3].ravel() for r in rows])), 0.99))
-    lim = float(f"{max(lim, 1e-3):.1g}")
+    # each row its own symmetric range (the 99th percentile of that row's
+    # |difference|): one range for all rows left rows (b)-(d) blank beside (a)
+    lims = [float(f"{max(float(np.quantile(np.abs(r[3]), 0.99)), 1e-3):.1g}") for r in rows]
     gap, head, cap = 12, 26, 36
     title_h, foot_h = 72, 14 * plotting.footer_lines(provenance(args), (3 * cw + 4 * gap) / 100) + 10
     row_h = head + ch + cap
-    fw = 3 * cw + 4 * gap
+    fw = 3 * cw + 4 * gap + 40  # the difference column's colour bars
     fh = title_h + row_h * (len(rows) + 1) + foot_h
     fig = plotting.pixel_figure(fw, fh)
     scale = "1:1" if zoom == 1 else f"{zoom}:1 (each pixel a {zoom}x{zoom} block)"
@@ -189,15 +190,14 @@ def fig3(args):
     ax.imshow(plotting.srgb(ref), interpolation="antialiased", extent=(0, W, H, 0))
     ax.add_patch(plt.Rectangle((cx, cy), cw0, ch0, fill=False, ec="#ffdd00", lw=2))
     cx3 = 3 * gap + 2 * cw
-    cax = plotting.pixel_axes(fig, cx3 + 10, y + head + ch // 2 - 30, cw - 20, 18)
-    cax.set_axis_on()
-    cax.grid(False)
-    sm = plt.cm.ScalarMappable(cmap="RdBu_r", norm=plt.Normalize(-lim, lim))
-    fig.colorbar(sm, cax=cax, orientation="horizontal")
-    plotting.pixel_text(fig, cx3 + 10, y + head + ch // 2 + 12,
+    plotting.pixel_text(fig, cx3 + 4, y + head,
                         "Third column: (precomputed - conventional)\n/ reference, luminance, the same seed.\n"
-                        f"Symmetric range ±{lim:g} for every row\n(the 99th percentile of |difference|; clipped).\n"
-                        "Red: precomputed brighter.", fontsize=9)
+                        "Each row on its own symmetric range ±L\n(L: that row's 99th percentile of\n|difference|, "
+                        "its colour bar beside it;\nclipped). Red: precomputed brighter.\n"
+                        "The line along the floor / red-wall\ncrease: there the nearest photons of a\n"
+                        "point reach onto the other surface,\nand the precomputed value is taken at\n"
+                        "the nearest representative, which may\nlie on either surface, so the two\n"
+                        "methods mix the surfaces differently.", fontsize=8.5)
     y += row_h
     for i, (p, n, imgs, diff, rc, rp) in enumerate(rows):
         letter = chr(ord("a") + i)
@@ -215,7 +215,14 @@ def fig3(args):
                                 fontsize=8.5)
         x = gap + 2 * (cw + gap)
         ax = plotting.pixel_axes(fig, x, y + head, cw, ch)
+        lim = lims[i]
         ax.imshow(np.clip(diff, -lim, lim), cmap="RdBu_r", vmin=-lim, vmax=lim, interpolation="nearest")
+        cax = plotting.pixel_axes(fig, x + cw + 2, y + head, 8, ch)
+        cax.set_axis_on()
+        cax.grid(False)
+        cb = fig.colorbar(plt.cm.ScalarMappable(cmap="RdBu_r", norm=plt.Normalize(-lim, lim)), cax=cax)
+        cb.set_ticks([-lim, 0, lim])
+        cb.ax.tick_params(labelsize=7)
         plotting.pixel_text(fig, x, y + head + ch + 3,
                             f"time prec./conv. {ratio} %\nrelMSE prec. vs conv., same seed: "
                             f"{report.fmt_pm(rp['relmse_conv_mean'], rp['relmse_conv_ci95'])}", fontsize=8.5)
@@ -429,7 +436,11 @@ def fig2(args):
         a.set_xlabel("image x (pixels; outline: the window of (a), (b))")
         a.grid(False)
         a.set_title(title)
-    fig.axes[-2].set_ylabel("image y (pixels)")
+        if panel is None:
+            a.set_ylabel("image y (pixels)")
+            cb3 = fig.colorbar(plt.cm.ScalarMappable(cmap="viridis", norm=lnorm), ax=a, orientation="horizontal",
+                               fraction=0.05, pad=0.18)
+            cb3.set_label("rendered luminance (this panel's scale)")
     fig.suptitle("Figure 2 reproduced: representatives carry precomputed irradiance; the eye pass takes the "
                  "nearest one's, so the radiance is piecewise constant", fontsize=12, weight="bold")
     plotting.footer(fig, foot)
@@ -438,21 +449,43 @@ def fig2(args):
 
 # ---- plots of the grid
 
+def cell_time(args, method, est, photons, nn):
+    """(mean, 95% t half-width) over seeds of the time args.time of one
+    cell's ok grid renders (runs.csv): the same kind of interval as the
+    error's, so both axes carry a 95% t interval of a mean."""
+    r = args.runs_frame
+    sel = r[(r["status"] == "ok") & (r["role"] == "grid") & (r["method"] == method) & (r["estimate"] == est)
+            & (r["photons"] == photons) & (r["nn"] == nn)]
+    return stats.t_interval(sel[args.time].to_numpy(float)) if args.time in sel else (math.nan, math.nan)
+
+
 def errbar_xy(ax, t, est, args, colour, marker, label, **kw):
-    """Median time (bars: min-max) against mean relMSE (bars: 95% t) of the
-    rows T of table1.csv for estimate EST, joined in order of n."""
+    """Mean time against mean relMSE of the rows T of table1.csv for
+    estimate EST, both with 95% t intervals over seeds, joined in order of
+    n; returns (times, errors) of the points drawn."""
     s = sfx(est)
-    med, lo, hi, _ = time_cols(args)
     t = t.sort_values("nn")
-    x, y = t[med + s].to_numpy(float), t["relmse_ref_mean" + s].to_numpy(float)
+    tm = [cell_time(args, r["method"], est, r["photons"], r["nn"]) for _, r in t.iterrows()]
+    x = np.array([m for m, _ in tm], dtype=float)
+    xh = np.nan_to_num(np.array([h for _, h in tm], dtype=float))
+    y = t["relmse_ref_mean" + s].to_numpy(float)
     ok = np.isfinite(x) & np.isfinite(y)
     if not ok.any():
-        return
-    t, x, y = t[ok], x[ok], y[ok]
-    xe = [x - t[lo + s].to_numpy(float), t[hi + s].to_numpy(float) - x]
+        return np.array([]), np.array([])
+    t, x, y, xh = t[ok], x[ok], y[ok], xh[ok]
     ye = np.nan_to_num(t["relmse_ref_ci95" + s].to_numpy(float))
-    ax.errorbar(x, y, xerr=xe, yerr=[np.minimum(ye, y * 0.999), ye], fmt=marker + "-", color=colour, label=label,
-                ms=6, lw=1.1, capsize=2, elinewidth=0.9, **kw)
+    ax.errorbar(x, y, xerr=[np.minimum(xh, x * 0.999), xh], yerr=[np.minimum(ye, y * 0.999), ye], fmt=marker + "-",
+                color=colour, label=label, ms=6, lw=1.1, capsize=2, elinewidth=0.9, **kw)
+    return x, y
+
+
+def draw_front(ax, x, y, colour, label):
+    """The Pareto front of the points (X time, Y error) as the equal-error
+    analysis interpolates it: straight segments in log-log between the
+    front's cells (stats.pareto_front, stats.time_at_error)."""
+    idx = stats.pareto_front(x, y)
+    if len(idx) >= 2:
+        ax.plot(np.asarray(x)[idx], np.asarray(y)[idx], "--", color=colour, lw=2.2, alpha=0.55, zorder=0, label=label)
 
 
 def tradeoff(args):
@@ -466,17 +499,21 @@ def tradeoff(args):
         rs = read_csv(args.rep_study_cells, ["rule", "label", "photons", "nn", "time_median_s", "time_min_s",
                                              "time_max_s", "relmse_ref_mean", "relmse_ref_ci95"], "rep-study cells")
     npanel = len(estimates) + (1 if rs is not None else 0)
-    fig, axes = plt.subplots(1, npanel, figsize=(6.2 * npanel, 6.4), sharey=True, squeeze=False)
+    fig, axes = plt.subplots(1, npanel, figsize=(max(6.2 * npanel, 9.0), 7.6), sharey=True, squeeze=False)
     axes = axes[0]
     allp = sorted(set(t["photons"]))
     shades = {"conventional": ["#9ecae1", "#3182bd", "#08306b"], "precomputed": ["#fcae91", "#e6550d", "#7f2704"]}
     for k, est in enumerate(estimates):
         ax = axes[k]
         for m in ("conventional", "precomputed"):
+            xs, ys_ = [], []
             for i, p in enumerate(allp):
                 sel = t[(t["method"] == m) & (t["photons"] == p)]
-                errbar_xy(ax, sel, est, args, shades[m][i % 3], plotting.photon_marker(p, allp),
-                          f"{m}, P_e = {kilo(p)}")
+                x, y = errbar_xy(ax, sel, est, args, shades[m][i % 3], plotting.photon_marker(p, allp),
+                                 f"{m}, P_e = {kilo(p)}")
+                xs += list(x)
+                ys_ += list(y)
+            draw_front(ax, xs, ys_, shades[m][1], f"{m} front (log-log interpolation of the equal-error number)")
         ax.set_title(f"({chr(ord('a') + k)}) {est} estimate" + (" (--bias-correction)" if est == "corrected" else ""))
     if rs is not None:
         # the rules at one P_e (the largest, where they differ most), against its conventional cells
@@ -502,22 +539,29 @@ def tradeoff(args):
     ys = [t["relmse_ref_mean" + sfx(e)] for e in estimates] + ([rs["relmse_ref_mean"]] if rs is not None else [])
     ys = np.concatenate([np.asarray(v, dtype=float) for v in ys])
     ys = ys[np.isfinite(ys) & (ys > 0)]
+    # the x range from the cells' mean times too (bars past it are clipped)
+    xs = np.array([cell_time(args, r["method"], e, r["photons"], r["nn"])[0] for e in estimates
+                   for _, r in t.iterrows()], dtype=float)
+    xs = xs[np.isfinite(xs) & (xs > 0)]
     for ax in axes:
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel(f"median time, {tl} (1 thread)")
-        ax.legend(fontsize=7.5, loc="upper right", ncol=1)
+        ax.set_xlabel(f"mean time, {tl} (1 thread; bars: 95% t over seeds, as the error's)")
+        ax.legend(fontsize=7.5, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=2)
+        if xs.size:
+            ax.set_xlim(xs.min() / 1.3, xs.max() * 1.3)
         plotting.log_ticks(ax.xaxis, *ax.get_xlim())
     if ys.size:
         axes[0].set_ylim(ys.min() / 1.6, ys.max() * 1.6)
     plotting.log_ticks(axes[0].yaxis, *axes[0].get_ylim())
     axes[0].set_ylabel(f"relMSE against {args.ref_label}")
-    fig.suptitle("Speed against accuracy: each line is one method and P_e, n = 10, 20, 50, 100 from top to "
-                 "bottom (markers: P_e)", fontsize=11.5, weight="bold")
+    fig.suptitle("Speed against accuracy: each line one method and P_e,\nn = 10, 20, 50, 100 from top to "
+                 "bottom (markers: P_e); dashed: each method's Pareto front", fontsize=11 if npanel > 1 else 9.5,
+                 weight="bold")
     foot = provenance(args, (f"Rep-study points: {args.rep_study_cells} (their seeds; error bars reaching past the "
                              "axes are clipped)." if rs is not None else
                              "No rep-study data (run `make rep-study` to add its rules)."))
-    fig.subplots_adjust(left=0.06, right=0.99, top=0.88, bottom=0.11 + 0.02 * plotting.footer_lines(foot, 6.2 * npanel))
+    fig.subplots_adjust(left=0.08, right=0.99, top=0.88, bottom=0.3 + 0.02 * plotting.footer_lines(foot, 6.2 * npanel))
     plotting.footer(fig, foot)
     plotting.save(fig, os.path.join(args.out, "tradeoff.png"))
 
@@ -532,6 +576,10 @@ def ratio_vs_n(args):
     cpu = args.time == "cpu_s"
     col, lo, hi = ("cpu_ratio_percent", "cpu_ratio_ci95_lo", "cpu_ratio_ci95_hi") if cpu else \
         ("ratio_percent", "ratio_ci95_lo", "ratio_ci95_hi")
+    # the paired ratio (per-seed log ratios, t interval) where the table has it
+    paired = ("paired_" + col) in args.table_frame
+    if paired:
+        col, lo, hi = "paired_" + col, "paired_" + lo, "paired_" + hi
     fig, axes = plt.subplots(1, len(allp), figsize=(4.6 * len(allp), 5), sharey=True, squeeze=False)
     ymax = 100
     for ax, p in zip(axes[0], allp):
@@ -543,7 +591,7 @@ def ratio_vs_n(args):
             y = g[col + s].to_numpy(float)
             err = [y - g[lo + s].to_numpy(float), g[hi + s].to_numpy(float) - y]
             ax.errorbar(g["nn"] * off, y, yerr=np.nan_to_num(err), fmt=style, color=plotting.METHOD_COLOUR["precomputed"]
-                        if est == "paper" else "#e08a1e", capsize=3, ms=6, label=f"ours, {est} estimate (95% bootstrap)")
+                        if est == "paper" else "#e08a1e", capsize=3, ms=6, label=f"ours, {est} estimate (95% {'paired t' if paired else 'bootstrap'})")
             ymax = max(ymax, np.nanmax(g[hi + s]))
         if g["paper_ratio_percent"].notna().any():
             ax.plot(g["nn"], g["paper_ratio_percent"], "*-", color=plotting.PAPER_COLOUR, ms=10,
@@ -561,7 +609,9 @@ def ratio_vs_n(args):
     axes[0][0].legend(fontsize=8, loc="lower left")
     fig.suptitle("The comparable quantity: time of the precomputed method relative to the conventional one",
                  fontsize=11.5, weight="bold")
-    foot = provenance(args, "Ours: ratio of the median times, interval from resampling the seeds of both cells "
+    foot = provenance(args, ("Ours: paired ratio (the geometric mean of the per-seed ratios of the two renders of "
+                             "one seed, rendered back to back), 95% t interval over seeds. " if paired else "") +
+                      "Without paired columns: ratio of the median times, interval from resampling the seeds of both cells "
                             "(table.py); offsets along n only separate the estimates.")
     fig.subplots_adjust(left=0.07, right=0.99, top=0.86, wspace=0.08,
                         bottom=0.13 + 0.025 * plotting.footer_lines(foot, 4.6 * len(allp)))

@@ -51,6 +51,11 @@ REL_EPS = 0.01
 # the error the tables and the equal-error curves report (the module
 # docstring says why): "relmse" (runs.csv relmse_ref); "nmse" is beside it
 PRIMARY = "relmse"
+# the runs.csv column of the primary error against the reference, and its
+# definition as the reports quote it
+PRIMARY_COLUMN = f"{PRIMARY}_ref"
+PRIMARY_DEFINITION = {"relmse": "relMSE = mean((x - r)^2 / (r^2 + 0.01))",
+                      "nmse": "NMSE = mean((x - r)^2) / mean(r^2)"}[PRIMARY]
 
 
 def read_exr(path):

@@ -24,11 +24,15 @@ import os
 import numpy as np
 import pandas as pd
 
+from experiments.analysis import metrics
 from experiments.analysis import report
 from experiments.analysis import stats
 from experiments.analysis.report import fmt, fmt_ci, fmt_pm, fmt_range, isnum
 
 PHASES = ("trace", "build", "precompute", "render")
+# the runs.csv column of the error the table reports (metrics.PRIMARY; its
+# output columns keep the names relmse_* whatever PRIMARY is)
+ERR = metrics.PRIMARY_COLUMN
 
 
 def suffix(estimate):
@@ -40,7 +44,7 @@ def read_inputs(runs_csv, cells_csv, paper_csv):
     """The three tables, with the columns this script needs checked by name."""
     frames = []
     for path, need in ((runs_csv, ["method", "estimate", "photons", "nn", "seed", "status", "role", "total_s",
-                                   "cpu_s", "trace_s", "relmse_ref", "relmse_conv", "message"]),
+                                   "cpu_s", "trace_s", ERR, "relmse_conv", "message"]),
                        (cells_csv, ["method", "estimate", "photons", "nn", "bias_ref", "variance_ref",
                                     "relmse_ref_floor", "ref", "ref_fast"]),
                        (paper_csv, ["emitted_kphotons", "nn", "conventional_s", "proposed_s", "ratio_percent"])):
@@ -96,19 +100,19 @@ def summarize(runs, cells, paper, rng, replicates):
                 r, lo, hi = stats.median_ratio(ok_values(sel, col), ok_values(conv, col), rng, replicates)
                 row[f"{name}_percent{sfx}"] = 100 * r
                 row[f"{name}_ci95_lo{sfx}"], row[f"{name}_ci95_hi{sfx}"] = 100 * lo, 100 * hi
-            a, b = paired_values(sel, conv, ("total_s", "cpu_s", "trace_s", "relmse_ref"))
+            a, b = paired_values(sel, conv, ("total_s", "cpu_s", "trace_s", ERR))
             row[f"pairs{sfx}"] = len(a["total_s"])
             for col, name in PAIRED_RATIOS:
                 r, lo, hi, _ = stats.paired_log_ratio(a[col], b[col])
                 row[f"{name}_percent{sfx}"] = 100 * r
                 row[f"{name}_ci95_lo{sfx}"], row[f"{name}_ci95_hi{sfx}"] = 100 * lo, 100 * hi
-            d = stats.paired_difference(a["relmse_ref"], b["relmse_ref"])
+            d = stats.paired_difference(a[ERR], b[ERR])
             for k in ("mean", "lo", "hi", "p", "delta", "relative"):
                 row[f"relmse_diff_{k}{sfx}"] = d[k]
             row[f"relmse_diff_equivalent{sfx}"] = d["equivalent"]
             for col in ("photons_stored", "representatives", "empty_estimates"):
                 row[f"{col}{sfx}"] = stats.median_range(ok_values(sel, col))[0]
-            for col in ("relmse_ref", "nmse_ref", "psnr_ref", "relmse_conv"):
+            for col in dict.fromkeys((ERR, "relmse_ref", "nmse_ref", "psnr_ref", "relmse_conv")):
                 if col not in sel:  # a runs.csv from before NMSE
                     continue
                 v = ok_values(sel, col)
@@ -122,7 +126,7 @@ def summarize(runs, cells, paper, rng, replicates):
                 med, lo, hi = stats.median_range(ok_values(conv, col))
                 row[f"conv_{name}_median_s{sfx}"], row[f"conv_{name}_min_s{sfx}"], row[f"conv_{name}_max_s{sfx}"] = \
                     med, lo, hi
-            v = ok_values(conv, "relmse_ref")
+            v = ok_values(conv, ERR)
             row[f"conv_relmse_ref_mean{sfx}"], row[f"conv_relmse_ref_ci95{sfx}"] = stats.t_interval(v[np.isfinite(v)])
             row[f"bias_ref{sfx}"] = cell["bias_ref"].iloc[0] if len(cell) else math.nan
             row[f"variance_ref{sfx}"] = cell["variance_ref"].iloc[0] if len(cell) else math.nan
@@ -213,7 +217,7 @@ def rank_sentences(table, estimates):
             for method in ("conventional", "precomputed"):
                 by = {"higher": [], "lower": [], "overlap": [], "unknown": []}
                 for _, r in table[table["method"] == method].iterrows():
-                    by[stats.rank(interval(r, "relmse_ref", sfx), interval(r, "relmse_ref"))].append(cell_label(r))
+                    by[stats.rank(interval(r, ERR, sfx), interval(r, ERR))].append(cell_label(r))
                 better, worse, overlap = by["lower"], by["higher"], by["overlap"]
                 if better or worse or overlap:
                     parts = ranked_clauses([(f"{est} lower", better), (f"{est} higher", worse),

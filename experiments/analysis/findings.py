@@ -1,0 +1,520 @@
+#!/usr/bin/python3
+"""findings.py: the results files -> FINDINGS.md, the findings written by the data.
+
+Owns the wording of the project's findings: every number in FINDINGS.md is
+read from a results file by this script, and every comparison is worded
+from its test, never from a reading of the numbers:
+  - two methods' paired values (the same seed): table.py's Holm-corrected
+    verdict (stats.compare_family): "ranked higher/lower", "equivalent within
+    delta" (delta = stats.EQUIVALENCE_MARGIN of the conventional value), or
+    "undetermined";
+  - two numbers that are not paired: ranked only when their 95% intervals
+    are disjoint (stats.rank), else "undetermined"; never "equal";
+  - a number against the paper's single measurement: whether our interval
+    contains it (the paper's value carries no interval of its own).
+A finding whose input file or column is missing says so, with the target
+that makes it, instead of a number. The findings are numbered as the
+hand-written ones of results/README.md that they replace (1-9), each with
+the question the review asked of it.
+
+  python3 -m experiments.analysis.findings --results results --out results/FINDINGS.md
+"""
+
+import argparse
+import math
+import os
+
+import numpy as np
+import pandas as pd
+from scipy import stats as sps
+
+from experiments.analysis import metrics
+from experiments.analysis import report
+from experiments.analysis import stats
+from experiments.analysis.report import fmt, isnum
+
+WHERE = "findings.py"
+# the smallest number of seeds whose percentile-bootstrap interval a finding
+# quotes (with 3 seeds such an interval covers about 90%, not 95%)
+MIN_SEEDS_QUOTED = 5
+
+
+class Missing(Exception):
+    """A finding's input is not there: the message says which and what makes it."""
+
+
+def load(path, need, make):
+    """The CSV at PATH with the columns NEED, or Missing naming MAKE."""
+    if not os.path.isfile(path):
+        raise Missing(f"`{path}` is missing (`{make}` writes it)")
+    try:
+        frame = pd.read_csv(path, comment="#")
+    except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError) as e:
+        raise Missing(f"`{path}` cannot be read ({e})") from e
+    lack = [c for c in need if c not in frame.columns]
+    if lack:
+        raise Missing(f"`{path}` has no column {', '.join(lack)} (written before this analysis: rerun `{make}`)")
+    return frame
+
+
+def pct(x):
+    """A percentage with one decimal."""
+    return report.fmt_fixed(x, 1)
+
+
+def ci(m, lo, hi, f=fmt):
+    """'m [lo, hi]'."""
+    return f"{f(m)} [{f(lo)}, {f(hi)}]"
+
+
+def cell(p, n):
+    """'(50k, 10)'."""
+    p = int(p)
+    return f"({p // 1000}k, {int(n)})" if p % 1000 == 0 else f"({p}, {int(n)})"
+
+
+def word_rank(a, b, what_a, what_b):
+    """A sentence part comparing two unpaired intervals by stats.rank."""
+    r = stats.rank(a, b)
+    if r == "higher":
+        return f"{what_a} is ranked above {what_b} (disjoint 95% intervals)"
+    if r == "lower":
+        return f"{what_a} is ranked below {what_b} (disjoint 95% intervals)"
+    return f"{what_a} against {what_b}: undetermined (the 95% intervals overlap)"
+
+
+def prec_rows(table):
+    """The precomputed rows of a table1.csv."""
+    return table[table["method"] != "conventional"]
+
+
+# ---- the findings: each returns (title, [lines]) or raises Missing
+
+def finding1(d):
+    """The table's shape: the paired time ratio over n and P_e, and the paper's values."""
+    t = load(d["table"], ["photons", "nn", "method", "paper_ratio_percent", "paired_ratio_percent",
+                          "paired_ratio_ci95_lo", "paired_ratio_ci95_hi", "pairs"], "make reproduce-table")
+    p = prec_rows(t)
+    lines = [f"Paired time ratio precomputed / conventional (per-seed log ratios of the renderer's own time, "
+             f"95% t interval over {int(p['pairs'].min())}-{int(p['pairs'].max())} pairs), % "
+             "(the paper's single measurement in brackets):", ""]
+    nns = sorted(p["nn"].unique())
+    phs = sorted(p["photons"].unique())
+    rows = []
+    for n in nns:
+        r = [str(int(n))]
+        for ph in phs:
+            s = p[(p["photons"] == ph) & (p["nn"] == n)]
+            if len(s) == 0:
+                r.append("n/a")
+                continue
+            s = s.iloc[0]
+            r.append(f"{ci(s['paired_ratio_percent'], s['paired_ratio_ci95_lo'], s['paired_ratio_ci95_hi'], pct)}"
+                     f" ({pct(s['paper_ratio_percent'])})")
+        rows.append(r)
+    lines += report.md_table(["n"] + [f"P_e = {cell(ph, 0)[1:-4]}" for ph in phs], rows)
+    lines.append("")
+
+    def iv(s):
+        return (s["paired_ratio_ci95_lo"], s["paired_ratio_ci95_hi"])
+    for ph in phs:
+        s = p[p["photons"] == ph].sort_values("nn")
+        if len(s) >= 2:
+            lo, hi = s.iloc[0], s.iloc[-1]
+            lines.append(f"- Over n at P_e = {int(ph)}: " + word_rank(iv(hi), iv(lo), f"the ratio at n = {int(hi['nn'])}",
+                                                                        f"the one at n = {int(lo['nn'])}") + ".")
+    for n in nns:
+        s = p[p["nn"] == n].sort_values("photons")
+        if len(s) >= 2:
+            lo, hi = s.iloc[0], s.iloc[-1]
+            lines.append(f"- Over P_e at n = {int(n)}: " + word_rank(iv(hi), iv(lo), f"the ratio at P_e = {int(hi['photons'])}",
+                                                                       f"the one at P_e = {int(lo['photons'])}") + ".")
+    inside = {}
+    for ph in phs:
+        s = p[(p["photons"] == ph) & np.isfinite(p["paper_ratio_percent"])]
+        k = int(((s["paired_ratio_ci95_lo"] <= s["paper_ratio_percent"])
+                 & (s["paper_ratio_percent"] <= s["paired_ratio_ci95_hi"])).sum())
+        inside[ph] = (k, len(s))
+    lines.append("- The paper's value lies inside our interval in " + ", ".join(
+        f"{k} of {m} cells at P_e = {int(ph)}" for ph, (k, m) in inside.items()) +
+        " (the paper's values are one run each, with no interval: a value outside ours is a difference "
+        "only if the paper's own run-to-run spread is smaller than our interval).")
+    return "The time ratio over n and P_e, against the paper's", lines
+
+
+def finding2(d):
+    """Equal error: the tightest target both fronts reach, and the curve."""
+    e = load(d["equal_error"], ["estimate", "kind", "target", "speedup", "lo", "hi", "defined_fraction"],
+             "make reproduce-table")
+    lines = []
+    for est, g in e.groupby("estimate", sort=False):
+        t = g[g["kind"] == "tightest"]
+        c = g[g["kind"] == "curve"]
+        if len(t) == 0:
+            lines.append(f"- {est} estimate: the two fronts reach no common {metrics.PRIMARY}: no speed-up at equal "
+                         "error is defined.")
+            continue
+        t = t.iloc[0]
+        s = f"- {est} estimate: the tightest {metrics.PRIMARY} both fronts reach (defined as the larger of the two " \
+            f"fronts' smallest errors) is {fmt(t['target'])}; there the speed-up is " \
+            f"{ci(t['speedup'], t['lo'], t['hi'])}x, with {pct(100 * t['defined_fraction'])}% of the bootstrap " \
+            "resamples reaching it on both fronts"
+        full = c[c["defined_fraction"] >= 0.95]
+        if len(full):
+            a, b = full.loc[full["speedup"].idxmin()], full.loc[full["speedup"].idxmax()]
+            s += f". Over the {len(c)} targets of the curve ({fmt(c['target'].min())} to {fmt(c['target'].max())}), " \
+                 f"where at least 95% of the resamples reach the target the speed-up runs from " \
+                 f"{ci(a['speedup'], a['lo'], a['hi'])} (at {fmt(a['target'])}) to " \
+                 f"{ci(b['speedup'], b['lo'], b['hi'])} (at {fmt(b['target'])}): it depends on the target, " \
+                 "and no single target stands for the curve"
+        else:
+            s += "; at no target of the curve do 95% of the resamples reach it on both fronts, so every interval " \
+                 "of the curve is conditional"
+        lines.append(s + ".")
+    return "The speed-up at equal error", lines
+
+
+def finding3(d):
+    """What the speed costs in accuracy: paired verdicts, the bias share, n against P_e."""
+    t = load(d["table"], ["photons", "nn", "method", "relmse_diff_mean", "relmse_diff_lo", "relmse_diff_hi",
+                          "relmse_diff_verdict", "relmse_conv_mean", "relmse_conv_ci95", "pairs"],
+             "make reproduce-table")
+    cells = load(d["cells"], ["method", "estimate", "photons", "nn", "relmse_ref_mean", "bias_ref"],
+                 "make reproduce-table")
+    p = prec_rows(t)
+    lines = []
+    for est in ("paper", "corrected"):
+        sfx = "" if est == "paper" else f"_{est}"
+        col = f"relmse_diff_verdict{sfx}"
+        if col not in p.columns:
+            continue
+        groups = {}
+        for _, r in p.iterrows():
+            groups.setdefault(str(r[col]) if isinstance(r[col], str) else "undetermined", []).append(r)
+        words = {"higher": "the precomputed method ranked worse (higher error, Holm-corrected p < 0.05)",
+                 "lower": "ranked better", "equivalent":
+                 f"equivalent within delta = {fmt(100 * stats.EQUIVALENCE_MARGIN)}% of the conventional error",
+                 "undetermined": "undetermined"}
+        parts = []
+        for v in ("higher", "lower", "equivalent", "undetermined"):
+            if v in groups:
+                parts.append(f"{words[v]} in " + ", ".join(
+                    f"{cell(r['photons'], r['nn'])} ({fmt(r[f'relmse_diff_mean{sfx}'])} "
+                    f"[{fmt(r[f'relmse_diff_lo{sfx}'])}, {fmt(r[f'relmse_diff_hi{sfx}'])}])" for r in groups[v]))
+        lines.append(f"- {est} estimate, paired {metrics.PRIMARY} difference precomputed - conventional per seed "
+                     f"({int(p[f'pairs{sfx}'].min())} pairs per cell): " + "; ".join(parts) + ".")
+    # bias share of the excess, per cell where the precomputed method is worse
+    shares = []
+    for est, g in cells.groupby("estimate", sort=False):
+        for (ph, n), h in g.groupby(["photons", "nn"]):
+            c = h[h["method"] == "conventional"]
+            q = h[h["method"] == "precomputed"]
+            if len(c) and len(q):
+                ex = q["relmse_ref_mean"].iloc[0] - c["relmse_ref_mean"].iloc[0]
+                bx = q["bias_ref"].iloc[0] - c["bias_ref"].iloc[0]
+                if ex > 0:
+                    shares.append((est, ph, n, ex, bx, bx / ex))
+    if shares:
+        for est in dict.fromkeys(s[0] for s in shares):
+            sh = [s for s in shares if s[0] == est]
+            k = max(sh, key=lambda s: s[3])
+            lines.append(f"- {est} estimate: where the precomputed method's mean error exceeds the conventional one "
+                         f"({len(sh)} cells), the bias term's share of the excess is "
+                         f"{pct(100 * min(s[5] for s in sh))}-{pct(100 * max(s[5] for s in sh))}% (cells.csv "
+                         f"bias_ref); at {cell(k[1], k[2])}, the largest excess, {fmt(k[3])} of which {fmt(k[4])} "
+                         f"({pct(100 * k[5])}%) is bias.")
+    # the difference from the conventional image of the same seed: n against P_e
+    conv = p[["photons", "nn", "relmse_conv_mean", "relmse_conv_ci95"]]
+    phs = sorted(conv["photons"].unique())
+    if len(phs) >= 2:
+        parts = []
+        for n, g in conv.groupby("nn"):
+            a = g[g["photons"] == phs[0]]
+            b = g[g["photons"] == phs[-1]]
+            if len(a) and len(b):
+                a, b = a.iloc[0], b.iloc[0]
+                removed = 1 - b["relmse_conv_mean"] / a["relmse_conv_mean"]
+                r = stats.rank((b["relmse_conv_mean"] - b["relmse_conv_ci95"], b["relmse_conv_mean"] + b["relmse_conv_ci95"]),
+                               (a["relmse_conv_mean"] - a["relmse_conv_ci95"], a["relmse_conv_mean"] + a["relmse_conv_ci95"]))
+                parts.append(f"n = {int(n)}: {pct(100 * removed)}% " +
+                             ("(disjoint intervals)" if r in ("lower", "higher") else "(intervals overlap: undetermined)"))
+        lines.append(f"- The precomputed image's {metrics.PRIMARY} against the conventional image of the same seed: "
+                     f"{int(phs[-1] / phs[0])} times the photons ({int(phs[0])} to {int(phs[-1])}) removes "
+                     + ", ".join(parts) + " of it: the photon count matters as well as n.")
+    return "What the speed costs in accuracy", lines
+
+
+def finding4(d):
+    """The estimator's bias in the analytic scene."""
+    b = load(d["bias"], ["n", "law_n_over_n_minus_1", "conventional_paper_mean", "conventional_paper_ci95",
+                         "conventional_corrected_mean", "conventional_corrected_ci95", "precomputed_corrected_mean",
+                         "precomputed_corrected_ci95", "conventional_paper_seeds"], "make estimator-bias")
+    lines = []
+    at = b[b["n"] == 10]
+    if len(at):
+        r = at.iloc[0]
+        lines.append(f"- Conventional, paper estimate, at n = 10: {fmt(r['conventional_paper_mean'], 5)} ± "
+                     f"{fmt(r['conventional_paper_ci95'], 2)} ({int(r['conventional_paper_seeds'])} seeds); the law "
+                     f"n/(n-1) gives {fmt(r['law_n_over_n_minus_1'], 5)}.")
+    k_in = k_all = 0
+    vals = []
+    for m in ("conventional", "precomputed"):
+        mean, half = b[f"{m}_corrected_mean"], b[f"{m}_corrected_ci95"]
+        ok = np.isfinite(mean) & np.isfinite(half)
+        k_in += int(((mean[ok] - half[ok] <= 1) & (1 <= mean[ok] + half[ok])).sum())
+        k_all += int(ok.sum())
+        vals += list(zip(mean[ok], half[ok]))
+    lo = min(vals, key=lambda v: v[0])
+    hi = max(vals, key=lambda v: v[0])
+    lines.append(f"- With `--bias-correction`, 1 (the exact radiance) lies inside {k_in} of the {k_all} intervals "
+                 f"(both methods, every n); the means run from {fmt(lo[0], 5)} ± {fmt(lo[1], 2)} to "
+                 f"{fmt(hi[0], 5)} ± {fmt(hi[1], 2)}.")
+    return "The paper's estimator is biased by a law", lines
+
+
+def finding5(d):
+    """The caustic window's excess against the whole image's."""
+    c = load(d["caustic"], ["estimate", "photons", "nn", "method", "win_excess_mean", "win_excess_ci95",
+                            "img_excess_mean", "img_excess_ci95", "seeds"], "make caustic")
+    lines = []
+    for _, r in c[c["method"] == "precomputed"].iterrows():
+        w = (r["win_excess_mean"] - r["win_excess_ci95"], r["win_excess_mean"] + r["win_excess_ci95"])
+        i = (r["img_excess_mean"] - r["img_excess_ci95"], r["img_excess_mean"] + r["img_excess_ci95"])
+        lines.append(f"- {r['estimate']} {cell(r['photons'], r['nn'])}: excess in the window "
+                     f"{fmt(r['win_excess_mean'])} ± {fmt(r['win_excess_ci95'])}, over the image "
+                     f"{fmt(r['img_excess_mean'])} ± {fmt(r['img_excess_ci95'])} ({int(r['seeds'])} seeds): "
+                     + word_rank(w, i, "the window's", "the image's") + ".")
+    lines.append("- Overlap is not equality: the file holds no paired window-minus-image test with a margin, "
+                 "so no cell is called equal.")
+    return "The caustic window against the whole image", lines
+
+
+def finding6(d):
+    """The scenes' speed-ups, quoted only where enough seeds stand behind an interval."""
+    s = load(d["scenes"], ["scene", "diff_seeds", "ee_paper", "ee_corrected"], "make scenes")
+    lines = []
+    for _, r in s.iterrows():
+        seeds = int(r["diff_seeds"])
+        if seeds < MIN_SEEDS_QUOTED:
+            lines.append(f"- {r['scene']}: {seeds} seeds: its percentile-bootstrap intervals (which at 3 seeds cover "
+                         f"about 90%, not 95%) are not quoted; rerun `make scenes SEEDS={MIN_SEEDS_QUOTED}` or more.")
+        else:
+            lines.append(f"- {r['scene']} ({seeds} seeds): paper estimate {r['ee_paper']}; corrected {r['ee_corrected']} "
+                         "(target: speed-up [95% bootstrap interval]).")
+    return "Across scenes", lines
+
+
+def finding7(d):
+    """Small images: the cheapest cell per target per size."""
+    raise Missing("results/resolution/ holds per-size tables but no summary CSV this script reads; "
+                  "`resolution/resolution.md` is written by code (experiments/analysis/resolution.py) and is quoted "
+                  "here by name only")
+
+
+def finding8(d):
+    """The baseline and the drift control."""
+    t = load(d["table"], ["method", "photons", "nn", "trace_ratio_percent", "trace_ratio_ci95_lo",
+                          "trace_ratio_ci95_hi"], "make reproduce-table")
+    p = prec_rows(t)
+    off = p[(p["trace_ratio_ci95_hi"] < 100) | (p["trace_ratio_ci95_lo"] > 100)]
+    lines = [f"- Drift control (the photon-trace phase, the same code in both methods, paired ratio per cell): "
+             f"median {pct(p['trace_ratio_percent'].median())}%, range {pct(p['trace_ratio_percent'].min())}-"
+             f"{pct(p['trace_ratio_percent'].max())}%; its interval excludes 100% in {len(off)} of {len(p)} cells"
+             + (": there the machine drifted within a pair, and a ratio change there is not attributed to the code."
+                if len(off) else "."),
+             "- The instruction counts and timings of the old finding 8 are in no results file and are not "
+             "repeated; `bench/bench.md` (`make bench`) holds what the benchmark measures."]
+    return "The baseline, and drift between runs", lines
+
+
+def finding9(d):
+    """Stability: what the check compares."""
+    path = d["stability"]
+    if not os.path.isfile(path):
+        raise Missing(f"`{path}` is missing (`make stability`)")
+    return "Stability under scale and position", [
+        f"- `{os.path.relpath(path, d['root'])}` (written by `make stability`) holds each extreme's expected value and "
+        "verdict; what it compares is the image mean (and byte identity where stated), not every pixel, so no "
+        "per-pixel agreement is claimed here."]
+
+
+def finding_repro(d):
+    """Reproducibility between two runs (make reproducibility)."""
+    r = load(d["repro"], ["summary_ratio_median_abs_delta_pp", "summary_ratio_overlap_cells", "summary_cells",
+                          "summary_goal_pp", "summary_met"], "make reproducibility")
+    s = r.iloc[0]
+    return "Reproducibility between two runs", [
+        f"- Two interleaved runs of the grid: median |difference| of the paired time ratios "
+        f"{report.fmt_fixed(s['summary_ratio_median_abs_delta_pp'], 2)} pp (goal {fmt(s['summary_goal_pp'])} pp); the "
+        f"two runs' intervals overlap in {int(s['summary_ratio_overlap_cells'])} of {int(s['summary_cells'])} cells; "
+        "goal " + ("met." if bool(s["summary_met"]) else "not met.")]
+
+
+def finding_rules(d):
+    """Which representative rule is compatible with the paper's slopes: chi^2
+    per rule with the degrees of freedom it has left, Holm over the rules."""
+    r = load(d["rep"], ["rule", "photons", "z"], "make rep-study")
+    rows = []
+    for rule, g in r.groupby("rule", sort=False):
+        z = g["z"].to_numpy(np.float64)
+        z = z[np.isfinite(z)]
+        fitted = 1 if str(rule).startswith("count") else 0  # countN: N was fitted to the paper's slopes
+        dof = z.size - fitted
+        chi2 = float(np.sum(z ** 2))
+        p = float(sps.chi2.sf(chi2, dof)) if dof > 0 else math.nan
+        rows.append({"rule": rule, "chi2": chi2, "dof": dof, "p": p, "fitted": fitted})
+    adj = stats.holm([x["p"] for x in rows])
+    lines = ["Slope ratios b_prec / b_conv against the paper's (z per P_e, the paper's value one noisy "
+             "measurement each with the standard error rep-study.csv gives it); chi^2 = sum z^2 with one degree "
+             "of freedom per P_e, less one for a rule whose parameter was fitted to the paper (countN); Holm over "
+             "the rules:", ""]
+    lines += report.md_table(["rule", "chi^2", "dof", "p", "p (Holm)", "verdict"],
+                             [[x["rule"], fmt(x["chi2"]), str(x["dof"]), fmt(x["p"]), fmt(q),
+                               "incompatible with the paper's slopes" if isnum(q) and q < 0.05 else
+                               ("not rejected (compatibility is not shown equality)" if isnum(q) else "no test")]
+                              for x, q in zip(rows, adj)])
+    return "Which photons are representatives", lines
+
+
+def finding_metric(d):
+    """The error metric: what NMSE changes against relMSE (metrics.PRIMARY)
+    on the same renders: the cells' order and the paired verdicts."""
+    r = load(d["runs"], ["role", "status", "method", "estimate", "photons", "nn", "seed", "relmse_ref", "nmse_ref"],
+             "make reproduce-table")
+    r = r[(r["role"] == "grid") & (r["status"] == "ok")]
+    lines = []
+    for est, g in r.groupby("estimate", sort=False):
+        means = g.groupby(["method", "photons", "nn"])[["relmse_ref", "nmse_ref"]].mean()
+        rho = sps.spearmanr(means["relmse_ref"], means["nmse_ref"]).statistic
+        verdicts = {}
+        for col in ("relmse_ref", "nmse_ref"):
+            comps, keys = [], []
+            for (ph, n), h in g.groupby(["photons", "nn"]):
+                a = h[h["method"] == "precomputed"].set_index("seed")[col]
+                b = h[h["method"] == "conventional"].set_index("seed")[col]
+                seeds = sorted(set(a.index) & set(b.index))
+                if seeds:
+                    comps.append(stats.paired_difference(a.loc[seeds].to_numpy(), b.loc[seeds].to_numpy()))
+                    keys.append(cell(ph, n))
+            verdicts[col] = dict(zip(keys, (c["verdict"] for c in stats.compare_family(comps))))
+        changed = [k for k in verdicts["relmse_ref"] if verdicts["relmse_ref"][k] != verdicts["nmse_ref"].get(k)]
+        ratio = (means["nmse_ref"] / means["relmse_ref"]).to_numpy(np.float64)
+        lines.append(f"- {est} estimate, {len(means)} cells x methods: Spearman rank correlation of the cells' mean "
+                     f"relMSE and mean NMSE {fmt(rho)}; NMSE / relMSE {fmt(np.min(ratio))}-{fmt(np.max(ratio))}; "
+                     f"the paired verdicts (Holm) differ in {len(changed)} of {len(verdicts['relmse_ref'])} cells"
+                     + (": " + ", ".join(f"{k} {verdicts['relmse_ref'][k]} -> {verdicts['nmse_ref'][k]}" for k in changed)
+                        if changed else "") + ".")
+    lines.append(f"- The primary error is {metrics.PRIMARY_DEFINITION}; NMSE (mean squared error over the "
+                 "reference's mean square, relative at every brightness) is reported beside it.")
+    return "The error metric", lines
+
+
+FINDINGS = ((1, finding1), (2, finding2), (3, finding3), (4, finding4), (5, finding5), (6, finding6),
+            (7, finding7), (8, finding8), (9, finding9), ("R", finding_repro), ("S", finding_rules), ("M", finding_metric))
+
+
+def paths(root):
+    """The results files the findings read, under ROOT."""
+    j = os.path.join
+    return {"root": root, "table": j(root, "table1", "table1.csv"), "cells": j(root, "table1", "cells.csv"),
+            "equal_error": j(root, "table1", "equal-error.csv"),
+            "bias": j(root, "estimator-bias", "estimator-bias.csv"), "caustic": j(root, "caustic", "caustic.csv"),
+            "scenes": j(root, "scenes", "scenes.csv"), "runs": j(root, "table1", "runs.csv"), "stability": j(root, "stability", "stability-extremes.md"),
+            "repro": j(root, "reproducibility", "reproducibility.csv"), "rep": j(root, "rep-study", "rep-study.csv")}
+
+
+def markdown(d):
+    """The text of FINDINGS.md."""
+    out = ["# Findings, written by the data", "",
+           f"Generated by `make findings` (experiments/analysis/findings.py) from the files under `{d['root']}/` "
+           f"on {report.today()}, commit {report.commit()}. Every number below is read from those files; "
+           "paired comparisons are worded from their Holm-corrected test (ranked, equivalent within delta = "
+           f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}% of the conventional value, or undetermined), unpaired ones "
+           f"rank only disjoint 95% intervals. Error: {metrics.PRIMARY_DEFINITION} (experiments/analysis/metrics.py).", ""]
+    for num, fn in FINDINGS:
+        try:
+            title, lines = fn(d)
+        except Missing as e:
+            title, lines = fn.__doc__.split(":")[0].split(".")[0], [f"Not answered here: {e}."]
+        out += [f"## {num}. {title}", ""] + lines + [""]
+    return "\n".join(out)
+
+
+NUMBER = r"(?<![\w.])[0-9]+(?:[.,][0-9]+)*"
+
+
+def findings_section(readme_text, heading="## What it found, in short"):
+    """The text of README's findings section: from HEADING to the next '## '."""
+    start = readme_text.find(heading)
+    if start < 0:
+        return ""
+    rest = readme_text[start + len(heading):]
+    end = rest.find("\n## ")
+    return rest if end < 0 else rest[:end]
+
+
+def results_text(root):
+    """Every Markdown and CSV file under ROOT, concatenated (the haystack the
+    README's numbers must be found in)."""
+    out = []
+    for d, _, files in os.walk(root):
+        for f in sorted(files):
+            if f.endswith((".md", ".csv")) and f != "README.md":
+                with open(os.path.join(d, f), encoding="utf-8", errors="replace") as fh:
+                    out.append(fh.read())
+    return "\n".join(out)
+
+
+def unbacked_numbers(section, haystack):
+    """The numbers of SECTION (README's findings) that appear in no results
+    file as a whole number token (not a digit run inside a longer number;
+    thousands separators dropped for the search, '1,800' is found as '1800'); [] when every number is backed."""
+    import re
+    have = {m.group(0).rstrip(".,") for m in re.finditer(NUMBER, haystack)}
+    have |= {t.replace(",", "") for t in have}
+    missing = []
+    for m in re.finditer(NUMBER, section):
+        tok = m.group(0).rstrip(".,")
+        if tok not in have and tok.replace(",", "") not in have:
+            missing.append(tok)
+    return missing
+
+
+def main(argv=None):
+    """Entry point; exits 1 when the output cannot be written."""
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--results", default="results")
+    ap.add_argument("--out", help="write FINDINGS.md here")
+    ap.add_argument("--check-readme", metavar="README", help="exit 1 when a number of README's findings section "
+                    "appears in no results file under --results")
+    for k in ("runs", "table", "cells", "equal_error", "bias", "caustic", "scenes", "stability", "repro", "rep"):
+        ap.add_argument("--" + k.replace("_", "-"), default=None, help=f"override the {k} file")
+    args = ap.parse_args(argv)
+    d = paths(args.results)
+    for k in d:
+        v = getattr(args, k, None)
+        if v:
+            d[k] = v
+    if args.out:
+        try:
+            report.write_atomic(args.out, markdown(d))
+        except OSError as e:
+            report.die(WHERE, f"{args.out}: {e}")
+        print(f"wrote {args.out}")
+    if args.check_readme:
+        try:
+            with open(args.check_readme, encoding="utf-8") as f:
+                section = findings_section(f.read())
+        except OSError as e:
+            report.die(WHERE, f"{args.check_readme}: {e}")
+        if not section.strip():
+            report.die(WHERE, f"{args.check_readme}: no findings section")
+        bad = unbacked_numbers(section, results_text(args.results))
+        if bad:
+            report.die(WHERE, f"{args.check_readme}: numbers of the findings in no file under {args.results}/: "
+                       + ", ".join(bad))
+        print(f"{args.check_readme}: every number of the findings appears in {args.results}/")
+
+
+if __name__ == "__main__":
+    main()
