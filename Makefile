@@ -42,7 +42,7 @@ TEST_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/dbg/test_%.o)
 TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
-.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm evaluate beyond reproducibility findings
+.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm evaluate beyond reproducibility findings bench-threads
 all: $(BUILD)/photonmap ## build build/photonmap
 deps: $(DEPS_STAMP) $(DEPS_TEST) $(DEPS_CLUSTER) ## install the missing Debian packages of every tier (scripts/install-deps.sh)
 test: all unit-tests $(BUILD)/san/photonmap $(DEPS_TEST) $(DEPS_CLUSTER) ## every test; ends with "N passed, N failed, N skipped" (README)
@@ -63,6 +63,7 @@ stability: ## every extreme with its expected value and verdict -> results/stabi
 bench: ## kNN (against FLANN, cKDTree, nanoflann), lookup and eye-pass benchmarks -> results/bench/bench.md
 bench-quick: ## only the kNN against FLANN, cKDTree and nanoflann, about a minute, on stdout
 bench-scaling: ## each phase's cost and peak bytes per stored photon against the photons, log-log slopes -> results/bench/scaling.md (SCALING_PHOTONS)
+bench-threads: ## the two-thread speed-up of the photon pass and the build, paired -> results/bench/threads.md (THREADS_PHOTONS, THREADS_PAIRS)
 bench-peers: ## only the kNN against FLANN, cKDTree and nanoflann, both query streams -> results/bench/peers.md
 reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one

@@ -47,3 +47,13 @@ bench: bench-scaling
 .PHONY: bench-peers
 bench-peers: bench-bin
 	bash experiments/bench/run.sh --peers
+
+# `make bench-threads`: the two-thread speed-up of the photon pass and the
+# build, paired (experiments/bench/threads.sh; THREADS_PHOTONS, THREADS_PAIRS)
+# -> results/bench/threads.md.
+THREADS_PHOTONS ?= 5000000 20000000
+THREADS_PAIRS ?= 3
+.PHONY: bench-threads
+bench-threads: $(BUILD)/photonmap
+	THREADS_PHOTONS="$(THREADS_PHOTONS)" THREADS_PAIRS="$(THREADS_PAIRS)" PYTHON="$(PYTHON)" \
+	  bash experiments/bench/threads.sh $(BUILD)/photonmap
