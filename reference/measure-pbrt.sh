@@ -15,7 +15,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PY=${PYTHON:-/usr/bin/python3}
-PM_PHOTONS=${PM_PHOTONS:-5000000} PM_NN=${PM_NN:-200} PM_SEEDS=${PM_SEEDS:-4}
+PM_PHOTONS=${PM_PHOTONS:-2000000} PM_NN=${PM_NN:-200} PM_SEEDS=${PM_SEEDS:-4}
 out=build/reference/pbrt-measure; mkdir -p "$out"
 make -s build/photonmap
 pbrt=${PBRT:-$(command -v pbrt || true)}
