@@ -7,8 +7,12 @@
 cd "$(dirname "$0")/.." || exit 1
 . tests/lib.sh
 PY=${PYTHON:-/usr/bin/python3}
+# the unit cases of beyond.py (tests/test_beyond.py) first: they need no render
+if "$PY" -c 'import pytest, pandas, scipy' 2>/dev/null; then
+  check "pytest tests/test_beyond.py" "$PY" -m pytest -q -p no:cacheprovider tests/test_beyond.py
+fi
 if ! "$PY" -c 'import numpy, pandas, scipy, OpenImageIO, matplotlib' 2>/dev/null || [ ! -x "$PM" ]; then
-  echo "skipped: needs $PM and numpy, pandas, scipy, OpenImageIO, matplotlib"; echo "0 passed, 0 failed, 1 skipped"; exit 0
+  echo "skipped: needs $PM and numpy, pandas, scipy, OpenImageIO, matplotlib"; echo "$PASS passed, $FAIL failed, 1 skipped"; [ "$FAIL" -eq 0 ]; exit
 fi
 R=$TMP/r
 ARGS=(SCENES=scenes/cornell.scene SIZE=32x24 BEYOND_SIZES=32x24 "PHOTONS=2000 4000" "NNS=10 20" SEEDS=2

@@ -222,6 +222,7 @@ def main():
     ap.add_argument("--bootstrap", type=int, default=2000)
     ap.add_argument("--bootstrap-seed", type=int, default=1)
     ap.add_argument("--pm", default="build/photonmap")
+    ap.add_argument("--gate", default="plane-lookup", help="the --rep-gate of the gated variants (for the text)")
     ap.add_argument("--settings", default="", help="the make command line that made the runs (quoted)")
     ap.add_argument("--out", required=True, help="output stem: STEM.md, STEM.csv")
     ap.add_argument("--figure", default="")
