@@ -26,6 +26,7 @@
 
 #include "config.h"
 #include "material.h"
+#include "numfmt.h"
 #include "vec.h"
 
 static const char *const integrator_names[] = {"bdpt", "path", "directlighting"};
@@ -95,27 +96,14 @@ pm_status pbrt_check(const scene *sc, const pbrt_options *o, char *err, size_t e
     return PM_OK;
 }
 
-/* Writes x as the shortest of %.15g / %.17g that reads back exactly. */
-static void put_num(FILE *f, double x)
-{
-    assert(isfinite(x));
-    char buf[40];
-    snprintf(buf, sizeof buf, "%.15g", x);
-    if (strtod(buf, NULL) != x)
-        snprintf(buf, sizeof buf, "%.17g", x);
-    if (!strcmp(buf, "-0"))
-        strcpy(buf, "0");
-    fputs(buf, f);
-}
-
 /* Writes "x y z". */
 static void put_vec(FILE *f, vec3 v)
 {
-    put_num(f, v.x);
+    numfmt_put_exact(f, v.x);
     fputc(' ', f);
-    put_num(f, v.y);
+    numfmt_put_exact(f, v.y);
     fputc(' ', f);
-    put_num(f, v.z);
+    numfmt_put_exact(f, v.z);
 }
 
 /* Writes s inside a # comment: bytes other than printable ASCII become '?'. */
@@ -160,7 +148,7 @@ static void put_camera(FILE *f, const scene *sc, const pbrt_options *o)
     fputs("  ", f);
     put_vec(f, c->up);
     fputs("\nCamera \"perspective\" \"float fov\" [ ", f);
-    put_num(f, shorter_axis_fov(c, o->width, o->height));
+    numfmt_put_exact(f, shorter_axis_fov(c, o->width, o->height));
     fputs(" ]\n", f);
     uint32_t side = (uint32_t)ceil(sqrt((double)o->spp));
     while (side * side < o->spp)
@@ -208,7 +196,7 @@ static void put_materials(FILE *f, const scene *sc)
             break;
         case MATERIAL_GLASS:
             fputs("\"string type\" \"glass\" \"rgb Kr\" [ 1 1 1 ] \"rgb Kt\" [ 1 1 1 ] \"float eta\" [ ", f);
-            put_num(f, m->ior);
+            numfmt_put_exact(f, m->ior);
             break;
         }
         fputs(" ]\n", f);
@@ -225,7 +213,7 @@ static void put_shapes(FILE *f, const scene *sc)
             fputs("  Translate ", f);
             put_vec(f, s->center);
             fputs("\n  Shape \"sphere\" \"float radius\" [ ", f);
-            put_num(f, s->radius);
+            numfmt_put_exact(f, s->radius);
             fputs(" ]\n", f);
         } else {
             vec3 p[4] = {s->corner, vec_add(s->corner, s->edge1), vec_add(vec_add(s->corner, s->edge1), s->edge2),

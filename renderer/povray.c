@@ -26,6 +26,7 @@
 #include "config.h"
 #include "outfile.h"
 #include "scene.h"
+#include "numfmt.h"
 #include "vec.h"
 
 /* fade_distance in scene units: the light's 2/(1+(d/D)^2) is 2 D^2/d^2 to a
@@ -51,28 +52,15 @@ povray_options povray_defaults(void)
     return o;
 }
 
-/* Writes x as the shortest of %.15g / %.17g that reads back exactly. */
-static void put_num(FILE *f, double x)
-{
-    assert(isfinite(x));
-    char buf[40];
-    snprintf(buf, sizeof buf, "%.15g", x);
-    if (strtod(buf, NULL) != x)
-        snprintf(buf, sizeof buf, "%.17g", x);
-    if (!strcmp(buf, "-0"))
-        strcpy(buf, "0");
-    fputs(buf, f);
-}
-
 /* Writes <x, y, z> as is (colours, or vectors already in POV coordinates). */
 static void put_triple(FILE *f, vec3 v)
 {
     fputc('<', f);
-    put_num(f, v.x);
+    numfmt_put_exact(f, v.x);
     fputs(", ", f);
-    put_num(f, v.y);
+    numfmt_put_exact(f, v.y);
     fputs(", ", f);
-    put_num(f, v.z);
+    numfmt_put_exact(f, v.z);
     fputc('>', f);
 }
 
@@ -158,11 +146,11 @@ static void put_camera(FILE *f, const scene *sc, const povray_options *o)
     fprintf(f, "camera {\n  perspective\n  location ");
     put_point(f, c->position);
     fprintf(f, "\n  right x*");
-    put_num(f, (double)o->width / (double)o->height);
+    numfmt_put_exact(f, (double)o->width / (double)o->height);
     fprintf(f, "\n  up y\n  sky ");
     put_point(f, c->up);
     fprintf(f, "\n  angle ");
-    put_num(f, c->hfov_deg);
+    numfmt_put_exact(f, c->hfov_deg);
     fprintf(f, "\n  look_at ");
     put_point(f, c->look_at);
     fprintf(f, "\n}\n\n");
@@ -180,7 +168,7 @@ static void put_light(FILE *f, const scene *sc, const povray_options *o)
     fprintf(f, "\n  color rgb ");
     put_triple(f, colour);
     fprintf(f, "\n  fade_distance ");
-    put_num(f, d);
+    numfmt_put_exact(f, d);
     fprintf(f, "\n  fade_power 2\n");
     if (o->photons)
         fprintf(f, "  photons { reflection on refraction on }\n");
@@ -207,7 +195,7 @@ static void put_materials(FILE *f, const scene *sc)
             fprintf(f, "  texture { pigment { rgbf <1, 1, 1, 1> }\n");
             fprintf(f, "            finish { diffuse 0 ambient 0 reflection { 0, 1 fresnel on } conserve_energy } }\n");
             fprintf(f, "  interior { ior ");
-            put_num(f, m->ior);
+            numfmt_put_exact(f, m->ior);
             fprintf(f, " }\n");
             break;
         }
@@ -253,11 +241,11 @@ static void put_rect(FILE *f, const scene *sc, const shape *s, double lo, double
         vec3 rows[4] = {pov_coords(s->edge1), pov_coords(s->edge2), pov_coords(depth), pov_coords(corner)};
         fprintf(f, "<0, 0, 0>, <1, 1, 1>\n  matrix <");
         for (int r = 0; r < 4; r++) {
-            put_num(f, rows[r].x);
+            numfmt_put_exact(f, rows[r].x);
             fputs(", ", f);
-            put_num(f, rows[r].y);
+            numfmt_put_exact(f, rows[r].y);
             fputs(", ", f);
-            put_num(f, rows[r].z);
+            numfmt_put_exact(f, rows[r].z);
             fputs(r < 3 ? ",  " : ">\n", f);
         }
     }
@@ -271,7 +259,7 @@ static void put_geometry(FILE *f, const scene *sc, const shape *s, int proxy, do
         fprintf(f, "sphere {\n  ");
         put_point(f, s->center);
         fprintf(f, ", ");
-        put_num(f, proxy ? s->radius * (1.0 - POV_PROXY_SHRINK) : s->radius);
+        numfmt_put_exact(f, proxy ? s->radius * (1.0 - POV_PROXY_SHRINK) : s->radius);
         fprintf(f, "\n");
     } else if (proxy) {
         put_rect(f, sc, s, 0.25, 0.75, thickness);
