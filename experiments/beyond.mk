@@ -96,7 +96,7 @@ beyond: $(foreach i,$(beyond_ids),bey-$(i)-table $(BEYOND_VARIANTS:%=bey-$(i)-%-
 	    $(foreach v,$(BEYOND_VARIANTS),--variant $(call beyond_id,$(c)) $(v) "$(call beyond_args,$(v))" \
 	      $(bey-$(call beyond_id,$(c))-$(v)_RUNS_CSV))) \
 	  --time $(TIME) --bootstrap $(BOOTSTRAP) --bootstrap-seed $(BOOTSTRAP_SEED) --pm $(PM) --gate $(BEYOND_GATE) \
-	  --settings "make beyond SIZE=$(beyond_size) SEEDS=$(beyond_seeds) PHOTONS=\"$(PHOTONS)\" NNS=\"$(NNS)\" ESTIMATES=\"$(beyond_estimates)\" BEYOND_SIZES=\"$(BEYOND_SIZES)\" BEYOND_TAUS=\"$(BEYOND_TAUS)\" BEYOND_GATE=$(BEYOND_GATE) RES_REF_PHOTONS=$(RES_REF_PHOTONS) RES_REF_NN=$(RES_REF_NN) THREADS=$(THREADS) TIME=$(TIME) BOOTSTRAP=$(BOOTSTRAP)" \
+	  --settings "make beyond SIZE=$(beyond_size) SEEDS=$(beyond_seeds) PHOTONS=\"$(PHOTONS)\" NNS=\"$(NNS)\" ESTIMATES=\"$(beyond_estimates)\" BEYOND_SIZES=\"$(BEYOND_SIZES)\" BEYOND_TAUS=\"$(BEYOND_TAUS)\" BEYOND_GATE=$(BEYOND_GATE) CONV_REF_PHOTONS=$(CONV_REF_PHOTONS) CONV_REF_FACTOR=$(CONV_REF_FACTOR) CONV_REF_NN=$(CONV_REF_NN) CONV_REF_SEEDS=\"$(CONV_REF_SEEDS)\" THREADS=$(THREADS) TIME=$(TIME) BOOTSTRAP=$(BOOTSTRAP)" \
 	  --out $(BEYOND_DIR)/beyond --figure $(FIGURES)/beyond.png
 
 ifneq ($(call goal,beyond beyond-runs),)

@@ -16,7 +16,7 @@ if ! "$PY" -c 'import numpy, pandas, scipy, OpenImageIO, matplotlib' 2>/dev/null
 fi
 R=$TMP/r
 ARGS=(SCENES=scenes/cornell.scene SIZE=32x24 BEYOND_SIZES=32x24 "PHOTONS=2000 4000" "NNS=10 20" SEEDS=2
-      BEYOND_TAUS=0.1 RES_REF_PHOTONS=20000 RES_REF_NN=50 BOOTSTRAP=200 RESULTS="$R" FIGURES="$R/figures")
+      BEYOND_TAUS=0.1 CONV_REF_PHOTONS=20000 CONV_REF_NN=50 BOOTSTRAP=200 RESULTS="$R" FIGURES="$R/figures")
 make -s beyond "${ARGS[@]}" > "$TMP/make.log" 2>&1; rc=$?
 check "make beyond exits 0" test "$rc" -eq 0
 [ "$rc" -eq 0 ] || sed 's/^/     /' "$TMP/make.log" | tail -n 20
