@@ -18,6 +18,13 @@ for t in $targets; do
   # evaluate needs the scene it evaluates
   [ "$t" = evaluate ] && { check "make -n evaluate SCENE=tests/evaluate/box.scene: exit 0" \
     make -n evaluate SCENE=tests/evaluate/box.scene RESULTS="$R"; continue; }
+  # reproducibility's default size (512x384) has no POV-Ray reference in
+  # reference/: it must refuse naming REF=, and run where one exists
+  if [ "$t" = reproducibility ]; then
+    check "make -n reproducibility at 512x384 refuses naming REF=" expect_exit 2 "REF=" make -n reproducibility RESULTS="$R"
+    check "make -n reproducibility SIZE=256x192: exit 0" make -n reproducibility SIZE=256x192 RESULTS="$R"
+    continue
+  fi
   check "make -n $t: exit 0" make -n "$t" RESULTS="$R"
 done
 check "make -n sweep-slurm SWEEP=reproduce-runs: exit 0, writes nothing" \
