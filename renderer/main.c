@@ -508,6 +508,50 @@ static pov_args pov_defaults_args(void)
     return a;
 }
 
+/* An exporter's writer: the scene to f in its format. */
+typedef pm_status (*export_writer)(FILE *f, const scene *sc, const char *scene_name, const void *opts);
+
+static pm_status pov_writer(FILE *f, const scene *sc, const char *scene_name, const void *opts)
+{
+    return povray_write(f, sc, scene_name, opts);
+}
+
+static pm_status pbrt_writer(FILE *f, const scene *sc, const char *scene_name, const void *opts)
+{
+    return pbrt_write(f, sc, scene_name, opts);
+}
+
+/* Writes the export to out (NULL: standard output) by a temporary name
+ * renamed when complete. Returns PM_OK, or PM_ERR_IO (printed) when the file
+ * cannot be created, written or renamed (it then leaves no file). */
+static pm_status export_write(const char *out, export_writer write, const scene *sc,
+                              const char *scene_name, const void *opts)
+{
+    if (!out) {
+        if (write(stdout, sc, scene_name, opts) || fflush(stdout)) {
+            fprintf(stderr, "photonmap: writing standard output: %s\n", strerror(errno));
+            return PM_ERR_IO;
+        }
+        return PM_OK;
+    }
+    char err[1024];
+    outfile f;
+    if (outfile_begin(&f, out, 1, err, sizeof err)) {
+        fprintf(stderr, "photonmap: %s\n", err);
+        return PM_ERR_IO;
+    }
+    if (write(f.f, sc, scene_name, opts)) {
+        fprintf(stderr, "photonmap: %s: write error\n", out);
+        outfile_abort(&f);
+        return PM_ERR_IO;
+    }
+    if (outfile_commit(&f, err, sizeof err)) {
+        fprintf(stderr, "photonmap: %s\n", err);
+        return PM_ERR_IO;
+    }
+    return PM_OK;
+}
+
 /* `photonmap export-pov`. Returns the first failure's status (printed). */
 static pm_status cmd_export_pov(int argc, char **argv)
 {
@@ -518,27 +562,7 @@ static pm_status cmd_export_pov(int argc, char **argv)
     scene *sc = NULL;
     if ((rc = load_scene(a.scene, &sc)))
         return rc;
-    char err[1024];
-    pm_status exit_code = PM_OK;
-    if (!a.out) {
-        if (povray_write(stdout, sc, a.scene, &a.pov) || fflush(stdout)) {
-            fprintf(stderr, "photonmap: writing standard output: %s\n", strerror(errno));
-            exit_code = PM_ERR_IO;
-        }
-    } else {
-        outfile f;
-        if (outfile_begin(&f, a.out, 1, err, sizeof err)) {
-            fprintf(stderr, "photonmap: %s\n", err);
-            exit_code = PM_ERR_IO;
-        } else if (povray_write(f.f, sc, a.scene, &a.pov)) {
-            fprintf(stderr, "photonmap: %s: write error\n", a.out);
-            outfile_abort(&f);
-            exit_code = PM_ERR_IO;
-        } else if (outfile_commit(&f, err, sizeof err)) {
-            fprintf(stderr, "photonmap: %s\n", err);
-            exit_code = PM_ERR_IO;
-        }
-    }
+    pm_status exit_code = export_write(a.out, pov_writer, sc, a.scene, &a.pov);
     scene_free(sc);
     return exit_code;
 }
@@ -610,24 +634,8 @@ static pm_status cmd_export_pbrt(int argc, char **argv)
     pm_status exit_code = pbrt_check(sc, &a.pbrt, err, sizeof err);
     if (exit_code != PM_OK) {
         fprintf(stderr, "photonmap: export-pbrt: %s: %s\n", a.scene, err);
-    } else if (!a.out) {
-        if (pbrt_write(stdout, sc, a.scene, &a.pbrt) || fflush(stdout)) {
-            fprintf(stderr, "photonmap: writing standard output: %s\n", strerror(errno));
-            exit_code = PM_ERR_IO;
-        }
     } else {
-        outfile f;
-        if (outfile_begin(&f, a.out, 1, err, sizeof err)) {
-            fprintf(stderr, "photonmap: %s\n", err);
-            exit_code = PM_ERR_IO;
-        } else if (pbrt_write(f.f, sc, a.scene, &a.pbrt)) {
-            fprintf(stderr, "photonmap: %s: write error\n", a.out);
-            outfile_abort(&f);
-            exit_code = PM_ERR_IO;
-        } else if (outfile_commit(&f, err, sizeof err)) {
-            fprintf(stderr, "photonmap: %s\n", err);
-            exit_code = PM_ERR_IO;
-        }
+        exit_code = export_write(a.out, pbrt_writer, sc, a.scene, &a.pbrt);
     }
     scene_free(sc);
     return exit_code;
