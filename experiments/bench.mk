@@ -22,7 +22,9 @@ $(BENCH_BIN): $(LIB_OBJ) $(BUILD)/bench/bench.o $(BUILD)/bench/nano.o $(BUILD)/b
 .PHONY: bench-bin
 bench-bin: $(BENCH_BIN) $(BUILD)/photonmap
 bench: bench-bin
-	bash experiments/bench/run.sh
+	SCALING_PHOTONS="$(SCALING_PHOTONS)" SCALING_THREADS="$(SCALING_THREADS)" \
+	  THREADS_PHOTONS="$(THREADS_PHOTONS)" THREADS_PAIRS="$(THREADS_PAIRS)" PYTHON="$(PYTHON)" \
+	  bash experiments/bench/run.sh
 
 # `make bench-quick`: the kNN against FLANN, cKDTree and nanoflann alone, in
 # about a minute, on stdout (results/bench.md untouched).
@@ -30,18 +32,16 @@ bench: bench-bin
 bench-quick: bench-bin
 	bash experiments/bench/run.sh --quick
 
-# `make bench-scaling` (also run by `make bench`): each phase's cost and the
-# peak memory per stored photon against the emitted photons, with fitted
-# log-log slopes -> results/bench/scaling.{csv,md}, results/figures/bench-scaling.png
-# (experiments/bench/scaling.sh; SCALING_PHOTONS: the counts, e.g. add
-# 10000000 20000000 for the full range; SCALING_THREADS: threads, 2).
-SCALING_PHOTONS ?= 50000 100000 200000 500000 1000000 2000000 5000000
-SCALING_THREADS ?= 2
+# `make bench-scaling` (also run by `make bench`, after the rest, and copied
+# into bench.md): each phase's cost and the peak memory per stored photon
+# against the emitted photons, with fitted log-log slopes ->
+# results/bench/scaling.{csv,md}, results/figures/bench-scaling.png
+# (experiments/bench/scaling.sh; SCALING_PHOTONS, SCALING_THREADS in
+# experiments/config.mk).
 .PHONY: bench-scaling
 bench-scaling: $(BUILD)/photonmap
 	SCALING_PHOTONS="$(SCALING_PHOTONS)" SCALING_THREADS="$(SCALING_THREADS)" PYTHON="$(PYTHON)" \
 	  bash experiments/bench/scaling.sh $(BUILD)/photonmap
-bench: bench-scaling
 # `make bench-peers`: the kNN against FLANN, cKDTree and nanoflann alone, both
 # query streams, k = 10 and 100, written to results/bench/peers.md.
 .PHONY: bench-peers
@@ -49,10 +49,9 @@ bench-peers: bench-bin
 	bash experiments/bench/run.sh --peers
 
 # `make bench-threads`: the two-thread speed-up of the photon pass and the
-# build, paired (experiments/bench/threads.sh; THREADS_PHOTONS, THREADS_PAIRS)
-# -> results/bench/threads.md.
-THREADS_PHOTONS ?= 5000000 20000000
-THREADS_PAIRS ?= 3
+# build, paired (experiments/bench/threads.sh; THREADS_PHOTONS, THREADS_PAIRS
+# in experiments/config.mk) -> results/bench/threads.md; `make bench` runs it
+# too and copies it into bench.md.
 .PHONY: bench-threads
 bench-threads: $(BUILD)/photonmap
 	THREADS_PHOTONS="$(THREADS_PHOTONS)" THREADS_PAIRS="$(THREADS_PAIRS)" PYTHON="$(PYTHON)" \

@@ -195,3 +195,12 @@ REPRO_DIR = $(RESULTS)/reproducibility
 REPRO_SIZE_DEFAULT := 512x384
 REPRO_TASKSET ?=
 REPRO_GOAL_PP ?= 3
+
+# make bench (experiments/bench.mk): the scaling section (bench-scaling:
+# emitted photon counts and threads; 50k..20M takes about 3 minutes on two
+# idle cores) and the two-thread section (bench-threads: counts and pairs of
+# 1-thread/2-thread renders, back to back, order alternating).
+SCALING_PHOTONS ?= 50000 100000 200000 500000 1000000 2000000 5000000 10000000 20000000
+SCALING_THREADS ?= 2
+THREADS_PHOTONS ?= 5000000 20000000
+THREADS_PAIRS ?= 3

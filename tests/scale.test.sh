@@ -45,7 +45,7 @@ else
   cp scenes/cornell.scene "$W/scenes/"
   cp "$PM" "$W/build/photonmap"
   check "scaling.sh end to end at 2000 and 4000 photons" bash -c "
-    SCALING_PHOTONS=2000,4000 PYTHON='$PY' bash '$W/experiments/bench/scaling.sh' build/photonmap || exit 1
+    SCALING_PHOTONS=2000,4000 SCALING_THREADS=2 PYTHON='$PY' bash '$W/experiments/bench/scaling.sh' build/photonmap || exit 1
     '$PY' - '$W/results/bench/scaling.csv' <<'EOF'
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
@@ -64,7 +64,7 @@ EOF
   printf '#!/bin/sh\nexit 1\n' > "$W/build/fail"
   chmod +x "$W/build/fail"
   check "negative control: a failing render leaves no result" bash -c "
-    ! SCALING_PHOTONS=2000 PYTHON='$PY' bash '$W/experiments/bench/scaling.sh' build/fail 2>/dev/null &&
+    ! SCALING_PHOTONS=2000 SCALING_THREADS=2 PYTHON='$PY' bash '$W/experiments/bench/scaling.sh' build/fail 2>/dev/null &&
     test ! -e '$W/results/bench/scaling.csv' && test ! -e '$W/results/bench/scaling.md'"
 fi
 finish

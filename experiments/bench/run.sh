@@ -6,8 +6,11 @@
 # profile of the renders, and the heaviest cells of the paper at full
 # resolution under /usr/bin/time -v; writes results/bench/bench.md (tables from
 # files by report.py), with the kNN against FLANN, scipy's cKDTree and
-# nanoflann (bench --peers, k = BENCH_PEER_KS). BENCH_REPS (5) runs per
-# throughput cell, BENCH_HEAVY_REPS (3) per heavy cell.
+# nanoflann (bench --peers, k = BENCH_PEER_KS), and the scaling and
+# two-thread sections (scaling.sh, threads.sh: SCALING_PHOTONS,
+# SCALING_THREADS, THREADS_PHOTONS, THREADS_PAIRS from experiments/config.mk
+# through make). BENCH_REPS (5) runs per throughput cell, BENCH_HEAVY_REPS (3)
+# per heavy cell.
 #
 #   run.sh --quick   (`make bench-quick`, about a minute): only the peers
 #                    table at k = 10 and 100, 3 runs a cell, on stdout;
@@ -127,6 +130,15 @@ heavy() { # method: one line per run, "method render precompute total rss"
 { heavy conventional; heavy precomputed; } > "$tmp/heavy.txt"
 "$PYTHON" experiments/bench/report.py heavy "$tmp/heavy.txt" > "$tmp/heavy.md"
 
+# The scaling and two-thread sections: their own scripts write their own
+# files (results/bench/scaling.md, threads.md); bench.md carries them too,
+# headings one level down.
+echo "bench: scaling, ${SCALING_PHOTONS:-?} emitted photons (experiments/bench/scaling.sh)" >&2
+bash experiments/bench/scaling.sh build/photonmap
+echo "bench: two threads against one, ${THREADS_PHOTONS:-?} emitted photons (experiments/bench/threads.sh)" >&2
+bash experiments/bench/threads.sh build/photonmap
+demote() { sed 's/^#/##/' "$1"; }
+
 {
   echo "# Benchmark: the paper's grid, photon map kNN, representative lookup, eye pass"
   echo
@@ -182,6 +194,12 @@ heavy() { # method: one line per run, "method render precompute total rss"
   echo
   cat "$tmp/prof_pre10.txt"
   echo
+  echo
+  demote results/bench/scaling.md
+  echo
+  demote results/bench/threads.md
+  echo
   cat experiments/bench/kdtree-notes.md
-} > "$OUT"
+} > "$OUT.tmp"
+mv "$OUT.tmp" "$OUT"
 echo "bench: wrote $OUT" >&2

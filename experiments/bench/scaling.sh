@@ -2,9 +2,9 @@
 # experiments/bench/scaling.sh (behind `make bench-scaling`, which `make
 # bench` runs too): how each phase's cost grows with the work. Renders
 # scenes/cornell.scene, conventional and precomputed, n = 100, 512x384, on
-# SCALING_THREADS threads (2), at each count of emitted photons in
-# SCALING_PHOTONS (space- or comma-separated; the default stops at 5M, add
-# 10000000 20000000 for the full range), and records the renderer's own
+# SCALING_THREADS threads, at each count of emitted photons in
+# SCALING_PHOTONS (space- or comma-separated; defaults in
+# experiments/config.mk), and records the renderer's own
 # phase times (time_s from --stats: trace, build, precompute, eye pass) and
 # the peak resident set (/usr/bin/time -f %M) per stored photon. Writes
 # results/bench/scaling.csv, then experiments/bench/scaling.py fits each
@@ -18,8 +18,8 @@
 set -eu
 cd "$(dirname "$0")/../.."
 BIN=${1:-build/photonmap}
-PHOTONS=${SCALING_PHOTONS:-50000 100000 200000 500000 1000000 2000000 5000000}
-THREADS=${SCALING_THREADS:-2}
+PHOTONS=${SCALING_PHOTONS:?scaling.sh: SCALING_PHOTONS unset (make bench-scaling sets it from experiments/config.mk)}
+THREADS=${SCALING_THREADS:?scaling.sh: SCALING_THREADS unset (make bench-scaling sets it from experiments/config.mk)}
 PYTHON=${PYTHON:-/usr/bin/python3}
 TIME=/usr/bin/time
 CSV=results/bench/scaling.csv

@@ -13,8 +13,8 @@
 set -eu
 cd "$(dirname "$0")/../.."
 BIN=${1:-build/photonmap}
-PHOTONS=${THREADS_PHOTONS:-5000000 20000000}
-PAIRS=${THREADS_PAIRS:-3}
+PHOTONS=${THREADS_PHOTONS:?threads.sh: THREADS_PHOTONS unset (make bench-threads sets it from experiments/config.mk)}
+PAIRS=${THREADS_PAIRS:?threads.sh: THREADS_PAIRS unset (make bench-threads sets it from experiments/config.mk)}
 PYTHON=${PYTHON:-/usr/bin/python3}
 if [ ! -x "$BIN" ]; then
   echo "threads.sh: no renderer at $BIN (run make)" >&2
