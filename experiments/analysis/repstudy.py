@@ -242,7 +242,7 @@ def score_rules(rows, alpha=1 - stats.LEVEL):
     for r in rows:
         z = np.asarray(r["zs"], dtype=np.float64)
         z = z[np.isfinite(z)]
-        dof = int(z.size - r["fitted"])
+        dof = max(int(z.size - r["fitted"]), 0)
         chi2 = float(np.sum(z ** 2)) if z.size else math.nan
         p = float(sps.chi2.sf(chi2, dof)) if dof > 0 else math.nan
         out.append({"chi2": chi2, "dof": dof, "p_value": p})
