@@ -181,3 +181,11 @@ def test_markdown_numbers_and_rules_csv(tmp_path):
     md = repstudy.markdown(res, A, os.path.join(str(tmp_path), "runs.csv"), ["v1.csv", "v8.csv"])
     assert "sigma = " in md and "Holm" in md and "nan" not in md.lower().split()
     assert "| every 8th |" in md and "incompatible" in md
+
+
+def test_noise_sensitivity_larger_noise_rejects_less(tmp_path):
+    res = study(tmp_path, off=3.0)
+    base = [x["verdict"] for x in repstudy.noise_sensitivity(res["fits"], res["scores"], 1.0)]
+    assert base == list(res["scores"]["verdict"])  # factor 1 is the study itself
+    wide = repstudy.noise_sensitivity(res["fits"], res["scores"], 1000.0)
+    assert all(x["verdict"] == "not rejected" for x in wide)  # a paper known to nothing rejects nothing
