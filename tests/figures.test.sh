@@ -79,6 +79,15 @@ c = f[f.rule == 'count500']
 assert (c.reps == 500).all(), c.reps
 assert f.paper_slope_ratio.isna().all()  # the tiny grid's photon counts are not the paper's
 "
+check "rep-study-rules.csv: a test per rule by name; no paper P_e in the tiny grid, so no test and no Holm" "$PY" -c "
+import pandas as pd
+r = pd.read_csv('$R/rep-study/rep-study-rules.csv')
+need = ['rule', 'fitted', 'chi2', 'dof', 'p_value', 'p_holm', 'verdict']
+assert not [c for c in need if c not in r.columns], r.columns
+assert sorted(r.rule) == ['count500', 'every2', 'every4', 'shared'], r.rule
+assert (r.verdict == 'no test').all() and r.p_holm.isna().all(), r
+assert r.set_index('rule').loc['count500', 'fitted'] == 1 and r.set_index('rule').loc['every2', 'fitted'] == 0
+"
 make -s rep-study "${ARGS[@]}" REP_RULES=every0 > "$TMP/badrule.log" 2>&1; rc=$?
 check "rep-study: an unknown rule is refused naming it" \
   bash -c "[ $rc -ne 0 ] && grep -q \"rule 'every0'\" $TMP/badrule.log"

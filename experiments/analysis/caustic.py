@@ -169,44 +169,84 @@ def markdown(summary, args, per_run):
     return "\n".join(out) + "\n"
 
 
+PANEL_MIN_PX = 256  # the least width of an enlarged window crop in the figure, in pixels
+
+
+def enlarge(img, min_width=PANEL_MIN_PX):
+    """IMG (H, W[, C]) enlarged by the smallest integer factor k that makes it
+    at least MIN_WIDTH pixels wide, nearest neighbour (every pixel a k x k
+    block of its own value: nothing smoothed, so a smear seen is the
+    render's). Returns (image, k)."""
+    img = np.asarray(img)
+    assert img.ndim in (2, 3) and img.shape[1] > 0
+    k = max(1, math.ceil(min_width / img.shape[1]))
+    return np.repeat(np.repeat(img, k, axis=0), k, axis=1), k
+
+
 def figure(summary, per_run, ref, args):
-    """caustic.png: the window enlarged (reference; conventional and
-    precomputed per cell, the first seed), (a) the window relMSE per cell
-    with its interval, both methods and estimates, (b) the precomputed
-    method's excess error in the window and over the whole image."""
+    """caustic.png: on the left, per cell, the caustic window enlarged
+    (nearest neighbour, at least PANEL_MIN_PX wide): reference, conventional,
+    precomputed (the first seed, paper estimate) side by side as luminance
+    on one shared colour scale with its colour bar; on the right the whole
+    frame with the window outlined, (a) the window relMSE per cell with its
+    interval, both methods and estimates, (b) the precomputed method's
+    excess error in the window and over the whole image."""
     cells = [tuple(int(v) for v in c.split(":")) for c in args.cells.split()]
     paper = per_run[per_run["estimate"] == "paper"]
     seed = int(sorted(set(paper["seed"]))[0])
     refw = metrics.window(ref, args.window, args.window_at)
-    lum_max = float(np.quantile(plotting.luminance(refw), 0.995))
-    expo = 1.0 / lum_max if lum_max > 0 else 1.0
-    fig = plt.figure(figsize=(13.5, 2.35 * (len(cells) + 1) + 1.0))
-    gs = fig.add_gridspec(len(cells) + 1, 4, width_ratios=[1, 1, 0.12, 2.6], left=0.03, right=0.985, top=0.93,
-                          bottom=0.07, hspace=0.6, wspace=0.08)
-    ax = fig.add_subplot(gs[0, 0])
-    ax.imshow(plotting.srgb(refw * expo), interpolation="nearest")
-    ax.set_title("POV-Ray reference", fontsize=9)
-    ax.set_axis_off()
-    ax = fig.add_subplot(gs[0, 1])
+    ref_lum = plotting.luminance(refw)
+    vmax = float(np.max(ref_lum))
+    vmax = vmax if vmax > 0 else 1.0
+    # square-root scale: the caustic's core and the faint halo a smear leaves
+    # both readable; one norm for every panel
+    norm = plotting.matplotlib.colors.PowerNorm(gamma=0.5, vmin=0.0, vmax=vmax)
+    cmap = "magma"
+    big_ref, k = enlarge(ref_lum)
+    ph, pw = big_ref.shape
+    panel_in = max(2.9, pw / 100 + 0.3)  # at the figure's 100 dpi: each panel at least its enlarged width
+    row_in = panel_in * ph / pw + 0.45
+    rows = max(len(cells), 1)
+    fig_h = rows * row_in + 1.6
+    fig = plt.figure(figsize=(3 * panel_in + 0.9 + 6.0, fig_h))
+    left_frac = (3 * panel_in + 0.9) / (3 * panel_in + 0.9 + 6.0)
+    gl = fig.add_gridspec(rows, 4, width_ratios=[1, 1, 1, 0.07], left=0.01, right=left_frac - 0.01,
+                          top=1 - 1.15 / fig_h, bottom=0.7 / fig_h, hspace=0.25, wspace=0.04)
+    gr = fig.add_gridspec(3, 1, height_ratios=[0.8, 1.6, 1.6], left=left_frac + 0.085, right=0.985,
+                          top=1 - 1.15 / fig_h, bottom=0.7 / fig_h + 0.02, hspace=0.5)
+    im = None
+    for i, (p, n) in enumerate(cells):
+        for j, m in enumerate(("reference", "conventional", "precomputed")):
+            ax = fig.add_subplot(gl[i, j])
+            ax.set_xticks([])
+            ax.set_yticks([])
+            ax.grid(False)
+            if m == "reference":
+                lum, title = big_ref, "POV-Ray reference"
+            else:
+                r = paper[(paper["photons"] == p) & (paper["nn"] == n) & (paper["method"] == m)
+                          & (paper["seed"] == seed)]
+                if r.empty:
+                    ax.text(0.5, 0.5, "not rendered", ha="center", transform=ax.transAxes)
+                    continue
+                img = metrics.window(metrics.read_exr(r["run"].iloc[0] + ".exr"), args.window, args.window_at)
+                lum, title = enlarge(plotting.luminance(img))[0], m
+            im = ax.imshow(lum, cmap=cmap, norm=norm, interpolation="nearest")
+            ax.set_title(f"{title}, P_e={kilo(p)}, n={n}" if m != "reference" else title, fontsize=9)
+        if im is not None:
+            cax = fig.add_subplot(gl[i, 3])
+            cax.grid(False)
+            cb = fig.colorbar(im, cax=cax, extend="max")
+            cb.ax.tick_params(labelsize=7.5)
+            cb.set_label("luminance", fontsize=8)
+    ax = fig.add_subplot(gr[0])
     w, h, x, y = metrics.scale_window(args.window, args.window_at, (ref.shape[1], ref.shape[0]))
     ax.imshow(plotting.srgb(ref), interpolation="nearest")
     ax.add_patch(plt.Rectangle((x - 0.5, y - 0.5), w, h, fill=False, ec="#ffdd00", lw=1.5))
-    ax.set_title("whole frame, window outlined", fontsize=9)
+    ax.set_title("whole frame (reference), the window outlined", fontsize=9)
     ax.set_axis_off()
-    for i, (p, n) in enumerate(cells):
-        for j, m in enumerate(("conventional", "precomputed")):
-            r = paper[(paper["photons"] == p) & (paper["nn"] == n) & (paper["method"] == m) & (paper["seed"] == seed)]
-            ax = fig.add_subplot(gs[i + 1, j])
-            ax.set_axis_off()
-            if r.empty:
-                ax.text(0.5, 0.5, "not rendered", ha="center", transform=ax.transAxes)
-                continue
-            img = metrics.window(metrics.read_exr(r["run"].iloc[0] + ".exr"), args.window, args.window_at)
-            ax.imshow(plotting.srgb(img * expo), interpolation="nearest")
-            ax.set_title(f"{m}, P_e={kilo(p)}, n={n}", fontsize=9)
-    half = 1 + len(cells) // 2
-    axp = fig.add_subplot(gs[1:half + 1, 3])
-    axe = fig.add_subplot(gs[half + 1:, 3]) if half + 1 < len(cells) + 1 else None
+    axp = fig.add_subplot(gr[1])
+    axe = fig.add_subplot(gr[2])
     labels = [f"({kilo(p)}, {n})" for p, n in cells]
     ypos = np.arange(len(cells))
     for k, (est, m, colour, mk, off) in enumerate((("paper", "conventional", plotting.METHOD_COLOUR["conventional"], "o", -0.24),
@@ -230,7 +270,7 @@ def figure(summary, per_run, ref, args):
     axp.set_xlabel("relMSE against the POV-Ray reference inside the caustic window")
     axp.set_ylabel("cell (P_e, n)")
     axp.legend(fontsize=8, loc="best")
-    axp.set_title("(a) the caustic window's error (mean over seeds, 95% t-interval)", fontsize=10)
+    axp.set_title("(a) the caustic window's error\n(mean over seeds, 95% t-interval)", fontsize=10)
     if axe is not None:
         for est, colour, off in (("paper", plotting.METHOD_COLOUR["precomputed"], -0.1), ("corrected", "#f4a582", 0.1)):
             s = summary[(summary["estimate"] == est) & (summary["method"] == "precomputed")]
@@ -249,9 +289,11 @@ def figure(summary, per_run, ref, args):
         axe.set_xlabel("precomputed relMSE / conventional relMSE (same seed)")
         axe.set_ylabel("cell (P_e, n)")
         axe.legend(fontsize=7.5, loc="best")
-        axe.set_title("(b) the precomputed method's excess error: the window against the whole image", fontsize=10)
-    axp.text(0.0, 1.08, f"Images on the left: seed {seed}, paper estimate, the window enlarged without smoothing, "
-             f"exposure x{expo:.2g}", transform=axp.transAxes, fontsize=8.5)
+        axe.set_title("(b) the precomputed method's excess error:\nthe window against the whole image", fontsize=10)
+    fig.text(0.01, 1 - 0.8 / fig_h, f"Left: the caustic window ({refw.shape[1]}x{refw.shape[0]} pixels) enlarged "
+             f"{k}x, nearest neighbour; seed {seed}, paper estimate; luminance on one square-root "
+             f"scale for every panel (0 to the reference's brightest window pixel, {vmax:.3g}; brighter pixels at "
+             "the top colour).", fontsize=8.5)
     fig.suptitle("The glass sphere's caustic: does the precomputed method smear it?", fontsize=12, weight="bold")
     first = per_run.iloc[0]
     plotting.footer(fig, f"Data: {args.runs} and the renders it names ({first['scene']}, {first['size']}, seeds "
