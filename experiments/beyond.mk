@@ -84,6 +84,22 @@ $$(eval $$(call study,bey-$(1)-$(2)))
 endef
 $(foreach c,$(beyond_cases),$(eval $(call beyond_case,$(c),$(call beyond_id,$(c)))))
 
+# beyond_group ID,STEM: the renders of one (cell, seed) of case ID, the
+# conventional, the paper's rule and every variant, one recipe back to back
+# (experiments/group.sh: the order alternating with the seed). An explicit
+# grouped rule: it takes the place of study.mk's pair and single-render
+# pattern rules for these records, make -j runs it once, and a missing
+# record of any member renders the whole group again.
+beyond_stems = $(patsubst conventional-%,%,$(filter conventional-%,$(bey-$(1)_RUN_NAMES)))
+define beyond_group
+$(bey-$(1)_RUNROOT)/conventional-$(2).run.json $(bey-$(1)_RUNROOT)/precomputed-$(2).run.json \
+  $(foreach v,$(BEYOND_VARIANTS),$(bey-$(1)-$(v)_RUNROOT)/precomputed-$(2).run.json) &: | $$(BUILD)/photonmap $$(DEPS_TEST)
+	@$$(bey-$(1)_RUN_ENV) bash experiments/group.sh $(2) $(bey-$(1)_RUNROOT) conventional "" \
+	  $(bey-$(1)_RUNROOT) precomputed "" \
+	  $(foreach v,$(BEYOND_VARIANTS),$(bey-$(1)-$(v)_RUNROOT) precomputed "$(call beyond_args,$(v))")
+endef
+$(foreach i,$(foreach c,$(beyond_cases),$(call beyond_id,$(c))),$(foreach s,$(call beyond_stems,$(i)),$(eval $(call beyond_group,$(i),$(s)))))
+
 beyond_ids = $(foreach c,$(beyond_cases),$(call beyond_id,$(c)))
 .PHONY: beyond beyond-runs
 beyond-runs: $(foreach i,$(beyond_ids),$(bey-$(i)_REF_DEPS) $(bey-$(i)_RUN_FILES) \

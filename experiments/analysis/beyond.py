@@ -265,9 +265,10 @@ def write_md(table, cases, args):
            f"over seeds (random seed {args.bootstrap_seed}). Reference: each scene's converged render at its size "
            "(`converged_ref` of `experiments/studies.mk`). Fallback rate: rep_fallbacks / eye samples; evaluated: "
            "reps_evaluated / representatives (both pooled over the variant's renders). Error ratio: the variant's "
-           "mean relMSE over the conventional one's at the same cells and seeds. The paper's rule and the "
-           "conventional renders of a case ran back to back in pairs (`pair.sh`); a variant's renders pair with "
-           "them by seed but ran later, so their time carries the drift between the two.", "",
+           "mean relMSE over the conventional one's at the same cells and seeds. All the renders of one (cell, seed) "
+           "of a case, the conventional, the paper's rule and every variant, ran back to back in one group "
+           "(`experiments/group.sh`, in the order given at odd seeds and reversed at even ones), so each time "
+           "ratio is a paired sample of one machine state.", "",
            "| case | variant | target relMSE | speed-up [95%] | fallback | evaluated | precompute | eye pass | error ratio |",
            "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
     for _, r in table.iterrows():
