@@ -33,6 +33,14 @@ check "lazy: at most every representative, same error as the paper's rule (the s
   bash -c "awk -v e=$(col lazy evaluated_share) 'BEGIN { exit !(e > 0 && e <= 1) }' && [ \"$(col lazy error_ratio)\" = \"$(col paper error_ratio)\" ]"
 check "every row's fallback rate is a rate" \
   "$PY" -c 'import pandas as pd, sys; t = pd.read_csv(sys.argv[1]); assert ((t.fallback_rate >= 0) & (t.fallback_rate <= 1)).all()' "$csv"
+check "where the error lies: lazy's excess equals the paper's (the same images), the edge pixels a share" "$PY" -c '
+import pandas as pd, sys, numpy as np
+t = pd.read_csv(sys.argv[1]).set_index("variant")
+assert t.loc["lazy", "excess_relmse"] == t.loc["paper", "excess_relmse"], t.excess_relmse
+assert 0 < t.loc["paper", "edge_pixels"] < 1, t.edge_pixels
+assert t.excess_edge_share.dropna().map(np.isfinite).all()
+assert (t.precompute_med_s >= 0).all() and (t.render_med_s > 0).all()' "$csv"
+check "the report has the time and error-location table" grep -q '^## Where the time goes and where the error lies' "$R/beyond/beyond.md"
 check "the report says per case whether the goal holds" grep -qE '^- \*\*cornell-32x24\*\* .*goal (holds|does not hold)' "$R/beyond/beyond.md"
 
 # back to back: every (cell, seed) of the case is one group, conventional,
@@ -130,5 +138,21 @@ r = a.loc[\"lazy\", \"speedup\"] / b.loc[\"lazy\", \"speedup\"]
 assert 99 < r < 101, r
 assert b.loc[\"lazy\", \"above_one\"] == False and b.loc[\"lazy\", \"goal_met\"] == False
 ' $TMP/real.csv $TMP/o/beyond.csv"
+# negative control 3: lazy's renders replaced by the conventional images of the same seeds: no excess error
+"$PY" - "$S/runs-cornell-32x24-lazy.csv" "$TMP/same.csv" <<'P2'
+import pandas as pd, sys
+t = pd.read_csv(sys.argv[1]); m = (t.role == "grid") & (t.method == "precomputed")
+conv = t[t.method == "conventional"].set_index(["photons", "nn", "seed"])["run"]
+t.loc[m, "run"] = [conv.loc[k] for k in zip(t.loc[m, "photons"], t.loc[m, "nn"], t.loc[m, "seed"])]
+t.to_csv(sys.argv[2], index=False)
+P2
+check "a doctored CSV (lazy's images = the conventional ones) has zero excess error and none to place" bash -c "
+  $(declare -f run_py); PY=$PY REF=$REF TMP=$TMP
+  run_py '$S/runs-cornell-32x24-paper.csv' '$TMP/same.csv' >/dev/null && $PY -c '
+import pandas as pd, sys, math
+b = pd.read_csv(sys.argv[1]).set_index(\"variant\")
+assert b.loc[\"lazy\", \"excess_relmse\"] == 0.0 and math.isnan(b.loc[\"lazy\", \"excess_edge_share\"])
+assert b.loc[\"paper\", \"excess_relmse\"] != 0.0
+' $TMP/o/beyond.csv"
 check "make beyond refuses SCENE=" expect_exit 2 'give SCENES=' make -s beyond SCENE=scenes/cornell.scene RESULTS="$R"
 finish
