@@ -20,11 +20,14 @@
 # {10, 20, 50, 100}, 3 seeds, 9 members per group (conventional, paper, lazy,
 # gated and lazygated at 3 taus): 2,268 renders plus 7 converged references
 # (CONV_REF_*: 8 renders each at 10M and 5M photons, n = 200). Estimated time
-# on the 2-core development machine, make without -j: about 3.7 hours at a
-# load average near 6 (renders about 3.1 h, process overhead 0.2 h,
-# references 0.5 h; the 1024x768 case about a third of the renders), likely
-# about 2 hours idle. The estimate scales the per-stage timers of a reduced
-# run at 128x96 (P_e 50k/100k, n 10/50, 2 seeds, one tau; median photon pass
+# on the 2-core development machine, make without -j: about 4.5 hours at a
+# load average near 6 (renders about 3.1 h by their timers, 0.3 h per-render
+# process overhead, references 0.5 h, the 56 per-study analyses 0.5-1 h;
+# the 1024x768 case about a third of the renders), likely 2.5-3 hours idle.
+# The check run `make beyond SIZE=128x96 BEYOND_SIZES=128x96 SEEDS=2
+# PHOTONS="50000 100000" NNS="10 50" BEYOND_TAUS=0.1` (200 renders, 5
+# references, 20 studies) took 21 minutes at that load. The estimate scales
+# the per-stage timers of that run (median photon pass
 # 7.3 us per photon, precompute 1.9-2.7 us per photon at n 10-50, eye pass
 # 8.3-11.8 us per pixel at n 10-50, extrapolated linearly in n) to the
 # default grid's sizes, P_e and n: a rough figure, not a measurement.
