@@ -15,6 +15,23 @@
 #
 #   make beyond SIZE=256x192 SEEDS=3 PHOTONS="20000 50000 100000" NNS="10 50" BEYOND_SIZES="256x192 512x384"
 #
+# The default run: SCENES (five scenes) at 512x384 and cornell at 256x192,
+# 512x384 and 1024x768 (BEYOND_SIZES; 7 cases), P_e {50k, 100k, 500k} x n
+# {10, 20, 50, 100}, 3 seeds, 9 members per group (conventional, paper, lazy,
+# gated and lazygated at 3 taus): 2,268 renders plus 7 converged references
+# (CONV_REF_*: 8 renders each at 10M and 5M photons, n = 200). Estimated time
+# on the 2-core development machine, make without -j: about 4.5 hours at a
+# load average near 6 (renders about 3.1 h by their timers, 0.3 h per-render
+# process overhead, references 0.5 h, the 56 per-study analyses 0.5-1 h;
+# the 1024x768 case about a third of the renders), likely 2.5-3 hours idle.
+# The check run `make beyond SIZE=128x96 BEYOND_SIZES=128x96 SEEDS=2
+# PHOTONS="50000 100000" NNS="10 50" BEYOND_TAUS=0.1` (200 renders, 5
+# references, 20 studies) took 21 minutes at that load. The estimate scales
+# the per-stage timers of that run (median photon pass
+# 7.3 us per photon, precompute 1.9-2.7 us per photon at n 10-50, eye pass
+# 8.3-11.8 us per pixel at n 10-50, extrapolated linearly in n) to the
+# default grid's sizes, P_e and n: a rough figure, not a measurement.
+#
 # The variants: lazy (--rep-eval lazy), gatedT (--rep-gate BEYOND_GATE
 # --rep-gate-tau T), lazygatedT (both), for each T of BEYOND_TAUS (every tau
 # is reported, on every scene: none is chosen on the scenes shown).
@@ -83,6 +100,22 @@ bey-$(1)-$(2)_EQUAL_ERROR = $$(BEYOND_DIR)/studies/equal-error-$(1)-$(2)
 $$(eval $$(call study,bey-$(1)-$(2)))
 endef
 $(foreach c,$(beyond_cases),$(eval $(call beyond_case,$(c),$(call beyond_id,$(c)))))
+
+# beyond_group ID,STEM: the renders of one (cell, seed) of case ID, the
+# conventional, the paper's rule and every variant, one recipe back to back
+# (experiments/group.sh: the order alternating with the seed). An explicit
+# grouped rule: it takes the place of study.mk's pair and single-render
+# pattern rules for these records, make -j runs it once, and a missing
+# record of any member renders the whole group again.
+beyond_stems = $(patsubst conventional-%,%,$(filter conventional-%,$(bey-$(1)_RUN_NAMES)))
+define beyond_group
+$(bey-$(1)_RUNROOT)/conventional-$(2).run.json $(bey-$(1)_RUNROOT)/precomputed-$(2).run.json \
+  $(foreach v,$(BEYOND_VARIANTS),$(bey-$(1)-$(v)_RUNROOT)/precomputed-$(2).run.json) &: | $$(BUILD)/photonmap $$(DEPS_TEST)
+	@$$(bey-$(1)_RUN_ENV) bash experiments/group.sh $(2) $(bey-$(1)_RUNROOT) conventional "" \
+	  $(bey-$(1)_RUNROOT) precomputed "" \
+	  $(foreach v,$(BEYOND_VARIANTS),$(bey-$(1)-$(v)_RUNROOT) precomputed "$(call beyond_args,$(v))")
+endef
+$(foreach i,$(foreach c,$(beyond_cases),$(call beyond_id,$(c))),$(foreach s,$(call beyond_stems,$(i)),$(eval $(call beyond_group,$(i),$(s)))))
 
 beyond_ids = $(foreach c,$(beyond_cases),$(call beyond_id,$(c)))
 .PHONY: beyond beyond-runs

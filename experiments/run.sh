@@ -8,8 +8,8 @@
 # renderer's --bias-correction). Settings from the environment: PM SCENE
 # WIDTH HEIGHT SUBPIXELS THREADS_ARG PM_ARGS (extra render options), PYTHON,
 # RUN_LIST (every run of the grid in order, for "run k/N"), PAIR_POS (1 or 2:
-# the render's place in a back-to-back pair run by experiments/pair.sh; 0 or
-# unset: not paired).
+# the render's place in a back-to-back pair run by experiments/pair.sh, 1..N
+# in a group run by experiments/group.sh; 0 or unset: not paired).
 #
 # Writes, in RUNROOT/CELL/: seedK.exr (the image), seedK.stats.json (the
 # renderer's --stats), seedK.err (its stderr) and, last, seedK.run.json
@@ -40,7 +40,7 @@ esac
 PM=${PM:-build/photonmap}
 PYTHON=${PYTHON:-/usr/bin/python3}
 pair_pos=${PAIR_POS:-0}
-[[ "$pair_pos" =~ ^[012]$ ]] || { echo "run.sh: PAIR_POS=$pair_pos: not 0, 1 or 2" >&2; exit 1; }
+[[ "$pair_pos" =~ ^(0|[1-9][0-9]*)$ ]] || { echo "run.sh: PAIR_POS=$pair_pos: not 0 or a position 1..N" >&2; exit 1; }
 
 # "run k/N": this run's place in the grid make was given
 k=0 i=0

@@ -33,10 +33,79 @@ check "lazy: at most every representative, same error as the paper's rule (the s
   bash -c "awk -v e=$(col lazy evaluated_share) 'BEGIN { exit !(e > 0 && e <= 1) }' && [ \"$(col lazy error_ratio)\" = \"$(col paper error_ratio)\" ]"
 check "every row's fallback rate is a rate" \
   "$PY" -c 'import pandas as pd, sys; t = pd.read_csv(sys.argv[1]); assert ((t.fallback_rate >= 0) & (t.fallback_rate <= 1)).all()' "$csv"
+check "where the error lies: lazy's excess equals the paper's (the same images), the edge pixels a share" "$PY" -c '
+import pandas as pd, sys, numpy as np
+t = pd.read_csv(sys.argv[1]).set_index("variant")
+assert t.loc["lazy", "excess_relmse"] == t.loc["paper", "excess_relmse"], t.excess_relmse
+assert 0 < t.loc["paper", "edge_pixels"] < 1, t.edge_pixels
+assert t.excess_edge_share.dropna().map(np.isfinite).all()
+assert (t.precompute_med_s >= 0).all() and (t.render_med_s > 0).all()' "$csv"
+check "the report has the time and error-location table" grep -q '^## Where the time goes and where the error lies' "$R/beyond/beyond.md"
 check "the report says per case whether the goal holds" grep -qE '^- \*\*cornell-32x24\*\* .*goal (holds|does not hold)' "$R/beyond/beyond.md"
 
+# back to back: every (cell, seed) of the case is one group, conventional,
+# paper, lazy, gated0.1, lazygated0.1, in that order at odd seeds and reversed
+# at even ones (pair_pos 1..5 in the records)
+check "each group has all five members, in order at seed 1 and reversed at seed 2" "$PY" - "$R/runs" <<'P2'
+import glob, json, os, sys
+root = sys.argv[1]
+base = glob.glob(os.path.join(root, "cornell-32x24-*-beyond"))[0]
+members = [(base, "conventional"), (base, "precomputed")] + [(base + "-" + v, "precomputed")
+                                                             for v in ("lazy", "gated0.1", "lazygated0.1")]
+groups = 0
+for cell in ("p2000-n10", "p2000-n20", "p4000-n10", "p4000-n20"):
+    for seed in (1, 2):
+        pos = [json.load(open(f"{r}/{m}-paper-{cell}/seed{seed}.run.json"))["pair_pos"] for r, m in members]
+        want = [1, 2, 3, 4, 5] if seed == 1 else [5, 4, 3, 2, 1]
+        assert pos == want, (cell, seed, pos)
+        groups += 1
+assert groups == 8
+P2
+check "a group's positions are back to back in time (each member's files older than the next one's record)" "$PY" - "$R/runs" <<'P2'
+import glob, json, os, sys
+base = glob.glob(os.path.join(sys.argv[1], "cornell-32x24-*-beyond"))[0]
+recs = [f"{base}/conventional-paper-p2000-n10/seed2.run.json", f"{base}/precomputed-paper-p2000-n10/seed2.run.json"]
+recs += [f"{base}-{v}/precomputed-paper-p2000-n10/seed2.run.json" for v in ("lazy", "gated0.1", "lazygated0.1")]
+by_pos = sorted(recs, key=lambda f: json.load(open(f))["pair_pos"])
+t = [os.stat(f).st_mtime_ns for f in by_pos]
+assert t == sorted(t), t
+P2
+# group.sh alone: a member that fails, or a group interrupted, leaves none of its records
+G=$TMP/g
+mkdir -p "$G"
+cat > "$TMP/pm-fail" <<EOF
+#!/usr/bin/env bash
+case " \$* " in *" --rep-eval lazy "*) echo "doctored renderer: fails" >&2; exit 1 ;; esac
+exec $PWD/$PM "\$@"
+EOF
+cat > "$TMP/pm-slow" <<EOF
+#!/usr/bin/env bash
+case " \$* " in *" --rep-eval lazy "*) touch "$G/slow-started"; sleep 30 ;; esac
+exec $PWD/$PM "\$@"
+EOF
+chmod +x "$TMP/pm-fail" "$TMP/pm-slow"
+genv=(SCENE=scenes/cornell.scene WIDTH=8 HEIGHT=6 SUBPIXELS=1 THREADS_ARG=1 PYTHON="$PY")
+members=("$G/a" conventional "" "$G/a" precomputed "" "$G/b" precomputed "--rep-eval lazy")
+check "group.sh: all three records after a good group" bash -c '
+  env "$@" bash experiments/group.sh paper-p500-n5/seed1 '"$(printf '%q ' "${members[@]}")"' &&
+  ls '"$G"'/a/conventional-paper-p500-n5/seed1.run.json '"$G"'/a/precomputed-paper-p500-n5/seed1.run.json '"$G"'/b/precomputed-paper-p500-n5/seed1.run.json' _ PM="$PM" "${genv[@]}"
+check "group.sh: a member that fails exits 1 and no record of the group stays (the ones made before it too)" bash -c '
+  env "$@" bash experiments/group.sh paper-p500-n5/seed1 '"$(printf '%q ' "${members[@]}")"' 2>/dev/null; rc=$?
+  [ $rc -eq 1 ] && ! ls '"$G"'/a/*/*.run.json '"$G"'/b/*/*.run.json 2>/dev/null' _ PM="$TMP/pm-fail" "${genv[@]}"
+check "negative control: the same failure at an even seed (lazy first) also leaves no record" bash -c '
+  env "$@" bash experiments/group.sh paper-p500-n5/seed2 '"$(printf '%q ' "${members[@]}")"' 2>/dev/null; rc=$?
+  [ $rc -eq 1 ] && ! ls '"$G"'/a/*/seed2.run.json '"$G"'/b/*/seed2.run.json 2>/dev/null' _ PM="$TMP/pm-fail" "${genv[@]}"
+rm -f "$G/slow-started"
+env PM="$TMP/pm-slow" "${genv[@]}" setsid bash experiments/group.sh paper-p500-n5/seed3 "${members[@]}" >/dev/null 2>&1 &
+gpid=$!
+for _ in $(seq 1 100); do [ -e "$G/slow-started" ] && break; sleep 0.1; done
+kill -TERM -- -"$gpid" 2>/dev/null; wait "$gpid" 2>/dev/null
+check "group.sh killed during its third render leaves no record of the group (two were finished)" bash -c '
+  [ -e '"$G"'/slow-started ] && ! ls '"$G"'/a/*/seed3.run.json '"$G"'/b/*/seed3.run.json 2>/dev/null'
+check "group.sh refuses members that are not triples" expect_exit 1 'triples' bash experiments/group.sh paper-p500-n5/seed1 "$G/a" conventional
+
 S=$R/beyond/studies
-REF=$(ls "$R"/runs/cornell-refhigh-*/32x24.exr)
+REF=$(ls "$R"/runs/cornell-convref-*/32x24.exr)
 run_py() { # PAPER_CSV LAZY_CSV [more args]: beyond.py on the case with these two variants
   local p=$1 l=$2; shift 2
   "$PY" -m experiments.analysis.beyond --case c cornell 32x24 "$REF" --variant c paper "" "$p" \
@@ -69,5 +138,21 @@ r = a.loc[\"lazy\", \"speedup\"] / b.loc[\"lazy\", \"speedup\"]
 assert 99 < r < 101, r
 assert b.loc[\"lazy\", \"above_one\"] == False and b.loc[\"lazy\", \"goal_met\"] == False
 ' $TMP/real.csv $TMP/o/beyond.csv"
+# negative control 3: lazy's renders replaced by the conventional images of the same seeds: no excess error
+"$PY" - "$S/runs-cornell-32x24-lazy.csv" "$TMP/same.csv" <<'P2'
+import pandas as pd, sys
+t = pd.read_csv(sys.argv[1]); m = (t.role == "grid") & (t.method == "precomputed")
+conv = t[t.method == "conventional"].set_index(["photons", "nn", "seed"])["run"]
+t.loc[m, "run"] = [conv.loc[k] for k in zip(t.loc[m, "photons"], t.loc[m, "nn"], t.loc[m, "seed"])]
+t.to_csv(sys.argv[2], index=False)
+P2
+check "a doctored CSV (lazy's images = the conventional ones) has zero excess error and none to place" bash -c "
+  $(declare -f run_py); PY=$PY REF=$REF TMP=$TMP
+  run_py '$S/runs-cornell-32x24-paper.csv' '$TMP/same.csv' >/dev/null && $PY -c '
+import pandas as pd, sys, math
+b = pd.read_csv(sys.argv[1]).set_index(\"variant\")
+assert b.loc[\"lazy\", \"excess_relmse\"] == 0.0 and math.isnan(b.loc[\"lazy\", \"excess_edge_share\"])
+assert b.loc[\"paper\", \"excess_relmse\"] != 0.0
+' $TMP/o/beyond.csv"
 check "make beyond refuses SCENE=" expect_exit 2 'give SCENES=' make -s beyond SCENE=scenes/cornell.scene RESULTS="$R"
 finish

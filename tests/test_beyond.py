@@ -86,3 +86,47 @@ def test_missing_render_is_refused(tmp_path):
     f.to_csv(p, index=False)
     with pytest.raises(SystemExit):
         beyond.measure("c", "cornell", "8x6", "lazy", "", str(p), "total_s", np.random.default_rng(1), 10)
+
+
+def step_image(h=12, w=16, at=8, lo=0.2, hi=1.0):
+    """An (H, W, 3) image: LO left of column AT, HI from it on (one vertical edge)."""
+    img = np.full((h, w, 3), lo)
+    img[:, at:, :] = hi
+    return img
+
+
+def test_edge_mask_marks_the_step_within_the_radius_only():
+    m = beyond.edge_mask(step_image(), radius=2)
+    # the step lies between columns 7 and 8: columns 5..10 are within 2 pixels
+    assert m[:, 5:11].all() and not m[:, :5].any() and not m[:, 11:].any()
+
+
+def test_edge_mask_of_a_flat_or_smooth_image_is_empty():
+    # control: no step (flat), and a gentle ramp below EDGE_STEP per pixel
+    assert not beyond.edge_mask(np.full((8, 8, 3), 0.5)).any()
+    ramp = np.repeat(np.linspace(0.5, 0.6, 8)[None, :, None], 8, axis=0).repeat(3, axis=2)
+    assert not beyond.edge_mask(ramp).any()
+
+
+def test_error_map_mean_is_relmse():
+    rng = np.random.default_rng(3)
+    ref = rng.uniform(0.1, 1.0, (6, 5, 3))
+    x = ref + rng.normal(0, 0.05, ref.shape)
+    assert beyond.error_map(x, ref).mean() == pytest.approx(beyond.metrics.relmse(x, ref))
+
+
+def test_error_location_puts_edge_error_on_edges_and_flat_error_off_them():
+    ref = step_image()
+    mask = beyond.edge_mask(ref, radius=2)
+    on_edge = np.where(mask, 0.01, 0.0)
+    mean, px, share = beyond.error_location(on_edge, mask)
+    assert share == pytest.approx(1.0) and px == pytest.approx(6 / 16) and mean == pytest.approx(0.01 * 6 / 16)
+    # control: the same excess on the flat pixels only has none on the edges
+    _, _, share = beyond.error_location(np.where(mask, 0.0, 0.01), mask)
+    assert share == pytest.approx(0.0)
+    # uniform excess: the share equals the edge pixels' share
+    _, px, share = beyond.error_location(np.full(mask.shape, 0.01), mask)
+    assert share == pytest.approx(px)
+    # no excess (the variant as good as the conventional renders): nothing to place
+    _, _, share = beyond.error_location(np.full(mask.shape, -0.01), mask)
+    assert math.isnan(share)
