@@ -32,8 +32,9 @@ TAG ?=
 PM_ARGS ?=
 CONV_RUNROOT ?=
 # the reference EXR of the error columns (default: the POV-Ray render of the
-# scene at SIZE in reference/SCENE/, experiments/findref.sh); REF_FAST: the
-# fast-quality POV-Ray render whose error against the reference is the
+# scene at SIZE in reference/SCENE/, experiments/findref.sh: the one with the
+# renders' 2x2 subpixel rays where there is one); REF_FAST: the fast-quality
+# POV-Ray render of the same sampling whose error against the reference is the
 # reference's floor (default: found beside the default reference)
 REF ?=
 REF_FAST ?=
