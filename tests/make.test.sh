@@ -19,10 +19,19 @@ for t in $targets; do
   [ "$t" = evaluate ] && { check "make -n evaluate SCENE=tests/evaluate/box.scene: exit 0" \
     make -n evaluate SCENE=tests/evaluate/box.scene RESULTS="$R"; continue; }
   # reproducibility's default size (512x384) has no POV-Ray reference in
-  # reference/: it must refuse naming REF=, and run where one exists
+  # reference/: it renders the converged reference (after the timed renders)
+  # and names it to the report; control: at 256x192 the POV-Ray one, no
+  # converged reference rendered
   if [ "$t" = reproducibility ]; then
-    check "make -n reproducibility at 512x384 refuses naming REF=" expect_exit 2 "REF=" make -n reproducibility RESULTS="$R"
-    check "make -n reproducibility SIZE=256x192: exit 0" make -n reproducibility SIZE=256x192 RESULTS="$R"
+    check "make -n reproducibility at 512x384: the converged reference, pinned renders, the reference named to the report" bash -c "
+      out=\$(make -n reproducibility RESULTS=$R 2>&1) &&
+      grep -q 'analysis.reference build .*--width 512 --height 384' <<< \"\$out\" &&
+      grep -q 'taskset -c [0-9]* bash experiments/pair.sh' <<< \"\$out\" &&
+      grep -q -- '--ref \"$R/runs/cornell-convref-[^\"]*/512x384.exr\" --equal-error-a' <<< \"\$out\""
+    check "control: make -n reproducibility SIZE=256x192 judges against POV-Ray, renders no converged reference" bash -c "
+      out=\$(make -n reproducibility SIZE=256x192 RESULTS=$R 2>&1) &&
+      grep -q -- '--ref \"reference/cornell/cornell-reference-256x192.exr\"' <<< \"\$out\" &&
+      ! grep -q 'analysis.reference build' <<< \"\$out\""
     continue
   fi
   check "make -n $t: exit 0" make -n "$t" RESULTS="$R"
