@@ -32,8 +32,9 @@ TAG ?=
 PM_ARGS ?=
 CONV_RUNROOT ?=
 # the reference EXR of the error columns (default: the POV-Ray render of the
-# scene at SIZE in reference/SCENE/, experiments/findref.sh); REF_FAST: the
-# fast-quality POV-Ray render whose error against the reference is the
+# scene at SIZE in reference/SCENE/, experiments/findref.sh: the one with the
+# renders' 2x2 subpixel rays where there is one); REF_FAST: the fast-quality
+# POV-Ray render of the same sampling whose error against the reference is the
 # reference's floor (default: found beside the default reference)
 REF ?=
 REF_FAST ?=
@@ -188,12 +189,14 @@ SBATCH_OPTS ?=
 
 # make reproducibility (experiments/reproducibility.mk): the Table-1 grid
 # twice, runs A and B interleaved pair by pair, at SIZE (default
-# REPRO_SIZE_DEFAULT), SEEDS seeds; REPRO_TASKSET: a CPU list every render is
-# pinned to with taskset (empty: none); REPRO_GOAL_PP: the goal for the median
+# REPRO_SIZE_DEFAULT), SEEDS seeds, against the POV-Ray reference of that
+# size or else the converged reference (CONV_REF_*); REPRO_TASKSET: a CPU list
+# every render is pinned to with taskset (default: the last CPU, e.g. 1 on 2
+# cores; empty: none); REPRO_GOAL_PP: the goal for the median
 # |ratio A - ratio B| over the cells, in percentage points
 REPRO_DIR = $(RESULTS)/reproducibility
 REPRO_SIZE_DEFAULT := 512x384
-REPRO_TASKSET ?=
+REPRO_TASKSET ?= $(shell n=$$(nproc 2>/dev/null || echo 1); echo $$((n - 1)))
 REPRO_GOAL_PP ?= 3
 
 # make bench (experiments/bench.mk): the scaling section (bench-scaling:

@@ -3,17 +3,48 @@
 # paired results lie apart (experiments/analysis/reproducibility.py ->
 # REPRO_DIR/reproducibility.{md,csv}). Knobs (experiments/config.mk): SIZE
 # (default here 512x384), SEEDS, PHOTONS, NNS, ESTIMATES, REF; REPRO_TASKSET:
-# a CPU list for taskset (empty: no pinning).
+# the CPU list every render is pinned to with taskset (default: the last CPU;
+# empty: no pinning).
 #
-# Interleaving: the pairs (experiments/pair.sh: conventional and precomputed
-# back to back) are rendered in one sequence, pair k of run A then pair k of
-# run B, with A first at odd k and B first at even k, so that a slow phase of
-# the machine falls on both runs alike; the two runs are otherwise two
-# independent studies (their own run roots, collect and table), exactly as
-# `make reproduce-table` twice would be. A pair already rendered (both
-# records present) is kept: the target resumes.
+# Expected run time at the defaults on a quiet 2-core machine: about 15
+# minutes. Per seed the 24 cells x 2 methods at 512x384 take about 45 s of
+# the renderer's own time (results/resolution/runs-512x384.csv: 44 s
+# time_s.total, 47 s CPU), about 55 s with start-up and image writing, so
+# 2 runs x 5 seeds about 9-10 minutes; the converged reference (8 renders at
+# 10M and 5M photons, all cores, after the timed renders) about 3 minutes;
+# the two tables' bootstraps 1-2 minutes.
+#
+# Reference: the POV-Ray one of SCENE at SIZE where reference/ has one
+# (experiments/findref.sh), otherwise, as `make resolution` and `make scenes`
+# do, the method-neutral converged reference (studies.mk's converged_ref,
+# CONV_REF_* knobs), rendered after the timed renders so that it does not
+# load the machine while they run; reproducibility.md prints its measured
+# error (noise and kernel bias). REF=FILE overrides both.
+#
+# Design (chosen for the goal, median |ratio A - ratio B| <= REPRO_GOAL_PP):
+# - timer: the renderer's own time_s.total (table.py's paired ratio: no
+#   start-up, no image writing), process CPU only a secondary column; the
+#   photon-trace phase (identical code in both methods) is the drift control;
+# - pairing: each (cell, seed) is a pair, conventional and precomputed back to
+#   back (experiments/pair.sh, order alternating with the seed), the ratio a
+#   per-seed paired log ratio, so a slow minute falls on both methods;
+# - interleaving: the pairs are rendered in one sequence, pair k of run A
+#   then pair k of run B, with A first at odd k and B first at even k, so
+#   that a slow phase of the machine falls on both runs alike; the two runs
+#   are otherwise two independent studies (their own run roots, collect and
+#   table), exactly as `make reproduce-table` twice would be;
+# - pinning: every render (single-threaded, THREADS=1) on one CPU, the same
+#   for both runs, so that neither run migrates between cores or shares one
+#   with make and the shell (REPRO_TASKSET= turns it off; with THREADS other
+#   than 1 give a list of as many CPUs);
+# - repeats: the seeds are the repeats (SEEDS, 5): each ratio's interval is
+#   over seeds; more seeds narrow it at proportional cost.
+# A pair already rendered (both records present) is kept: the target resumes.
 
 repro_size = $(call knob,SIZE,$(REPRO_SIZE_DEFAULT))
+# the POV-Ray reference at that size (none: the converged reference, built by make)
+repro_pov := $(if $(REF),,$(shell bash experiments/findref.sh $(repro_size) $(SCENE)))
+repro_ref_deps = $(if $(or $(REF),$(repro_pov)),,$(call converged_ref,$(SCENE),$(repro_size)))
 define repro_study
 repro-$(1)_SCENE = $$(SCENE)
 repro-$(1)_SIZE = $$(repro_size)
@@ -23,9 +54,9 @@ repro-$(1)_NNS = $$(NNS)
 repro-$(1)_METHODS = conventional precomputed
 repro-$(1)_ESTIMATES = $$(ESTIMATES)
 repro-$(1)_TAG = repro-$(1)
-repro-$(1)_REF = $$(or $$(REF),$$(shell bash experiments/findref.sh $$(repro_size) $$(SCENE)))
-repro-$(1)_REF_FAST = $$(if $$(REF),$$(REF_FAST),$$(shell bash experiments/findref.sh --fast $$(repro_size) $$(SCENE)))
-repro-$(1)_NO_REF = no POV-Ray reference of $$(SCENE) at $$(repro_size) in reference/$$(SCENE_NAME)/: give REF=FILE.exr
+repro-$(1)_REF = $$(or $$(REF),$$(repro_pov),$$(call converged_ref,$$(SCENE),$$(repro_size)))
+repro-$(1)_REF_FAST = $$(if $$(REF),$$(REF_FAST),$$(if $$(repro_pov),$$(shell bash experiments/findref.sh --fast $$(repro_size) $$(SCENE))))
+repro-$(1)_REF_DEPS = $$(repro_ref_deps)
 repro-$(1)_RUNS_CSV = $$(REPRO_DIR)/runs-$(1).csv
 repro-$(1)_CELLS_CSV = $$(REPRO_DIR)/cells-$(1).csv
 repro-$(1)_TABLE = $$(REPRO_DIR)/table1-$(1)
@@ -40,7 +71,6 @@ repro_taskset = $(if $(strip $(REPRO_TASKSET)),taskset -c $(strip $(REPRO_TASKSE
 
 .PHONY: reproducibility reproducibility-runs
 reproducibility-runs: | $(BUILD)/photonmap $(DEPS_TEST)
-	$(if $(repro-a_REF),,$(error reproducibility: $(repro-a_NO_REF)))
 	@k=0; for p in $(patsubst x-%,%,$(repro_pairs)); do k=$$((k + 1)); \
 	  if [ $$((k % 2)) -eq 1 ]; then order="a b"; else order="b a"; fi; \
 	  for r in $$order; do \
@@ -57,4 +87,5 @@ reproducibility: reproducibility-runs
 	@$(MAKE) --no-print-directory repro-a-table repro-b-table
 	@$(PYTHON) -m experiments.analysis.reproducibility --table-a $(repro-a_TABLE).csv --table-b $(repro-b_TABLE).csv \
 	  --runs-a $(repro-a_RUNS_CSV) --runs-b $(repro-b_RUNS_CSV) --goal-pp $(REPRO_GOAL_PP) \
-	  --taskset "$(REPRO_TASKSET)" --out $(REPRO_DIR)/reproducibility
+	  --taskset "$(REPRO_TASKSET)" --ref "$(repro-a_REF)" --equal-error-a $(repro-a_EQUAL_ERROR).csv \
+	  --out $(REPRO_DIR)/reproducibility

@@ -147,6 +147,7 @@ $(foreach s,$(res_sizes),$(eval $(call res_study,$(s))))
 resolution-runs: $(foreach s,$(res_sizes),$(res-$(s)_RUN_FILES) $(res-$(s)_REF_DEPS))
 resolution: $(res_sizes:%=res-%-table)
 	@$(PYTHON) -m experiments.analysis.resolution $(foreach s,$(res_sizes),--size $(s) $(res-$(s)_TABLE).csv "$(call res_ref_desc,$(s))") \
+	  $(foreach s,$(res_sizes),--ref-exr $(s) "$(res-$(s)_REF)" $(res-$(s)_EQUAL_ERROR).csv) \
 	  --targets "$(RES_TARGETS)" --time $(TIME) \
 	  --grid "P_e in {$(PHOTONS)} x n in {$(NNS)} x {$(METHODS)} x estimates {$(ESTIMATES)}, seeds 1..$(res_seeds), threads: $(or $(THREADS),all)" \
 	  --out $(RES_DIR)/resolution.md

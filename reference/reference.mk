@@ -44,7 +44,7 @@ endef
 
 REF_SMALL := cornell-direct-129x96 cornell-fast-128x96 cornell-nocaustic-128x96 caustic-fast-128x96 caustic-reference-128x96 caustic-nocaustic-128x96 cornell-fast-16x12 \
              cornell-direct-256x192 cornell-fast-256x192 cornell-reference-256x192
-REF_LARGE := cornell-reference-1024x768 cornell-reference-2x2-1024x768 cornell-fast-1024x768
+REF_LARGE := cornell-reference-1024x768 cornell-reference-2x2-1024x768 cornell-fast-1024x768 cornell-fast-2x2-1024x768
 
 # direct light only, for the per-pixel check: an odd width and a 3x3 grid, so
 # that no sample ray hits a room edge exactly (the camera is centred in the
@@ -68,6 +68,10 @@ $(eval $(call ref_render,cornell-reference-2x2-1024x768,$(REF_SCENE),1024,768,2,
 # the same pixels at fast quality: its difference from the reference-quality
 # render is the reference's own floor in the table's error columns
 $(eval $(call ref_render,cornell-fast-1024x768,$(REF_SCENE),1024,768,1,--quality fast,))
+# and the fast preset with the 2x2 subpixel rays: the floor of the 2x2
+# reference (experiments/findref.sh pairs each reference with the fast render
+# of its own sampling)
+$(eval $(call ref_render,cornell-fast-2x2-1024x768,$(REF_SCENE),1024,768,2,--quality fast,))
 
 # The caustic scene (scenes/caustic.scene): the paper's room with the glass
 # sphere lifted off the floor and moved back, so that its caustic lies in

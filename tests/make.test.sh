@@ -19,10 +19,19 @@ for t in $targets; do
   [ "$t" = evaluate ] && { check "make -n evaluate SCENE=tests/evaluate/box.scene: exit 0" \
     make -n evaluate SCENE=tests/evaluate/box.scene RESULTS="$R"; continue; }
   # reproducibility's default size (512x384) has no POV-Ray reference in
-  # reference/: it must refuse naming REF=, and run where one exists
+  # reference/: it renders the converged reference (after the timed renders)
+  # and names it to the report; control: at 256x192 the POV-Ray one, no
+  # converged reference rendered
   if [ "$t" = reproducibility ]; then
-    check "make -n reproducibility at 512x384 refuses naming REF=" expect_exit 2 "REF=" make -n reproducibility RESULTS="$R"
-    check "make -n reproducibility SIZE=256x192: exit 0" make -n reproducibility SIZE=256x192 RESULTS="$R"
+    check "make -n reproducibility at 512x384: the converged reference, pinned renders, the reference named to the report" bash -c "
+      out=\$(make -n reproducibility RESULTS=$R 2>&1) &&
+      grep -q 'analysis.reference build .*--width 512 --height 384' <<< \"\$out\" &&
+      grep -q 'taskset -c [0-9]* bash experiments/pair.sh' <<< \"\$out\" &&
+      grep -q -- '--ref \"$R/runs/cornell-convref-[^\"]*/512x384.exr\" --equal-error-a' <<< \"\$out\""
+    check "control: make -n reproducibility SIZE=256x192 judges against POV-Ray, renders no converged reference" bash -c "
+      out=\$(make -n reproducibility SIZE=256x192 RESULTS=$R 2>&1) &&
+      grep -q -- '--ref \"reference/cornell/cornell-reference-256x192.exr\"' <<< \"\$out\" &&
+      ! grep -q 'analysis.reference build' <<< \"\$out\""
     continue
   fi
   check "make -n $t: exit 0" make -n "$t" RESULTS="$R"
@@ -63,6 +72,29 @@ check "a SCENE path with a space is refused, naming it (control: the same scene 
   ! make -n reproduce-runs SCENE='$TMP/sp ace/my room.scene' REF=x.exr > $TMP/sp.log 2>&1 &&
   grep -q 'a path with a space cannot name make targets' $TMP/sp.log &&
   make -n reproduce-runs SCENE=scenes/cornell.scene REF=x.exr > /dev/null 2>&1"
+
+# per-pixel metrics at the paper's size are judged against the POV-Ray
+# reference with the renders' own 2x2 subpixel rays, its floor from the fast
+# preset of the same sampling; never the one-sample reference (block metrics only)
+check "reproduce-table's default reference and floor at 1024x768 are the 2x2 renders, not the one-sample ones" bash -c "
+  out=\$(make -n reproduce-table RESULTS=$R 2>&1) &&
+  grep -q -- '--ref \"reference/cornell/cornell-reference-2x2-1024x768.exr\"' <<< \"\$out\" &&
+  grep -q -- '--ref-fast \"reference/cornell/cornell-fast-2x2-1024x768.exr\"' <<< \"\$out\" &&
+  ! grep -q 'cornell-reference-1024x768\|cornell-fast-1024x768' <<< \"\$out\""
+# findref.sh on a tree of empty files: the 2x2 pair wins over the one-sample
+# pair; control: with the one-sample pair alone it is found (the check above
+# tells them apart), and a pbrt or bounce-limited render is never a POV-Ray reference
+fr="$TMP/findref"; mkdir -p "$fr/a/reference/cornell" "$fr/b/reference/cornell" "$fr/c/reference/tworooms"
+for f in reference-1024x768 fast-1024x768 reference-2x2-1024x768 fast-2x2-1024x768; do : > "$fr/a/reference/cornell/cornell-$f.exr"; done
+for f in reference-1024x768 fast-1024x768; do : > "$fr/b/reference/cornell/cornell-$f.exr"; done
+: > "$fr/c/reference/tworooms/tworooms-pbrt-bdpt-256x192-seed1.exr"; : > "$fr/c/reference/tworooms/tworooms-b2-reference-256x192.exr"
+check "findref.sh prefers the 2x2 reference and pairs it with the 2x2 fast render" bash -c "cd $fr/a &&
+  [ \"\$(bash $PWD/experiments/findref.sh 1024x768)\" = reference/cornell/cornell-reference-2x2-1024x768.exr ] &&
+  [ \"\$(bash $PWD/experiments/findref.sh --fast 1024x768)\" = reference/cornell/cornell-fast-2x2-1024x768.exr ]"
+check "control: findref.sh without the 2x2 pair names the one-sample pair" bash -c "cd $fr/b &&
+  [ \"\$(bash $PWD/experiments/findref.sh 1024x768)\" = reference/cornell/cornell-reference-1024x768.exr ] &&
+  [ \"\$(bash $PWD/experiments/findref.sh --fast 1024x768)\" = reference/cornell/cornell-fast-1024x768.exr ]"
+check "findref.sh never names a pbrt or bounce-limited render" bash -c "cd $fr/c && [ -z \"\$(bash $PWD/experiments/findref.sh 256x192 scenes/tworooms.scene)\" ]"
 
 # a scene without a reference: stop before rendering, say what to give
 cp scenes/cornell.scene "$TMP/my.scene"

@@ -8,6 +8,7 @@ simulation with a known answer, the definition computed directly), so each can
 fail. Random numbers come from fixed seeds: the outcome is deterministic.
 """
 
+import json
 import math
 import os
 import subprocess
@@ -647,6 +648,43 @@ def test_reproducibility_compare():
     assert not s["met"]
 
 
+def test_reproducibility_prints_reference_error():
+    """reproducibility.md names the reference with its measured noise and
+    kernel bias from the JSON beside it (a converged reference); control: a
+    reference without one is said to be unmeasured, and no number is made up."""
+    a = _table([(80, 75, 85), (40, 38, 42), (100, 95, 105)], [(0.01, 0.0, 0.02)] * 3)
+    b = _table([(81, 76, 86), (41, 39, 43), (98, 93, 103)], [(0.01, 0.0, 0.02)] * 3)
+    runs = pd.DataFrame([{"scene": "scenes/cornell.scene", "width": 64, "height": 48, "subpixels": 2, "threads": 1,
+                          "method": m, "estimate": "paper", "photons": 50000, "nn": 10, "seed": k, "status": "ok",
+                          "relmse_ref": 0.01 * k, "loadavg_1min": 0.5} for m in ("conventional", "precomputed")
+                         for k in (1, 2)])
+    with tempfile.TemporaryDirectory() as d:
+        paths = {}
+        for name, frame in (("ta", a), ("tb", b), ("ra", runs), ("rb", runs)):
+            paths[name] = os.path.join(d, name + ".csv")
+            frame.to_csv(paths[name], index=False)
+        pd.DataFrame([{"kind": "curve", "target": 0.02}, {"kind": "tightest", "target": 0.015}]).to_csv(
+            os.path.join(d, "ee.csv"), index=False)
+        ref = os.path.join(d, "ref.exr")
+        info = {"noise": 0.000367, "bias": 1.9e-05, "bias_raw": 1.9e-05, "metric": "relmse",
+                "settings": {"method": "conventional", "direct": "shadow-rays", "photons": 10000000, "nn": 200,
+                             "seeds": [1000001, 1000002]}}
+        with open(os.path.join(d, "ref.json"), "w") as f:
+            json.dump(info, f)
+        args = ["--table-a", paths["ta"], "--table-b", paths["tb"], "--runs-a", paths["ra"], "--runs-b", paths["rb"],
+                "--equal-error-a", os.path.join(d, "ee.csv")]
+        reproducibility.main(args + ["--ref", ref, "--out", os.path.join(d, "r1")])
+        with open(os.path.join(d, "r1.md")) as f:
+            text = f.read()
+        assert f"Reference `{ref}`" in text and "noise 0.000367" in text and "kernel bias 1.9e-05" in text
+        assert "0.015" in text  # checked against run A's tightest target
+        bare = os.path.join(d, "pov.exr")
+        reproducibility.main(args + ["--ref", bare, "--out", os.path.join(d, "r2")])
+        with open(os.path.join(d, "r2.md")) as f:
+            text = f.read()
+        assert "its own error is not measured here" in text and "noise 0.000367" not in text
+
+
 def test_findings_wording_from_tests():
     """Finding 1 ranks only disjoint intervals: n = 100 below n = 10 at 50k
     (disjoint), P_e undetermined at n = 10 (overlapping); the paper's value
@@ -667,3 +705,38 @@ def test_findings_wording_from_tests():
             assert False, "finding1 answered without its column"
         except findings.Missing as e:
             assert "paired_ratio_percent" in str(e)
+
+
+def test_resolution_prints_reference_error():
+    """resolution.md names each size's converged reference with its measured
+    noise and kernel bias (the JSON beside the EXR, given by --ref-exr) and
+    checks them against the tightest target it judges; control: a size
+    without --ref-exr, or whose reference has no JSON, gets no made-up number."""
+    from experiments.analysis import resolution
+
+    table = pd.DataFrame([{"method": m, "photons": 50000, "nn": 10, "total_median_s": t, "relmse_ref_mean": e,
+                           "relmse_ref_ci95": 0.001} for m, t, e in (("conventional", 2.0, 0.02),
+                                                                    ("precomputed", 1.0, 0.03))])
+    with tempfile.TemporaryDirectory() as d:
+        tpath = os.path.join(d, "table.csv")
+        table.to_csv(tpath, index=False)
+        ref = os.path.join(d, "ref.exr")
+        with open(os.path.join(d, "ref.json"), "w") as f:
+            json.dump({"noise": 0.000512, "bias": 3.1e-05, "bias_raw": 3.1e-05, "metric": "relmse",
+                       "settings": {"method": "conventional", "direct": "shadow-rays", "photons": 10000000,
+                                    "nn": 200, "seeds": [1000001, 1000002]}}, f)
+        out = os.path.join(d, "resolution.md")
+        resolution.main(["--size", "64x48", tpath, "ours", "--size", "32x24", tpath, "pov",
+                         "--ref-exr", "64x48", ref, os.path.join(d, "none.csv"),
+                         "--targets", "0.05 0.025", "--time", "total_s", "--out", out])
+        with open(out) as f:
+            text = f.read()
+        line64 = next(x for x in text.splitlines() if x.startswith("- 64x48: ours"))
+        assert "noise 0.000512" in line64 and "kernel bias 3.1e-05" in line64 and "0.025" in line64
+        line32 = next(x for x in text.splitlines() if x.startswith("- 32x24: pov"))
+        assert "noise" not in line32
+        resolution.main(["--size", "64x48", tpath, "ours", "--ref-exr", "64x48", os.path.join(d, "bare.exr"), "",
+                         "--targets", "0.05", "--time", "total_s", "--out", out])
+        with open(out) as f:
+            text = f.read()
+        assert "its own error is not measured here" in text and "0.000512" not in text

@@ -12,7 +12,10 @@ the ratios| over the cells against the goal (REPRO_GOAL_PP). The images of
 one seed are the same bit for bit in both runs (the renderer is
 deterministic), so the error columns must agree exactly: the largest
 difference of any render's relMSE between the runs is reported, and a
-non-zero one is flagged as a failure of determinism, not as noise.
+non-zero one is flagged as a failure of determinism, not as noise. The
+reference the error columns are judged against is named with its measured
+error (reference.describe: noise and kernel bias of a converged reference,
+checked against the tightest target of run A's equal-error curve).
 Writes OUT.csv (one row per cell and estimate) and OUT.md.
 """
 
@@ -22,6 +25,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from experiments.analysis import reference
 from experiments.analysis import report
 from experiments.analysis import stats
 from experiments.analysis.report import fmt, fmt_fixed, isnum
@@ -112,7 +116,7 @@ def interval_text(row, name, run):
            f"{fmt_fixed(row[f'{name}_{run}_hi'], 1)}]"
 
 
-def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, taskset):
+def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, taskset, ref_text=""):
     """The text of reproducibility.md."""
     first = runs_a.iloc[0]
     load = pd.concat([runs_a["loadavg_1min"], runs_b["loadavg_1min"]]).to_numpy(np.float64)
@@ -139,6 +143,8 @@ def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, taskset):
               f"CPU-time ratio (secondary): median |delta| {fmt_fixed(summ['cpu_ratio_median_abs_delta_pp'], 2)} pp, "
               f"overlap in {summ['cpu_ratio_overlap_cells']} of {summ['cells']} cells. Drift control: median "
               f"|delta| {fmt_fixed(summ['trace_ratio_median_abs_delta_pp'], 2)} pp.", ""]
+    if ref_text:
+        lines += [ref_text, ""]
     if isnum(img_diff):
         lines += [f"Errors: over the {img_n} renders both runs made, the largest difference of a render's relMSE "
                   f"between A and B is {fmt(img_diff)}"
@@ -171,6 +177,8 @@ def main(argv=None):
     ap.add_argument("--runs-b", required=True)
     ap.add_argument("--goal-pp", type=float, default=3.0)
     ap.add_argument("--taskset", default="")
+    ap.add_argument("--ref", default="", help="the reference EXR of the error columns (its JSON beside it, if any)")
+    ap.add_argument("--equal-error-a", default="", help="run A's equal-error CSV: the tightest target the reference judges")
     ap.add_argument("--out", required=True, help="stem of OUT.md and OUT.csv")
     args = ap.parse_args(argv)
     need_t = ["photons", "nn", "method", "paired_ratio_percent", "paired_ratio_ci95_lo", "paired_ratio_ci95_hi"]
@@ -190,7 +198,10 @@ def main(argv=None):
         out[f"summary_{k}"] = v
     out["max_relmse_ref_difference"] = img_diff
     report.write_csv_atomic(out, args.out + ".csv")
-    report.write_atomic(args.out + ".md", markdown(frame, summ, img_diff, img_n, ra, rb, args.taskset))
+    ref_text = ""
+    if args.ref:
+        ref_text = reference.describe(args.ref, reference.tightest_of(args.equal_error_a) if args.equal_error_a else None)
+    report.write_atomic(args.out + ".md", markdown(frame, summ, img_diff, img_n, ra, rb, args.taskset, ref_text))
 
 
 if __name__ == "__main__":
