@@ -740,3 +740,27 @@ def test_resolution_prints_reference_error():
         with open(out) as f:
             text = f.read()
         assert "its own error is not measured here" in text and "0.000512" not in text
+
+
+def test_findings_resolution_per_size():
+    """Finding 7 gives one block per output size, in size order, from each
+    equal-error-WxH.csv; a CSV without the curve's columns is named, not
+    read (negative control)."""
+    rows = lambda s: pd.DataFrame([  # noqa: E731
+        {"estimate": "paper", "kind": "tightest", "target": 0.02, "speedup": s, "lo": s - 0.1, "hi": s + 0.1,
+         "defined_fraction": 1.0},
+        {"estimate": "paper", "kind": "curve", "target": 0.03, "speedup": s + 0.2, "lo": s + 0.1, "hi": s + 0.3,
+         "defined_fraction": 1.0}])
+    with tempfile.TemporaryDirectory() as d:
+        rows(0.75).to_csv(os.path.join(d, "equal-error-1024x768.csv"), index=False)
+        rows(1.25).to_csv(os.path.join(d, "equal-error-256x192.csv"), index=False)
+        _, lines = findings.finding7({"root": d, "resolution": d})
+        text = "\n".join(lines)
+        assert text.index("- 256x192:") < text.index("- 1024x768:")
+        assert "1.25 [1.15, 1.35]x" in text and "0.75 [0.65, 0.85]x" in text
+        rows(1.0).drop(columns=["kind"]).to_csv(os.path.join(d, "equal-error-512x384.csv"), index=False)
+        try:
+            findings.finding7({"root": d, "resolution": d})
+            assert False, "finding7 read a CSV without its columns"
+        except findings.Missing as e:
+            assert "kind" in str(e)
