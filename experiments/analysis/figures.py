@@ -204,9 +204,11 @@ def fig3(args):
         kind = "the paper's Fig. 3 cell" if i < args.paper_cells else "control"
         plotting.pixel_text(fig, gap, y + 4, f"({letter}) P_e = {kilo(p)}, n = {n} ({kind})", fontsize=10.5,
                             weight="bold")
-        ratio = report.fmt_ci(rp["cpu_ratio_percent" if args.time == "cpu_s" else "ratio_percent"],
-                              rp["cpu_ratio_ci95_lo" if args.time == "cpu_s" else "ratio_ci95_lo"],
-                              rp["cpu_ratio_ci95_hi" if args.time == "cpu_s" else "ratio_ci95_hi"], 0)
+        # the paired ratio (per-seed log ratios, t interval) where the table has it, as ratio-vs-n.png
+        rcol = "cpu_ratio" if args.time == "cpu_s" else "ratio"
+        if isnum(rp.get(f"paired_{rcol}_percent")):
+            rcol = "paired_" + rcol
+        ratio = report.fmt_ci(rp[f"{rcol}_percent"], rp[f"{rcol}_ci95_lo"], rp[f"{rcol}_ci95_hi"], 0)
         for j, (m, r) in enumerate((("conventional", rc), ("precomputed", rp))):
             x = gap + j * (cw + gap)
             ax = plotting.pixel_axes(fig, x, y + head, cw, ch)
@@ -224,7 +226,7 @@ def fig3(args):
         cb.set_ticks([-lim, 0, lim])
         cb.ax.tick_params(labelsize=7)
         plotting.pixel_text(fig, x, y + head + ch + 3,
-                            f"time prec./conv. {ratio} %\nrelMSE prec. vs conv., same seed: "
+                            f"time prec./conv.{' (paired)' if rcol.startswith('paired') else ''} {ratio} %\nrelMSE prec. vs conv., same seed: "
                             f"{report.fmt_pm(rp['relmse_conv_mean'], rp['relmse_conv_ci95'])}", fontsize=8.5)
         y += row_h
     plotting.footer(fig, provenance(args))
