@@ -764,3 +764,30 @@ def test_findings_resolution_per_size():
             assert False, "finding7 read a CSV without its columns"
         except findings.Missing as e:
             assert "kind" in str(e)
+
+
+def test_findings_scale():
+    """Finding P quotes the largest map's row of each method and the median
+    paired two-thread speed-up (t1 / t2 per pair); without threads.csv it
+    names the target instead of a number (negative control)."""
+    sc = pd.DataFrame([{"method": "conventional", "photons_emitted": p, "photons_stored": 4 * p, "threads": 2,
+                        "trace_s": p / 1e6, "build_s": 0.5, "precompute_s": 0.0, "eye_s": 0.25,
+                        "total_s": p / 1e6 + 0.75, "bytes_per_stored": b} for p, b in ((1000, 90.0), (8000, 44.5))])
+    th = pd.DataFrame([{"photons_emitted": 8000, "pair": k, "threads": t, "trace_s": 4.0 / t ** e,
+                        "build_s": 2.0 / t, "total_s": 6.0 / t} for k, e in ((1, 1.0), (2, 0.5), (3, 0.0))
+                       for t in (1, 2)])
+    with tempfile.TemporaryDirectory() as d:
+        sp, tp = os.path.join(d, "scaling.csv"), os.path.join(d, "threads.csv")
+        sc.to_csv(sp, index=False)
+        th.to_csv(tp, index=False)
+        _, lines = findings.finding_scale({"scaling": sp, "threads": tp})
+        text = "\n".join(lines)
+        assert "8,000 emitted photons (32,000 stored): 0.758 s in total" in text and "44.5 bytes" in text
+        assert "90" not in text.split("8,000 emitted")[0]
+        assert "photon pass 1.41x [1, 2]" in text and "kd-tree build 2x [2, 2]" in text
+        os.remove(tp)
+        try:
+            findings.finding_scale({"scaling": sp, "threads": tp})
+            assert False, "finding_scale answered without threads.csv"
+        except findings.Missing as e:
+            assert "make bench-threads" in str(e)

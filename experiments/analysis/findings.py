@@ -358,6 +358,34 @@ def finding8(d):
     return "The baseline, and drift between runs", lines
 
 
+def finding_scale(d):
+    """Performance at scale: the largest map of the scaling table and the two-thread speed-ups."""
+    sc = load(d["scaling"], ["method", "photons_emitted", "photons_stored", "threads", "trace_s", "build_s",
+                             "precompute_s", "eye_s", "total_s", "bytes_per_stored"], "make bench-scaling")
+    lines = []
+    for m, g in sc.groupby("method", sort=False):
+        r = g.loc[g["photons_emitted"].idxmax()]
+        lines.append(f"- {m}, n = 100, 512x384, {int(r['threads'])} threads, {int(r['photons_emitted']):,} emitted "
+                     f"photons ({int(r['photons_stored']):,} stored): {fmt(r['total_s'])} s in total (trace "
+                     f"{fmt(r['trace_s'])}, build {fmt(r['build_s'])}, precompute {fmt(r['precompute_s'])}, eye pass "
+                     f"{fmt(r['eye_s'])} s; one render, `bench/scaling.csv`), peak memory "
+                     f"{fmt(r['bytes_per_stored'])} bytes per stored photon.")
+    th = load(d["threads"], ["photons_emitted", "pair", "threads", "trace_s", "build_s", "total_s"],
+              "make bench-threads")
+    for ph, g in th.groupby("photons_emitted"):
+        one, two = g[g["threads"] == 1].set_index("pair"), g[g["threads"] == 2].set_index("pair")
+        pairs = one.index.intersection(two.index)
+        if len(pairs) == 0:
+            continue
+        parts = []
+        for col, what in (("trace_s", "photon pass"), ("build_s", "kd-tree build"), ("total_s", "total")):
+            x = (one.loc[pairs, col] / two.loc[pairs, col]).to_numpy(np.float64)
+            parts.append(f"{what} {fmt(np.median(x))}x [{fmt(x.min())}, {fmt(x.max())}]")
+        lines.append(f"- Two threads against one at {int(ph):,} emitted photons (median of {len(pairs)} back-to-back "
+                     f"pairs [smallest, largest], `bench/threads.csv`): " + ", ".join(parts) + ".")
+    return "Performance at scale", lines
+
+
 def finding9(d):
     """Stability: what the check compares."""
     path = d["stability"]
@@ -434,7 +462,7 @@ def finding_metric(d):
 
 
 FINDINGS = ((1, finding1), (2, finding2), (3, finding3), (4, finding4), (5, finding5), (6, finding6),
-            (7, finding7), (8, finding8), (9, finding9), ("R", finding_repro), ("S", finding_rules), ("M", finding_metric))
+            (7, finding7), (8, finding8), (9, finding9), ("P", finding_scale), ("R", finding_repro), ("S", finding_rules), ("M", finding_metric))
 
 
 def paths(root):
@@ -444,7 +472,8 @@ def paths(root):
             "equal_error": j(root, "table1", "equal-error.csv"),
             "bias": j(root, "estimator-bias", "estimator-bias.csv"), "caustic": j(root, "caustic", "caustic.csv"),
             "scenes": j(root, "scenes", "scenes.csv"), "resolution": j(root, "resolution"), "runs": j(root, "table1", "runs.csv"), "stability": j(root, "stability", "stability-extremes.md"),
-            "repro": j(root, "reproducibility", "reproducibility.csv"), "rep": j(root, "rep-study", "rep-study-rules.csv")}
+            "repro": j(root, "reproducibility", "reproducibility.csv"), "rep": j(root, "rep-study", "rep-study-rules.csv"),
+            "scaling": j(root, "bench", "scaling.csv"), "threads": j(root, "bench", "threads.csv")}
 
 
 def markdown(d):
