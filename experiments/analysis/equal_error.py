@@ -284,6 +284,8 @@ def figure(results, path, note):
         ax.axhline(1.0, color="#888888", linewidth=0.8)
         ax.set_xscale("log")
         ax.set_yscale("log")
+        plotting.log_ticks(ax.xaxis, *ax.get_xlim())
+        plotting.log_ticks(ax.yaxis, *ax.get_ylim())
         ax.set_xlabel("relMSE target")
         ax.set_ylabel("speed-up at equal error")
         ax.set_title(f"{res['estimate']} estimate")

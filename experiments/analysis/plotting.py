@@ -141,6 +141,8 @@ def log_ticks(axis, lo, hi, label=None):
     AXIS (ax.xaxis or ax.yaxis), labelled as plain numbers (or by LABEL, a
     function of the value), no minor labels."""
     ticks = [v * 10.0 ** k for k in range(-6, 9) for v in (1, 2, 5) if lo <= v * 10.0 ** k <= hi]
+    if len(ticks) < 3:  # a narrow range: evenly spaced plain numbers
+        ticks = [float(t) for t in matplotlib.ticker.MaxNLocator(5).tick_values(lo, hi) if lo <= t <= hi and t > 0]
     if len(ticks) > 9:
         ticks = [t for t in ticks if f"{t:g}"[0] in "15"]
     axis.set_major_locator(matplotlib.ticker.FixedLocator(ticks))
