@@ -36,9 +36,10 @@ check "stability controls: every verdict fails against a wrong expectation" cont
 interrupted_once() { # SIGNAL: 0 ok, 1 wrong, 3 inconclusive (the write ended before the signal came)
   local sig=$1 out=$TMP/sig-$1.exr pid i
   rm -f "$out" "$out".tmp.*
-  # a background job of a script starts with SIGINT ignored (and photonmap
-  # leaves an ignored signal ignored): restore the default first
-  "$PY" -c 'import os, signal, sys; signal.signal(signal.SIGINT, signal.SIG_DFL); os.execvp(sys.argv[1], sys.argv[1:])' \
+  # a background job of a script starts with SIGINT ignored, and a run under
+  # nohup with SIGHUP ignored (photonmap leaves an ignored signal ignored):
+  # restore the defaults first
+  "$PY" -c 'import os, signal, sys; [signal.signal(s, signal.SIG_DFL) for s in (signal.SIGINT, signal.SIGHUP, signal.SIGTERM)]; os.execvp(sys.argv[1], sys.argv[1:])' \
     $PM render scenes/cornell.scene --photons 0 --direct shadow-rays --width 2048 --height 2048 --subpixels 1 \
     --threads 2 --quiet -o "$out" &
   pid=$!
