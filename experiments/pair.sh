@@ -15,14 +15,7 @@
 # place in the pair (PAIR_POS: 1 or 2). Exits as run.sh does: the first
 # failure stops the pair (the other render is not made), and the next make
 # renders the pair again, both renders (a pair is only paired if back to back).
+# The two-member case of experiments/group.sh, which does all of this.
 set -euo pipefail
-root=$1 rest=$2
-seedname=${rest##*/}
-seed=${seedname#seed}
-if [ "$seedname" = "$rest" ] || ! [[ "$seed" =~ ^[0-9]+$ ]]; then
-  echo "pair.sh: $root/$rest: not ESTIMATE-pPHOTONS-nNN/seedK" >&2; exit 1
-fi
-if [ $((seed % 2)) -eq 1 ]; then order=(conventional precomputed); else order=(precomputed conventional); fi
-here=$(dirname "$0")
-PAIR_POS=1 bash "$here/run.sh" "$root" "${order[0]}-$rest"
-PAIR_POS=2 bash "$here/run.sh" "$root" "${order[1]}-$rest"
+root=${1:?pair.sh: RUNROOT ESTIMATE-pPHOTONS-nNN/seedK} rest=${2:?pair.sh: RUNROOT ESTIMATE-pPHOTONS-nNN/seedK}
+exec bash "$(dirname "$0")/group.sh" "$rest" "$root" conventional "${PM_ARGS:-}" "$root" precomputed "${PM_ARGS:-}"
