@@ -32,6 +32,7 @@ from experiments.analysis import metrics
 from experiments.analysis import report
 from experiments.analysis import stats
 from experiments.analysis.report import fmt
+from experiments.bench import threads
 
 WHERE = "findings.py"
 # the smallest number of seeds whose percentile-bootstrap interval a finding
@@ -373,15 +374,13 @@ def finding_scale(d):
     th = load(d["threads"], ["photons_emitted", "pair", "threads", "trace_s", "build_s", "total_s"],
               "make bench-threads")
     for ph, g in th.groupby("photons_emitted"):
-        one, two = g[g["threads"] == 1].set_index("pair"), g[g["threads"] == 2].set_index("pair")
-        pairs = one.index.intersection(two.index)
-        if len(pairs) == 0:
-            continue
         parts = []
         for col, what in (("trace_s", "photon pass"), ("build_s", "kd-tree build"), ("total_s", "total")):
-            x = (one.loc[pairs, col] / two.loc[pairs, col]).to_numpy(np.float64)
-            parts.append(f"{what} {fmt(np.median(x))}x [{fmt(x.min())}, {fmt(x.max())}]")
-        lines.append(f"- Two threads against one at {int(ph):,} emitted photons (median of {len(pairs)} back-to-back "
+            x = threads.speedups(g, col)
+            parts.append(f"{what} {fmt(np.median(x))}x [{fmt(x.min())}, {fmt(x.max())}]" if len(x) else "")
+        if not parts[0]:
+            continue
+        lines.append(f"- Two threads against one at {int(ph):,} emitted photons (median of {len(x)} back-to-back "
                      f"pairs [smallest, largest], `bench/threads.csv`): " + ", ".join(parts) + ".")
     return "Performance at scale", lines
 

@@ -13,6 +13,16 @@ PHASES = [("trace_s", "photon pass"), ("build_s", "kd-tree build"),
           ("eye_s", "eye pass"), ("total_s", "total")]
 
 
+def speedups(g, col):
+    """The paired speed-ups t(1 thread) / t(2 threads) of column COL over the
+    pairs of G (one emitted photon count's rows of threads.csv), as an array
+    in pair order (empty when no pair has both renders)."""
+    one = g[g.threads == 1].set_index("pair")
+    two = g[g.threads == 2].set_index("pair")
+    pairs = one.index.intersection(two.index)
+    return (one.loc[pairs, col] / two.loc[pairs, col]).to_numpy(np.float64)
+
+
 def main(path):
     df = pd.read_csv(path)
     if set(df["threads"]) != {1, 2}:
@@ -32,7 +42,7 @@ def main(path):
         pairs = one.index.intersection(two.index)
         cells = []
         for col, _ in PHASES:
-            r = (one.loc[pairs, col] / two.loc[pairs, col]).to_numpy()
+            r = speedups(g, col)
             cells.append(f"{np.median(r):.2f}x [{r.min():.2f}, {r.max():.2f}]")
         t2 = np.median(two.loc[pairs, "total_s"])
         out.append(f"| {p:,} | {int(g.photons_stored.iloc[0]):,} | {len(pairs)} | "
