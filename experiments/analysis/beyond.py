@@ -107,18 +107,13 @@ def share(frame, col):
     return float(np.median(v)) if len(v) else math.nan
 
 
-def luminance(img):
-    """Rec. 709 luminance of an (H, W, 3) image."""
-    return img[:, :, 0] * 0.2126 + img[:, :, 1] * 0.7152 + img[:, :, 2] * 0.0722
-
-
 def edge_mask(ref, radius=EDGE_RADIUS, step=EDGE_STEP, offset=EDGE_OFFSET):
     """The (H, W) boolean mask of the pixels near an edge of the reference
     REF (H, W, 3): within RADIUS pixels (a square) of a pixel whose
     luminance differs from its right or lower neighbour's by more than STEP
     of (the larger of the two + OFFSET); both pixels of such a step are edge
     pixels."""
-    lum = luminance(ref)
+    lum = plotting.luminance(ref)
     edge = np.zeros(lum.shape, dtype=bool)
     for a, b in ((lum[:, :-1], lum[:, 1:]), (lum[:-1, :], lum[1:, :])):
         e = np.abs(a - b) > step * (np.maximum(a, b) + offset)
