@@ -189,13 +189,14 @@ SBATCH_OPTS ?=
 
 # make reproducibility (experiments/reproducibility.mk): the Table-1 grid
 # twice, runs A and B interleaved pair by pair, at SIZE (default
-# REPRO_SIZE_DEFAULT), SEEDS seeds, against the POV-Ray reference of that
+# REPRO_SIZE_DEFAULT), SEEDS seeds (default REPRO_SEEDS_DEFAULT), against the POV-Ray reference of that
 # size or else the converged reference (CONV_REF_*); REPRO_TASKSET: a CPU list
 # every render is pinned to with taskset (default: the last CPU, e.g. 1 on 2
 # cores; empty: none); REPRO_GOAL_PP: the goal for the median
 # |ratio A - ratio B| over the cells, in percentage points
 REPRO_DIR = $(RESULTS)/reproducibility
 REPRO_SIZE_DEFAULT := 512x384
+REPRO_SEEDS_DEFAULT := 10
 REPRO_TASKSET ?= $(shell n=$$(nproc 2>/dev/null || echo 1); echo $$((n - 1)))
 REPRO_GOAL_PP ?= 3
 

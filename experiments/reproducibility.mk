@@ -2,17 +2,17 @@
 # rendered twice, runs A and B, interleaved in time, and how far the two runs'
 # paired results lie apart (experiments/analysis/reproducibility.py ->
 # REPRO_DIR/reproducibility.{md,csv}). Knobs (experiments/config.mk): SIZE
-# (default here 512x384), SEEDS, PHOTONS, NNS, ESTIMATES, REF; REPRO_TASKSET:
+# (default here 512x384), SEEDS (default here 10), PHOTONS, NNS, ESTIMATES, REF; REPRO_TASKSET:
 # the CPU list every render is pinned to with taskset (default: the last CPU;
 # empty: no pinning).
 #
-# Expected run time at the defaults on a quiet 2-core machine: about 15
-# minutes. Per seed the 24 cells x 2 methods at 512x384 take about 45 s of
-# the renderer's own time (results/resolution/runs-512x384.csv: 44 s
-# time_s.total, 47 s CPU), about 55 s with start-up and image writing, so
-# 2 runs x 5 seeds about 9-10 minutes; the converged reference (8 renders at
-# 10M and 5M photons, all cores, after the timed renders) about 3 minutes;
-# the two tables' bootstraps 1-2 minutes.
+# Expected run time at the defaults on a quiet 2-core machine: about 25
+# minutes (measured: 24 minutes for 10 seeds, 960 renders, the converged
+# reference and both tables). Per seed the 24 cells x 2 methods at 512x384
+# take about 45 s of the renderer's own time, about 55 s with start-up and
+# image writing, so 2 runs x 10 seeds about 19 minutes; the converged
+# reference (8 renders at 10M and 5M photons, all cores, after the timed
+# renders) about 3 minutes; the two tables' bootstraps 1-2 minutes.
 #
 # Reference: the POV-Ray one of SCENE at SIZE where reference/ has one
 # (experiments/findref.sh), otherwise, as `make resolution` and `make scenes`
@@ -37,18 +37,22 @@
 #   for both runs, so that neither run migrates between cores or shares one
 #   with make and the shell (REPRO_TASKSET= turns it off; with THREADS other
 #   than 1 give a list of as many CPUs);
-# - repeats: the seeds are the repeats (SEEDS, 5): each ratio's interval is
-#   over seeds; more seeds narrow it at proportional cost.
+# - repeats: the seeds are the repeats (SEEDS, default REPRO_SEEDS_DEFAULT,
+#   10): each ratio's interval is over seeds; more seeds narrow it at
+#   proportional cost. At 5 seeds, with light work on the other core, the
+#   median |delta| was 3.36 pp; at 10 seeds on the idle machine 2.89 pp
+#   (results/reproducibility/reproducibility.md).
 # A pair already rendered (both records present) is kept: the target resumes.
 
 repro_size = $(call knob,SIZE,$(REPRO_SIZE_DEFAULT))
+repro_seeds = $(call knob,SEEDS,$(REPRO_SEEDS_DEFAULT))
 # the POV-Ray reference at that size (none: the converged reference, built by make)
 repro_pov := $(if $(REF),,$(shell bash experiments/findref.sh $(repro_size) $(SCENE)))
 repro_ref_deps = $(if $(or $(REF),$(repro_pov)),,$(call converged_ref,$(SCENE),$(repro_size)))
 define repro_study
 repro-$(1)_SCENE = $$(SCENE)
 repro-$(1)_SIZE = $$(repro_size)
-repro-$(1)_SEEDS = $$(SEEDS)
+repro-$(1)_SEEDS = $$(repro_seeds)
 repro-$(1)_PHOTONS = $$(PHOTONS)
 repro-$(1)_NNS = $$(NNS)
 repro-$(1)_METHODS = conventional precomputed
@@ -66,7 +70,7 @@ endef
 $(foreach r,a b,$(eval $(call repro_study,$(r))))
 
 # the pair names (ESTIMATE-pP-nN/seedK) in the grid's order, seeds outermost
-repro_pairs = $(call run_names,$(call run_cells,$(PHOTONS),$(NNS),x,$(ESTIMATES)),$(call seeds,$(SEEDS)))
+repro_pairs = $(call run_names,$(call run_cells,$(PHOTONS),$(NNS),x,$(ESTIMATES)),$(call seeds,$(repro_seeds)))
 repro_taskset = $(if $(strip $(REPRO_TASKSET)),taskset -c $(strip $(REPRO_TASKSET)))
 
 .PHONY: reproducibility reproducibility-runs
