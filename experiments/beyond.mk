@@ -13,24 +13,21 @@
 # experiments/analysis/beyond.py then writes BEYOND_DIR/beyond.{md,csv} and
 # FIGURES/beyond.png.
 #
-#   make beyond SIZE=256x192 SEEDS=3 PHOTONS="20000 50000 100000" NNS="10 50" BEYOND_SIZES="256x192 512x384"
+#   make beyond SIZE=256x192 SEEDS=5 PHOTONS="20000 50000 100000" NNS="10 50" BEYOND_SIZES="256x192 512x384"
 #
 # The default run: SCENES (five scenes) at 512x384 and cornell at 256x192,
 # 512x384 and 1024x768 (BEYOND_SIZES; 7 cases), P_e {50k, 100k, 500k} x n
-# {10, 20, 50, 100}, 3 seeds, 9 members per group (conventional, paper, lazy,
-# gated and lazygated at 3 taus): 2,268 renders plus 7 converged references
-# (CONV_REF_*: 8 renders each at 10M and 5M photons, n = 200). Estimated time
-# on the 2-core development machine, make without -j: about 4.5 hours at a
-# load average near 6 (renders about 3.1 h by their timers, 0.3 h per-render
-# process overhead, references 0.5 h, the 56 per-study analyses 0.5-1 h;
-# the 1024x768 case about a third of the renders), likely 2.5-3 hours idle.
-# The check run `make beyond SIZE=128x96 BEYOND_SIZES=128x96 SEEDS=2
+# {10, 20, 50, 100}, 5 seeds (fewer give percentile-bootstrap intervals that
+# cover well under 95%), 9 members per group (conventional, paper, lazy,
+# gated and lazygated at 3 taus): 3,780 renders plus 7 converged references
+# (CONV_REF_*: 8 renders each at 10M and 5M photons, n = 200). Measured on
+# the 2-core development machine with `make -j2 beyond` (two groups at a
+# time; each group's members still back to back): about 65 minutes, 40 for
+# the six cases at 512x384 and 256x192 and 25 for cornell at 1024x768,
+# references and the per-study analyses included; without -j about twice
+# that. The check run `make beyond SIZE=128x96 BEYOND_SIZES=128x96 SEEDS=2
 # PHOTONS="50000 100000" NNS="10 50" BEYOND_TAUS=0.1` (200 renders, 5
-# references, 20 studies) took 21 minutes at that load. The estimate scales
-# the per-stage timers of that run (median photon pass
-# 7.3 us per photon, precompute 1.9-2.7 us per photon at n 10-50, eye pass
-# 8.3-11.8 us per pixel at n 10-50, extrapolated linearly in n) to the
-# default grid's sizes, P_e and n: a rough figure, not a measurement.
+# references, 20 studies) takes a few minutes.
 #
 # The variants: lazy (--rep-eval lazy), gatedT (--rep-gate BEYOND_GATE
 # --rep-gate-tau T), lazygatedT (both), for each T of BEYOND_TAUS (every tau
@@ -43,7 +40,7 @@ BEYOND_TAUS ?= 0.05 0.1 0.2
 BEYOND_GATE ?= plane-lookup
 BEYOND_DIR = $(RESULTS)/beyond
 beyond_size_default := 512x384
-beyond_seeds_default := 3
+beyond_seeds_default := 5
 # the paper's estimate only (lazy and the gates are studied on its rule)
 beyond_estimates_default := paper
 
@@ -129,7 +126,7 @@ beyond: $(foreach i,$(beyond_ids),bey-$(i)-table $(BEYOND_VARIANTS:%=bey-$(i)-%-
 	    $(foreach v,$(BEYOND_VARIANTS),--variant $(call beyond_id,$(c)) $(v) "$(call beyond_args,$(v))" \
 	      $(bey-$(call beyond_id,$(c))-$(v)_RUNS_CSV))) \
 	  --time $(TIME) --bootstrap $(BOOTSTRAP) --bootstrap-seed $(BOOTSTRAP_SEED) --pm $(PM) --gate $(BEYOND_GATE) \
-	  --settings "make beyond SIZE=$(beyond_size) SEEDS=$(beyond_seeds) PHOTONS=\"$(PHOTONS)\" NNS=\"$(NNS)\" ESTIMATES=\"$(beyond_estimates)\" BEYOND_SIZES=\"$(BEYOND_SIZES)\" BEYOND_TAUS=\"$(BEYOND_TAUS)\" BEYOND_GATE=$(BEYOND_GATE) CONV_REF_PHOTONS=$(CONV_REF_PHOTONS) CONV_REF_FACTOR=$(CONV_REF_FACTOR) CONV_REF_NN=$(CONV_REF_NN) CONV_REF_SEEDS=\"$(CONV_REF_SEEDS)\" THREADS=$(THREADS) TIME=$(TIME) BOOTSTRAP=$(BOOTSTRAP)" \
+	  --settings "make$(if $(filter -j%,$(MAKEFLAGS)), $(filter -j%,$(MAKEFLAGS))) beyond SIZE=$(beyond_size) SEEDS=$(beyond_seeds) PHOTONS=\"$(PHOTONS)\" NNS=\"$(NNS)\" ESTIMATES=\"$(beyond_estimates)\" BEYOND_SIZES=\"$(BEYOND_SIZES)\" BEYOND_TAUS=\"$(BEYOND_TAUS)\" BEYOND_GATE=$(BEYOND_GATE) CONV_REF_PHOTONS=$(CONV_REF_PHOTONS) CONV_REF_FACTOR=$(CONV_REF_FACTOR) CONV_REF_NN=$(CONV_REF_NN) CONV_REF_SEEDS=\"$(CONV_REF_SEEDS)\" THREADS=$(THREADS) TIME=$(TIME) BOOTSTRAP=$(BOOTSTRAP)" \
 	  --out $(BEYOND_DIR)/beyond --figure $(FIGURES)/beyond.png
 
 ifneq ($(call goal,beyond beyond-runs),)

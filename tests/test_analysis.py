@@ -766,6 +766,44 @@ def test_findings_resolution_per_size():
             assert "kind" in str(e)
 
 
+def test_findings_beyond():
+    """Finding B quotes each case's paper rule and best variant with their
+    intervals and counts the cases where the goal holds; a case with fewer
+    than MIN_SEEDS_QUOTED seeds is named without its intervals (negative
+    control), and a table without the seeds column names the target."""
+    def row(case, variant, sp, lo, hi, best, above, vs, met, seeds):
+        return {"case": case, "variant": variant, "estimate": "paper", "target": 0.02, "speedup": sp, "lo": lo,
+                "hi": hi, "fallback_rate": 0.125, "evaluated_share": 0.5, "seeds": seeds, "best": best,
+                "above_one": above, "vs_paper": vs, "goal_met": met}
+    rows = [row("a-64x48", "paper", 0.9, 0.8, 1.0, False, False, "", False, 5),
+            row("a-64x48", "lazy", 1.3, 1.2, 1.4, True, True, "higher", True, 5),
+            row("b-64x48", "paper", 1.1, 1.05, 1.2, False, True, "", False, 5),
+            row("b-64x48", "gated0.1", 0.97, 0.9, 1.02, True, False, "lower", False, 5),
+            row("c-64x48", "paper", 2.0, 1.9, 2.1, False, True, "", False, 3),
+            row("c-64x48", "lazy", 2.5, 2.4, 2.6, True, True, "higher", True, 3),
+            row("d-64x48", "paper", 1.0, 0.9, 1.1, False, False, "", False, 5),
+            row("d-64x48", "lazy", 1.2, 1.004, 1.5, True, True, "overlap", True, 5)]
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "beyond.csv")
+        pd.DataFrame(rows).to_csv(path, index=False)
+        _, lines = findings.finding_beyond({"beyond": path})
+        text = "\n".join(lines)
+        assert "a-64x48 (relMSE 0.02, 5 seeds): the paper's rule 0.900 [0.800, 1.000]x; the best variant, lazy, 1.300 [1.200, 1.400]x" in text
+        assert "12.5% of its eye samples fell back, 50.0% of the representatives" in text
+        assert "against the paper's rule's interval: above it" in text
+        assert "b-64x48" in text and "interval: below it" in text and "the goal does not hold" in text
+        assert "c-64x48: 3 seeds" in text and "[2.4, 2.6]" not in text
+        assert "1.200 [1.004, 1.500]x, its interval above 1.0 only by less than the 2% margin" in text
+        assert "holds as worded, by a margin too thin to rely on" in text
+        assert "holds in 2 of 3 cases, 1 of them with the interval's lower end within the margin" in text
+        pd.DataFrame(rows).drop(columns=["seeds"]).to_csv(path, index=False)
+        try:
+            findings.finding_beyond({"beyond": path})
+            assert False, "finding_beyond answered without the seeds column"
+        except findings.Missing as e:
+            assert "make beyond" in str(e)
+
+
 def test_findings_scale():
     """Finding P quotes the largest map's row of each method and the median
     paired two-thread speed-up (t1 / t2 per pair); without threads.csv it

@@ -26,6 +26,7 @@ import argparse
 import json
 import math
 import os
+import zlib
 
 import numpy as np
 import pandas as pd
@@ -52,7 +53,7 @@ NEED = ["role", "status", "estimate", "method", "photons", "nn", "seed", "relmse
 COLUMNS = ["case", "scene", "size", "variant", "args", "estimate", "target", "speedup", "lo", "hi",
            "defined_fraction", "fallback_rate", "evaluated_share", "precompute_share", "render_share",
            "conv_render_share", "photons_med_s", "precompute_med_s", "render_med_s", "error_ratio", "excess_relmse", "edge_pixels",
-           "excess_edge_share", "renders", "best", "above_one", "vs_paper", "goal_met"]
+           "excess_edge_share", "renders", "seeds", "best", "above_one", "vs_paper", "goal_met"]
 
 
 def read_stats(run):
@@ -220,7 +221,7 @@ def measure(case, scene, size, variant, args, runs_csv, time_col, rng, replicate
                                                            - ok["render_s"].astype(float)), "rest"),
                     "precompute_med_s": median_of(ok, "precompute_s"), "render_med_s": median_of(ok, "render_s"),
                     "error_ratio": error_ratio(runs, est), "excess_relmse": excess, "edge_pixels": edge_px,
-                    "excess_edge_share": edge_share, "renders": int(len(ok)),
+                    "excess_edge_share": edge_share, "renders": int(len(ok)), "seeds": int(ok["seed"].nunique()),
                     "load": runs["loadavg_1min"].astype(float).median()})
     return out
 
@@ -310,10 +311,20 @@ def figure(table, path, note):
                     color=plotting.RULE_COLOURS[j % len(plotting.RULE_COLOURS)])
     ax.axhline(1.0, color="#888888", lw=0.8)
     ax.set_yscale("log")
+    ends = table[["lo", "hi", "speedup"]].astype(float).to_numpy().ravel()
+    ends = ends[np.isfinite(ends) & (ends > 0)]
+    if len(ends):
+        ylo, yhi = min(ends.min(), 1.0) / 1.05, max(ends.max(), 1.0) * 1.05
+        ax.set_ylim(ylo, yhi)
+        plotting.log_ticks(ax.yaxis, ylo, yhi)
+        ticks = sorted(set(ax.yaxis.get_major_locator().tick_values(ylo, yhi)) | {1.0})
+        ax.set_yticks(ticks)
     ax.set_xticks(np.arange(len(cases)))
-    ax.set_xticklabels(cases, rotation=20, fontsize=8)
+    ax.set_xticklabels(cases, rotation=20, ha="right", fontsize=8)
     ax.set_ylabel("speed-up at the tightest common relMSE")
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.005, 1.0), title="variant", title_fontsize=7)
+    fig.subplots_adjust(left=0.07, right=0.88, top=0.95,
+                        bottom=0.18 + 0.025 * plotting.footer_lines(note, fig.get_figwidth()))
     plotting.footer(fig, note)
     plotting.save(fig, path)
     plt.close(fig)
@@ -341,12 +352,14 @@ def main():
         names = [v[1] for v in args.variant if v[0] == cid]
         if "paper" not in names:
             report.die(WHERE, f"case {cid}: no --variant {cid} paper (the rule every variant is compared with)")
-    rng = np.random.default_rng(args.bootstrap_seed)
     rows = []
     for cid, name, vargs, csv in args.variant:
         if cid not in cases:
             report.die(WHERE, f"--variant {cid} {name}: no --case {cid}")
         scene, size, _ref = cases[cid]
+        # one bootstrap stream per (case, variant): a row's interval does not
+        # depend on which other cases the run included or their order
+        rng = np.random.default_rng([args.bootstrap_seed, zlib.crc32(f"{cid}/{name}".encode())])
         rows += measure(cid, scene, size, name, vargs, csv, args.time, rng, args.bootstrap, _ref)
     table = verdicts(pd.DataFrame(rows))
     report.write_csv_atomic(table[COLUMNS], args.out + ".csv")
@@ -369,7 +382,7 @@ def write_md(table, cases, args):
            "Speed-up: conventional time / variant time at the tightest relMSE target both fronts reach "
            "(`equal_error.py`; each variant against the conventional renders of the same seeds and photon maps, "
            f"its own tightest target), with the 95% percentile interval of {args.bootstrap} bootstrap resamples "
-           f"over seeds (random seed {args.bootstrap_seed}). Reference: each scene's converged render at its size "
+           f"over seeds (random seed {args.bootstrap_seed}, one stream per case and variant). Reference: each scene's converged render at its size "
            "(`converged_ref` of `experiments/studies.mk`). Fallback rate: rep_fallbacks / eye samples; evaluated: "
            "reps_evaluated / representatives (both pooled over the variant's renders). Error ratio: the variant's "
            "mean relMSE over the conventional one's at the same cells and seeds. All the renders of one (cell, seed) "
