@@ -312,6 +312,13 @@ def finding5(d):
     return "The caustic window against the whole image", lines
 
 
+def few_seeds(name, seeds, make):
+    """The line that names NAME's intervals as too few-seeded to quote
+    (fewer than MIN_SEEDS_QUOTED seeds) and the MAKE command that reruns it."""
+    return (f"- {name}: {seeds} seeds: its percentile-bootstrap intervals (which at 3 seeds cover about 90%, not "
+            f"95%) are not quoted; rerun `{make} SEEDS={MIN_SEEDS_QUOTED}` or more.")
+
+
 def finding6(d):
     """The scenes' speed-ups, quoted only where enough seeds stand behind an interval."""
     s = load(d["scenes"], ["scene", "diff_seeds", "ee_paper", "ee_corrected"], "make scenes")
@@ -319,8 +326,7 @@ def finding6(d):
     for _, r in s.iterrows():
         seeds = int(r["diff_seeds"])
         if seeds < MIN_SEEDS_QUOTED:
-            lines.append(f"- {r['scene']}: {seeds} seeds: its percentile-bootstrap intervals (which at 3 seeds cover "
-                         f"about 90%, not 95%) are not quoted; rerun `make scenes SEEDS={MIN_SEEDS_QUOTED}` or more.")
+            lines.append(few_seeds(r["scene"], seeds, "make scenes"))
         else:
             lines.append(f"- {r['scene']} ({seeds} seeds): paper estimate {r['ee_paper']}; corrected {r['ee_corrected']} "
                          "(target: speed-up [95% bootstrap interval]).")
@@ -412,8 +418,7 @@ def finding_beyond(d):
             continue
         p, r = paper.iloc[0], best.iloc[0]
         if seeds < MIN_SEEDS_QUOTED:
-            lines.append(f"- {case}: {seeds} seeds: its percentile-bootstrap intervals (which at 3 seeds cover about "
-                         f"90%, not 95%) are not quoted; rerun `make beyond SEEDS={MIN_SEEDS_QUOTED}` or more.")
+            lines.append(few_seeds(case, seeds, "make beyond"))
             continue
         f3 = lambda x: report.fmt_fixed(x, 3)  # noqa: E731 (an end at 1.001 must not print as 1)
         margin = stats.EQUIVALENCE_MARGIN
