@@ -316,9 +316,7 @@ def figure(table, path, note):
     if len(ends):
         ylo, yhi = min(ends.min(), 1.0) / 1.05, max(ends.max(), 1.0) * 1.05
         ax.set_ylim(ylo, yhi)
-        plotting.log_ticks(ax.yaxis, ylo, yhi)
-        ticks = sorted(set(ax.yaxis.get_major_locator().tick_values(ylo, yhi)) | {1.0})
-        ax.set_yticks(ticks)
+        plotting.log_ticks(ax.yaxis, ylo, yhi, extra=(1.0,))
     ax.set_xticks(np.arange(len(cases)))
     ax.set_xticklabels(cases, rotation=20, ha="right", fontsize=8)
     ax.set_ylabel("speed-up at the tightest common relMSE")

@@ -136,15 +136,17 @@ def count_label(v):
     return f"{v:g}"
 
 
-def log_ticks(axis, lo, hi, label=None):
+def log_ticks(axis, lo, hi, label=None, extra=()):
     """Major ticks at 1, 2, 5 x 10^k between LO and HI on a logarithmic
-    AXIS (ax.xaxis or ax.yaxis), labelled as plain numbers (or by LABEL, a
-    function of the value), no minor labels."""
+    AXIS (ax.xaxis or ax.yaxis), plus the values EXTRA (a reference line's),
+    labelled as plain numbers (or by LABEL, a function of the value), no
+    minor labels."""
     ticks = [v * 10.0 ** k for k in range(-6, 9) for v in (1, 2, 5) if lo <= v * 10.0 ** k <= hi]
     if len(ticks) < 3:  # a narrow range: evenly spaced plain numbers
         ticks = [float(t) for t in matplotlib.ticker.MaxNLocator(5).tick_values(lo, hi) if lo <= t <= hi and t > 0]
     if len(ticks) > 9:
         ticks = [t for t in ticks if f"{t:g}"[0] in "15"]
+    ticks = sorted(set(ticks) | {float(v) for v in extra})
     axis.set_major_locator(matplotlib.ticker.FixedLocator(ticks))
     axis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: label(v) if label else f"{v:g}"))
     axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
