@@ -43,6 +43,12 @@ for t in "${tiers[@]}"; do
   packages+=("${w[@]}")
 done
 
+# One run at a time: `make -j` starts the tiers together, and two apt-gets
+# at once fail on apt's lock. The second run waits here, then installs only
+# what the first left missing.
+exec 9>"${TMPDIR:-/tmp}/photonmap-install-deps.lock"
+flock 9
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -59,5 +65,7 @@ if [ "$(id -u)" -ne 0 ]; then
   fi
 fi
 export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# and wait (up to 10 minutes) for any other apt or dpkg run to finish
+APT_WAIT=(-o DPkg::Lock::Timeout=600)
+$SUDO apt-get "${APT_WAIT[@]}" update -qq
+$SUDO apt-get "${APT_WAIT[@]}" install -y -qq --no-install-recommends "${missing[@]}"
