@@ -15,6 +15,9 @@
     X(kdtree_query_avx2) \
     X(kdtree_build_memory) \
     X(kdtree_build_threads) \
+    /* test_mem.c */ \
+    X(mem_round) \
+    X(mem_buffers) \
     /* test_scale.c */ \
     X(kdtree_build_items) \
     X(photons_map_matches_plain_build) \

@@ -1,0 +1,101 @@
+/* test_mem: the large buffers' allocator (mem.c): rounding, alignment,
+ * zeroing, growth and shrinking across the mapping threshold with the
+ * contents kept, and pages handed back reading as zero. */
+#include <stdint.h>
+#include <string.h>
+
+#include "check.h"
+#include "mem.h"
+#include "tests.h"
+
+/* mem_round: sizes below MEM_HUGE_MIN / 2 as they are; from there up, at
+ * least the size asked and a mapping of whole huge pages (the header is 64
+ * bytes), less than one huge page more; rounding twice changes nothing. */
+void test_mem_round(void)
+{
+    CHECK(mem_round(0) == 0);
+    CHECK(mem_round(100) == 100);
+    CHECK(mem_round(MEM_HUGE_MIN / 2 - 1) == MEM_HUGE_MIN / 2 - 1);
+    CHECK(mem_round(MEM_HUGE_MIN / 2) == MEM_HUGE_MIN - 64);
+    size_t sizes[] = {MEM_HUGE_MIN - 64, MEM_HUGE_MIN, MEM_HUGE_MIN + 1, 3 * MEM_HUGE_MIN + 12345, (size_t)100 << 20};
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
+        size_t r = mem_round(sizes[i]);
+        CHECK_MSG(r >= sizes[i], "%zu -> %zu", sizes[i], r);
+        CHECK_MSG((r + 64) % MEM_HUGE_MIN == 0, "%zu -> %zu", sizes[i], r);
+        CHECK_MSG(r - sizes[i] < MEM_HUGE_MIN, "%zu -> %zu", sizes[i], r);
+        CHECK(mem_round(r) == r);
+    }
+    /* negative control: a size that is not whole huge pages fails the check */
+    CHECK(!((MEM_HUGE_MIN + 1 + 64) % MEM_HUGE_MIN == 0));
+}
+
+/* Small and large buffers are 64-byte aligned (a large one's mapping, its
+ * header in front, on a huge-page boundary); mem_zalloc's are zero; a
+ * buffer grown from malloc's range into a mapping, grown again and shrunk
+ * below the threshold keeps its first bytes; mem_release zeroes the whole
+ * pages of its range and nothing outside them. */
+void test_mem_buffers(void)
+{
+    size_t small = 1000, large = 3 * MEM_HUGE_MIN + 100;
+    unsigned char *a = mem_alloc(small), *b = mem_zalloc(large), *z = mem_alloc(0);
+    CHECK(a && b && z);
+    if (!a || !b || !z)
+        return;
+    CHECK((uintptr_t)a % 64 == 0 && (uintptr_t)b % 64 == 0 && (uintptr_t)z % 64 == 0);
+    CHECK(((uintptr_t)b - 64) % MEM_HUGE_MIN == 0);
+    size_t nonzero = 0;
+    for (size_t i = 0; i < large; i++)
+        nonzero += b[i] != 0;
+    CHECK(nonzero == 0);
+
+    for (size_t i = 0; i < small; i++)
+        a[i] = (unsigned char)(i * 7 + 1);
+    a = mem_realloc(a, large); /* malloc -> mapping */
+    CHECK(a != NULL);
+    if (!a)
+        return;
+    size_t bad = 0;
+    for (size_t i = 0; i < small; i++)
+        bad += a[i] != (unsigned char)(i * 7 + 1);
+    CHECK(bad == 0);
+    for (size_t i = 0; i < large; i++)
+        a[i] = (unsigned char)(i * 13 + 5);
+    a = mem_realloc(a, 2 * large); /* mapping grows: remapped */
+    CHECK(a != NULL);
+    if (!a)
+        return;
+    bad = 0;
+    for (size_t i = 0; i < large; i++)
+        bad += a[i] != (unsigned char)(i * 13 + 5);
+    CHECK(bad == 0);
+    a = mem_realloc(a, small); /* shrinks in place, below the threshold */
+    CHECK(a != NULL);
+    if (!a)
+        return;
+    bad = 0;
+    for (size_t i = 0; i < small; i++)
+        bad += a[i] != (unsigned char)(i * 13 + 5);
+    CHECK(bad == 0);
+
+    /* release the pages of [5000, 5000 + 3 * 4096): the whole pages inside
+     * read zero, the bytes around them keep their values */
+    memset(b, 0xab, large);
+    size_t off = 5000, len = 3 * 4096;
+    mem_release(b, off, len);
+    uintptr_t lo = ((uintptr_t)b + off + 4095) & ~(uintptr_t)4095, hi = ((uintptr_t)b + off + len) & ~(uintptr_t)4095;
+    size_t zeroed = 0, kept = 0;
+    for (size_t i = 0; i < large; i++) {
+        uintptr_t p = (uintptr_t)b + i;
+        if (p >= lo && p < hi)
+            zeroed += b[i] == 0;
+        else
+            kept += b[i] == 0xab;
+    }
+    CHECK(hi > lo);
+    CHECK_MSG(zeroed == (size_t)(hi - lo), "%zu of %zu released bytes read zero", zeroed, (size_t)(hi - lo));
+    CHECK(kept == large - (size_t)(hi - lo));
+    mem_free(a);
+    mem_free(b);
+    mem_free(z);
+    mem_free(NULL);
+}
