@@ -1,10 +1,68 @@
 /* kdtree_nearest: kd_nearest_if, the nearest point that passes a caller's
- * predicate: a descent to each leaf in turn (nearest first) with the base
- * leaf scan's mask, the bound shrinking to the best distance found, the
- * hint's distance bounding the search from the start. */
+ * predicate: a descent to each leaf in turn with the base leaf scan's
+ * mask, the bound shrinking to the best distance found, the hint's
+ * distance bounding the search from the start. When the hint qualifies,
+ * the first descent follows the path to the hint's own leaf, known from
+ * its index: the nodes on it do not wait on each other's compares, where a
+ * descent by q's side of each split does (coherent queries mostly find
+ * their answer in the hint's leaf or next to it). */
 #include "kdtree_impl.h"
 
 #include <string.h>
+
+/* The leaf holding leaf-order point i (i < t->n). Nodes split their range
+ * at lo + (hi - lo) / 2, so leaves hold floor or ceil of n / nleaves
+ * points and the proportional guess is at most a leaf or two off. */
+static uint32_t leaf_of(const kd_tree *t, uint32_t i)
+{
+    assert(i < t->n);
+    uint32_t leaf = (uint32_t)((uint64_t)i * t->nleaves / t->n);
+    while (t->leaf_start[leaf] > i)
+        leaf--;
+    while (t->leaf_start[leaf + 1] <= i)
+        leaf++;
+    return leaf;
+}
+
+/* As descend, but along the path to `leaf` whichever side of each split q
+ * is on: the child off the path is pushed when its cell lies within
+ * `bound`, and *rd and off become the leaf's cell's. Returns 1, or 0 when
+ * the path leaves `bound` (then what is still to search is on the stack). */
+static int descend_to(const kd_tree *t, uint32_t leaf, const float q[3], float *rd, float off[3], float bound,
+                      kd_frame *stack, int *sp)
+{
+    assert((t->nleaves & (t->nleaves - 1)) == 0 && leaf < t->nleaves);
+    uint32_t depth = (uint32_t)__builtin_ctz(t->nleaves), node = 0;
+    for (uint32_t level = depth; level-- > 0;) {
+        uint32_t right = (leaf >> level) & 1u, path = 2 * node + 1 + right;
+        int a = t->axis[node];
+        float diff = q[a] - t->split[node];
+        float old = off[a];
+        float nrd = *rd - old * old + diff * diff; /* the cell on the other side of the split from q */
+        int q_right = diff >= 0.0f;
+        /* the child off the path: q's side keeps rd and off; the other side gets nrd, off[a] = diff */
+        float other_rd = (q_right == (int)right) ? nrd : *rd;
+        if (other_rd <= bound) {
+            assert(*sp < KD_STACK);
+            kd_frame *f = &stack[(*sp)++];
+            f->node = 4 * node + 3 - path;
+            f->rd = other_rd;
+            f->off[0] = off[0];
+            f->off[1] = off[1];
+            f->off[2] = off[2];
+            if (q_right == (int)right)
+                f->off[a] = diff;
+        }
+        if (q_right != (int)right) {
+            *rd = nrd;
+            off[a] = diff;
+        }
+        if (!(*rd <= bound))
+            return 0;
+        node = path;
+    }
+    return 1;
+}
 
 uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx, uint32_t hint,
                        float *d2)
@@ -28,29 +86,43 @@ uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred
         if (rd <= prune_bound(max_d2)) {
             kd_qbase qv;
             KD_QBASE_INIT(qv, q, best_d2);
-            do {
-                uint32_t leaf = descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp);
-                uint32_t beg = t->leaf_start[leaf], end = t->leaf_start[leaf + 1];
-                for (uint32_t c = beg; c < end; c += KD_CHUNK) {
-                    /* only the lanes within the best distance so far */
-                    uint32_t bits[KD_CHUNK];
-                    uint32_t m = chunk_mask(t->x, t->y, t->z, c, &qv, bits);
-                    if (end - c < KD_CHUNK)
-                        m &= (1u << (end - c)) - 1u;
-                    while (m) {
-                        uint32_t j = (uint32_t)__builtin_ctz(m);
-                        m &= m - 1u;
-                        float d;
-                        memcpy(&d, &bits[j], sizeof d);
-                        if (d <= best_d2 && (best == KD_NONE || d < best_d2 || c + j < best) &&
-                            (!pred || pred(c + j, ctx))) {
-                            best = c + j;
-                            best_d2 = d;
-                            KD_QBASE_SETR2(qv, best_d2);
+            /* the first leaf: the hint's, reached along its known path, or q's by descent */
+            uint32_t leaf;
+            int have = 1;
+            if (best != KD_NONE) {
+                leaf = leaf_of(t, best);
+                have = descend_to(t, leaf, q, &rd, off, prune_bound(best_d2), stack, &sp);
+            } else {
+                leaf = descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp);
+            }
+            for (;;) {
+                if (have) {
+                    uint32_t beg = t->leaf_start[leaf], end = t->leaf_start[leaf + 1];
+                    for (uint32_t c = beg; c < end; c += KD_CHUNK) {
+                        /* only the lanes within the best distance so far */
+                        uint32_t bits[KD_CHUNK];
+                        uint32_t m = chunk_mask(t->x, t->y, t->z, c, &qv, bits);
+                        if (end - c < KD_CHUNK)
+                            m &= (1u << (end - c)) - 1u;
+                        while (m) {
+                            uint32_t j = (uint32_t)__builtin_ctz(m);
+                            m &= m - 1u;
+                            float d;
+                            memcpy(&d, &bits[j], sizeof d);
+                            if (d <= best_d2 && (best == KD_NONE || d < best_d2 || c + j < best) &&
+                                (!pred || pred(c + j, ctx))) {
+                                best = c + j;
+                                best_d2 = d;
+                                KD_QBASE_SETR2(qv, best_d2);
+                            }
                         }
                     }
                 }
-            } while (pop(stack, &sp, prune_bound(best_d2), &node, &rd, off));
+                if (!pop(stack, &sp, prune_bound(best_d2), &node, &rd, off))
+                    break;
+                leaf = descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp);
+                have = 1;
+            }
         }
     }
     *d2 = best == KD_NONE ? 0.0f : best_d2;

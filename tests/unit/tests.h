@@ -8,6 +8,7 @@
     X(kdtree_matches_brute_force) \
     X(kdtree_edge_cases) \
     X(kdtree_nearest_if) \
+    X(kdtree_nearest_if_hints) \
     X(kdtree_query_matches_brute_force) \
     X(kdtree_query_hints) \
     X(kdtree_query_history_independent) \
