@@ -64,6 +64,33 @@ static int descend_to(const kd_tree *t, uint32_t leaf, const float q[3], float *
     return 1;
 }
 
+/* Scans leaf `leaf` for a qualifying point nearer than *best_d2 (of points
+ * at the same distance, the lowest index), updating *best, *best_d2 and
+ * qv's radius. */
+static inline void scan_leaf(const kd_tree *t, uint32_t leaf, kd_pred pred, const void *ctx, kd_qbase *qv,
+                             uint32_t *best, float *best_d2)
+{
+    uint32_t beg = t->leaf_start[leaf], end = t->leaf_start[leaf + 1];
+    for (uint32_t c = beg; c < end; c += KD_CHUNK) {
+        /* only the lanes within the best distance so far */
+        uint32_t bits[KD_CHUNK];
+        uint32_t m = chunk_mask(t->x, t->y, t->z, c, qv, bits);
+        if (end - c < KD_CHUNK)
+            m &= (1u << (end - c)) - 1u;
+        while (m) {
+            uint32_t j = (uint32_t)__builtin_ctz(m);
+            m &= m - 1u;
+            float d;
+            memcpy(&d, &bits[j], sizeof d);
+            if (d <= *best_d2 && (*best == KD_NONE || d < *best_d2 || c + j < *best) && (!pred || pred(c + j, ctx))) {
+                *best = c + j;
+                *best_d2 = d;
+                KD_QBASE_SETR2(*qv, *best_d2);
+            }
+        }
+    }
+}
+
 uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx, uint32_t hint,
                        float *d2)
 {
@@ -87,42 +114,17 @@ uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred
             kd_qbase qv;
             KD_QBASE_INIT(qv, q, best_d2);
             /* the first leaf: the hint's, reached along its known path, or q's by descent */
-            uint32_t leaf;
-            int have = 1;
             if (best != KD_NONE) {
-                leaf = leaf_of(t, best);
-                have = descend_to(t, leaf, q, &rd, off, prune_bound(best_d2), stack, &sp);
+                uint32_t leaf = leaf_of(t, best);
+                if (descend_to(t, leaf, q, &rd, off, prune_bound(best_d2), stack, &sp))
+                    scan_leaf(t, leaf, pred, ctx, &qv, &best, &best_d2);
             } else {
-                leaf = descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp);
+                scan_leaf(t, descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp), pred, ctx, &qv, &best,
+                          &best_d2);
             }
-            for (;;) {
-                if (have) {
-                    uint32_t beg = t->leaf_start[leaf], end = t->leaf_start[leaf + 1];
-                    for (uint32_t c = beg; c < end; c += KD_CHUNK) {
-                        /* only the lanes within the best distance so far */
-                        uint32_t bits[KD_CHUNK];
-                        uint32_t m = chunk_mask(t->x, t->y, t->z, c, &qv, bits);
-                        if (end - c < KD_CHUNK)
-                            m &= (1u << (end - c)) - 1u;
-                        while (m) {
-                            uint32_t j = (uint32_t)__builtin_ctz(m);
-                            m &= m - 1u;
-                            float d;
-                            memcpy(&d, &bits[j], sizeof d);
-                            if (d <= best_d2 && (best == KD_NONE || d < best_d2 || c + j < best) &&
-                                (!pred || pred(c + j, ctx))) {
-                                best = c + j;
-                                best_d2 = d;
-                                KD_QBASE_SETR2(qv, best_d2);
-                            }
-                        }
-                    }
-                }
-                if (!pop(stack, &sp, prune_bound(best_d2), &node, &rd, off))
-                    break;
-                leaf = descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp);
-                have = 1;
-            }
+            while (pop(stack, &sp, prune_bound(best_d2), &node, &rd, off))
+                scan_leaf(t, descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp), pred, ctx, &qv, &best,
+                          &best_d2);
         }
     }
     *d2 = best == KD_NONE ? 0.0f : best_d2;
