@@ -10,14 +10,16 @@
 # two-thread sections (scaling.sh, threads.sh: SCALING_PHOTONS,
 # SCALING_THREADS, THREADS_PHOTONS, THREADS_PAIRS from experiments/config.mk
 # through make). BENCH_REPS (5) runs per throughput cell, BENCH_HEAVY_REPS (3)
-# per heavy cell.
+# per heavy cell. The peers' raw timings go to results/bench/bench-peers.csv
+# (one row per answer and run: who, order, pe, stored, k, queries, rep,
+# seconds; the neighbour-set checks as rep = check).
 #
 #   run.sh --quick   (`make bench-quick`, about a minute): only the peers
 #                    table at k = 10 and 100, 3 runs a cell, on stdout;
 #                    results/bench/bench.md is left as it is.
 #   run.sh --peers   (`make bench-peers`): only the peers section, k = 10
 #                    and 100, BENCH_REPS runs a cell, to results/bench/peers.md
-#                    (the same section as in bench.md, for a loaded machine
+#                    and its raw timings to peers.csv (the same section as in bench.md, for a loaded machine
 #                    where the whole benchmark does not fit).
 set -eu
 cd "$(dirname "$0")/../.."
@@ -82,7 +84,9 @@ if [ "$PEERS_ONLY" = 1 ]; then
   } > "$tmp/peers-out.md"
   mv "$tmp/peers-out.md" results/bench/peers.md.tmp
   mv results/bench/peers.md.tmp results/bench/peers.md
-  echo "bench: wrote results/bench/peers.md" >&2
+  cp "$tmp/peers.csv" results/bench/peers.csv.tmp
+  mv results/bench/peers.csv.tmp results/bench/peers.csv
+  echo "bench: wrote results/bench/peers.md, results/bench/peers.csv" >&2
   exit 0
 fi
 
@@ -202,4 +206,7 @@ demote() { sed 's/^#/##/' "$1"; }
   cat experiments/bench/kdtree-notes.md
 } > "$OUT.tmp"
 mv "$OUT.tmp" "$OUT"
-echo "bench: wrote $OUT" >&2
+# the peers' raw timings beside it, for what is computed from them (findings.py)
+cp "$tmp/peers.csv" results/bench/bench-peers.csv.tmp
+mv results/bench/bench-peers.csv.tmp results/bench/bench-peers.csv
+echo "bench: wrote $OUT, results/bench/bench-peers.csv" >&2
