@@ -67,6 +67,21 @@ PEERS = [("flann-knn", "FLANN knnSearch"), ("flann-radius", "FLANN radiusSearch"
          ("nanoflann", "nanoflann")]
 
 
+def peer_medians(d):
+    """Per cell of a peers CSV (bench --peers: columns who, order, pe, stored,
+    k, queries, rep, seconds), in the file's order: (order, pe, stored, k,
+    queries, {who: median seconds over the runs}); the build and check rows
+    are not runs."""
+    runs = d[~d["rep"].isin(["build", "check"])]
+    return [(order, pe, stored, k, g["queries"].iloc[0], g.groupby("who")["seconds"].median().to_dict())
+            for (order, pe, stored, k), g in runs.groupby(["order", "pe", "stored", "k"], sort=False)]
+
+
+def strongest_peer(med):
+    """The peer (a PEERS key) with the smallest median time in MED."""
+    return min((w for w, _ in PEERS), key=lambda w: med[w])
+
+
 def peers(csv):
     d = pd.read_csv(csv)
     runs = d[~d["rep"].isin(["build", "check"])].copy()
@@ -76,11 +91,9 @@ def peers(csv):
     print("| P_e | stored | queries | k | ours (Mq/s) | " + " | ".join(f"{n} (Mq/s)" for _, n in PEERS) + " | "
           + " | ".join(f"ours / {n}" for _, n in PEERS) + " | ours / strongest peer |")
     print("|---:|---:|---|---:|---:|" + "---:|" * (2 * len(PEERS)) + "---:|")
-    for (order, pe, stored, k), g in runs.groupby(["order", "pe", "stored", "k"], sort=False):
-        med = g.groupby("who")["seconds"].median()
-        nq = g["queries"].iloc[0]
-        rate = {w: nq / med[w] * 1e-6 for w in med.index}
-        best = max((w for w, _ in PEERS), key=lambda w: rate[w])
+    for order, pe, stored, k, nq, med in peer_medians(d):
+        rate = {w: nq / med[w] * 1e-6 for w in med}
+        best = strongest_peer(med)
         print(f"| {pe} | {stored} | {order} | {k} | {rate['ours']:.3f} | "
               + " | ".join(f"{rate[w]:.3f}" for w, _ in PEERS) + " | "
               + " | ".join(f"{med[w] / med['ours']:.2f}" for w, _ in PEERS) + " | "
