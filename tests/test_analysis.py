@@ -608,13 +608,80 @@ def test_readme_numbers_negative_control():
         assert findings.unbacked_numbers(findings.findings_section(bad), hay) == ["85.7"]
         inner = readme.replace("85.6%", "2.41x")  # 2.41 is only a prefix of 2.4117
         assert findings.unbacked_numbers(findings.findings_section(inner), hay) == ["2.41"]
-        # the command line exits 1 on the bad README
+        # the command line exits 1 on the bad README (markers and an empty
+        # block given, so that the number check is what fails)
         path = os.path.join(d, "README.md")
         with open(path, "w", encoding="utf-8") as f:
-            f.write(bad)
+            f.write(bad.replace("## Next", findings.SUMMARY_BEGIN + "\n" + findings.SUMMARY_END + "\n\n## Next"))
         rc = subprocess.run(["/usr/bin/python3", "-m", "experiments.analysis.findings", "--results", d,
                              "--check-readme", path], cwd=ROOT, capture_output=True, check=False).returncode
         assert rc == 1
+
+
+def test_readme_summary_current(monkeypatch):
+    """README's summary block is the one findings.summary writes from the
+    committed results/ now (as `make findings` runs it, from the top
+    directory): a number left behind by a rerun fails here."""
+    monkeypatch.chdir(ROOT)
+    with open("README.md", encoding="utf-8") as f:
+        text = f.read()
+    at = findings.readme_block(text)
+    assert at is not None, "README.md has no findings summary block"
+    assert text[at[0]:at[1]] == findings.summary(findings.paths("results"))
+
+
+def test_readme_summary_negative_control():
+    """--write-readme fills the block from the files, --check-readme then
+    passes; a number changed by hand in the block, a results file changed
+    under it, and a README without the markers each fail it (exit 1)."""
+    with tempfile.TemporaryDirectory() as d:
+        os.makedirs(os.path.join(d, "table1"))
+        _table([(80, 75, 85), (40, 38, 42), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(
+            os.path.join(d, "table1", "table1.csv"), index=False)
+        path = os.path.join(d, "README.md")
+        base = ("# x\n\n## What it found, in short\n\nIn short:\n\n" + findings.SUMMARY_BEGIN + "\n"
+                + findings.SUMMARY_END + "\n\n## Next\n")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(base)
+
+        def run(*args):
+            return subprocess.run(["/usr/bin/python3", "-m", "experiments.analysis.findings", "--results", d, *args],
+                                  cwd=ROOT, capture_output=True, text=True, check=False)
+        assert run("--check-readme", path).returncode == 1  # the empty block is stale
+        assert run("--write-readme", path).returncode == 0
+        with open(path, encoding="utf-8") as f:
+            good = f.read()
+        assert "falls from 80.0% [75.0, 85.0] at n = 10 to 40.0% [38.0, 42.0] at n = 100" in good
+        assert "Not answered here" in good  # the files this directory lacks say so
+        r = run("--check-readme", path)
+        assert r.returncode == 0, r.stderr
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(good.replace("40.0% [38.0, 42.0]", "41.0% [38.0, 42.0]"))
+        r = run("--check-readme", path)
+        assert r.returncode == 1 and "README.md:8: the findings summary is not the one" in r.stderr, r.stderr
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(good)
+        _table([(80, 75, 85), (45, 43, 47), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(
+            os.path.join(d, "table1", "table1.csv"), index=False)
+        assert run("--check-readme", path).returncode == 1  # the files moved on
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(good.replace(findings.SUMMARY_END, ""))
+        r = run("--check-readme", path)
+        assert r.returncode == 1 and "no summary block" in r.stderr
+
+
+def test_summary_wording_from_tests():
+    """The summary's words follow its tests: the ratio 'falls' over n only
+    when the two intervals are disjoint, and the shape 'reproduces' only when
+    it falls at every photon count."""
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "table1.csv")
+        _table([(80, 75, 85), (40, 38, 42), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(path, index=False)
+        line = findings.summary_table({"table": path})
+        assert "P_e = 50k falls from" in line and "holds at 1 of 2 photon counts" in line
+        _table([(80, 75, 85), (78, 70, 82), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(path, index=False)
+        line = findings.summary_table({"table": path})
+        assert "P_e = 50k goes from" in line and "holds at 0 of 2 photon counts" in line
 
 
 def _table(ratios, diffs):

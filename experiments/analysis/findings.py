@@ -517,6 +517,292 @@ FINDINGS = ((1, finding1), (2, finding2), (3, finding3), (4, finding4), (5, find
             (7, finding7), (8, finding8), (9, finding9), ("P", finding_scale), ("B", finding_beyond), ("R", finding_repro), ("S", finding_rules), ("M", finding_metric))
 
 
+# ---- README's summary: one bullet per finding, every number read here
+#
+# Written into README.md between SUMMARY_BEGIN and SUMMARY_END by
+# `make findings`; --check-readme fails when the block there is not the one
+# these functions write from the files now (a stale number included). Each
+# returns one Markdown bullet or raises Missing.
+
+SUMMARY_BEGIN = "<!-- findings-summary: written by `make findings` from results/ (experiments/analysis/findings.py); " \
+                "edits here are overwritten -->"
+SUMMARY_END = "<!-- /findings-summary -->"
+
+
+def primary_name():
+    """The primary error's name as the text writes it: 'relMSE', 'NMSE'."""
+    return metrics.PRIMARY_DEFINITION.split(" =")[0]
+
+
+def pct_ci(m, lo, hi):
+    """'65.4% [50.8, 84.2]'."""
+    return f"{pct(m)}% [{pct(lo)}, {pct(hi)}]"
+
+
+def k_of(n):
+    """'50k' for 50000, else the number."""
+    n = int(n)
+    return f"{n // 1000}k" if n % 1000 == 0 else str(n)
+
+
+def count_list(items):
+    """'a', 'a and b', 'a, b and c'."""
+    items = list(items)
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def summary_table(d):
+    t = load(d["table"], ["photons", "nn", "method", "paper_ratio_percent", "paired_ratio_percent",
+                          "paired_ratio_ci95_lo", "paired_ratio_ci95_hi", "pairs"], "make reproduce-table")
+    p = prec_rows(t)
+    phs = sorted(p["photons"].unique())
+
+    def iv(r):
+        return (r["paired_ratio_ci95_lo"], r["paired_ratio_ci95_hi"])
+    falls = 0
+    for ph in phs:
+        s = p[p["photons"] == ph].sort_values("nn")
+        falls += stats.rank(iv(s.iloc[-1]), iv(s.iloc[0])) == "lower"
+    s = p[p["photons"] == phs[0]].sort_values("nn")
+    a, b = s.iloc[0], s.iloc[-1]
+    known = p[np.isfinite(p["paper_ratio_percent"])]
+    inside = (known["paired_ratio_ci95_lo"] <= known["paper_ratio_percent"]) & \
+             (known["paper_ratio_percent"] <= known["paired_ratio_ci95_hi"])
+    per = []
+    for ph in phs:
+        m = known["photons"] == ph
+        per.append(f"{int(inside[m].sum())} of {int(m.sum())} cells at P_e = {k_of(ph)}")
+    out = known[~inside]
+    lower = int((out["paired_ratio_ci95_hi"] < out["paper_ratio_percent"]).sum())
+    shape = "reproduces" if falls == len(phs) else f"holds at {falls} of {len(phs)} photon counts"
+    level = "its level too" if inside.all() else ("its level in part" if inside.any() else "its level does not")
+    verb = "falls" if stats.rank(iv(b), iv(a)) == "lower" else "goes"
+    return (f"- **The shape of Table 1 {shape}; {level}.** The paired time ratio precomputed / conventional (the "
+            f"renderer's own timer, {pairs_text(p['pairs'])}, 95% t interval) at P_e = {k_of(phs[0])} {verb} from "
+            f"{pct_ci(a['paired_ratio_percent'], a['paired_ratio_ci95_lo'], a['paired_ratio_ci95_hi'])} at "
+            f"n = {int(a['nn'])} to {pct_ci(b['paired_ratio_percent'], b['paired_ratio_ci95_lo'], b['paired_ratio_ci95_hi'])} "
+            f"at n = {int(b['nn'])} (the paper's {pct(a['paper_ratio_percent'])}% and {pct(b['paper_ratio_percent'])}%); "
+            f"the paper's value lies inside our interval in {', '.join(per)}; outside it, ours is the lower in "
+            f"{lower} of {len(out)} (`results/table1/table1.md`).")
+
+
+def tightest_and_curve(e, est):
+    """(tightest row, (lowest, highest) curve rows where 95% of the resamples
+    reach both fronts, or None) of estimate EST in an equal-error CSV; Missing
+    when the fronts share no error."""
+    g = e[e["estimate"] == est]
+    t = g[g["kind"] == "tightest"]
+    if len(t) == 0:
+        raise Missing(f"the {est} estimate's fronts reach no common {metrics.PRIMARY}")
+    c = g[(g["kind"] == "curve") & (g["defined_fraction"] >= 0.95)]
+    span = (c.loc[c["speedup"].idxmin()], c.loc[c["speedup"].idxmax()]) if len(c) else None
+    return t.iloc[0], span
+
+
+def summary_equal_error(d):
+    e = load(d["equal_error"], EQUAL_ERROR_COLUMNS, "make reproduce-table")
+    t, span = tightest_and_curve(e, "paper")
+    curve = span is not None and \
+        stats.rank((span[0]["lo"], span[0]["hi"]), (span[1]["lo"], span[1]["hi"])) == "lower"
+    head = "**The speed-up at equal error is a curve, not a number**" if curve else \
+        "**The speed-up at equal error, over the targets**"
+    rest = (f"; where 95% of the resamples reach both fronts it runs from {fmt(span[0]['speedup'])} to "
+            f"{fmt(span[1]['speedup'])} with the target" if span is not None else
+            "; at no target do 95% of the resamples reach both fronts")
+    if span is not None and not curve:
+        rest += " (the two ends' 95% intervals overlap, so no trend with the target is claimed)"
+    return (f"- {head}: at the tightest {primary_name()} both fronts reach ({fmt(t['target'])}, paper estimate) it is "
+            f"{ci(t['speedup'], t['lo'], t['hi'])}x{rest} (`results/table1/equal-error.md`).")
+
+
+def summary_cost(d):
+    t = load(d["table"], ["photons", "nn", "method", "relmse_diff_mean", "relmse_diff_lo", "relmse_diff_hi",
+                          "relmse_diff_verdict", "pairs"], "make reproduce-table")
+    cells = load(d["cells"], ["method", "estimate", "photons", "nn", "relmse_ref_mean", "bias_ref"],
+                 "make reproduce-table")
+    p = prec_rows(t)
+    words = {"higher": "higher", "equivalent": f"equivalent within {fmt(100 * stats.EQUIVALENCE_MARGIN)}%",
+             "lower": "lower", "undetermined": "undetermined"}
+    parts = []
+    for v in ("higher", "equivalent", "lower", "undetermined"):
+        g = p[p["relmse_diff_verdict"].fillna("undetermined") == v]
+        if len(g):
+            parts.append(f"{words[v]} in {count_list([cell(r['photons'], r['nn']) for _, r in g.iterrows()])}")
+    worst = ""
+    hi = p[p["relmse_diff_verdict"] == "higher"]
+    if len(hi):
+        r = hi.loc[hi["relmse_diff_mean"].idxmax()]
+        c = cells[(cells["estimate"] == "paper") & (cells["photons"] == r["photons"]) & (cells["nn"] == r["nn"])]
+        q, v = c[c["method"] == "precomputed"], c[c["method"] == "conventional"]
+        share = ""
+        if len(q) and len(v):
+            ex = q["relmse_ref_mean"].iloc[0] - v["relmse_ref_mean"].iloc[0]
+            bx = q["bias_ref"].iloc[0] - v["bias_ref"].iloc[0]
+            if ex > 0:
+                share = f", {pct(100 * bx / ex)}% of it bias"
+        worst = (f"; the largest excess is at {cell(r['photons'], r['nn'])}: "
+                 f"{ci(r['relmse_diff_mean'], r['relmse_diff_lo'], r['relmse_diff_hi'])}{share}")
+    return (f"- **What the speed costs**: per seed, paired ({pairs_text(p['pairs'])} per cell), Holm over the "
+            f"{len(p)} cells, the precomputed method's {primary_name()} (paper estimate) is "
+            + "; ".join(parts) + worst + " (`results/table1/table1.md`).")
+
+
+def summary_resolution(d):
+    files = sorted(glob.glob(os.path.join(d["resolution"], "equal-error-*.csv")),
+                   key=lambda f: int(os.path.basename(f)[len("equal-error-"):-4].split("x")[0]))
+    if len(files) < 2:
+        raise Missing(f"fewer than two `{os.path.relpath(d['resolution'], d['root'])}/equal-error-WxH.csv` "
+                      "(`make resolution`)")
+    est = "corrected"
+    got = []
+    for f in (files[0], files[-1]):
+        t, _ = tightest_and_curve(load(f, EQUAL_ERROR_COLUMNS, "make resolution"), est)
+        got.append((os.path.basename(f)[len("equal-error-"):-4], t))
+    (s0, a), (s1, b) = got
+    small = stats.rank((a["lo"], a["hi"]), (1.0, 1.0))
+    head = {"lower": "Small images: the precomputation stops paying",
+            "higher": "Small images: the precomputation still pays"}.get(small, "Small images: undetermined")
+    said = {"lower": ", slower", "higher": ", faster"}.get(small, " (its interval contains 1)")
+    return (f"- **{head}**: at {s0} and the tightest target both fronts reach ({primary_name()} {fmt(a['target'])}, "
+            f"{est} estimate) the precomputed method's speed-up is {ci(a['speedup'], a['lo'], a['hi'])}x{said}; at "
+            f"{s1} it is {ci(b['speedup'], b['lo'], b['hi'])}x (`results/resolution/resolution.md`).")
+
+
+def summary_bias(d):
+    b = load(d["bias"], ["n", "law_n_over_n_minus_1", "conventional_paper_mean", "conventional_paper_ci95",
+                         "conventional_corrected_mean", "conventional_corrected_ci95", "precomputed_corrected_mean",
+                         "precomputed_corrected_ci95"], "make estimator-bias")
+    at = (b[b["n"] == 10] if (b["n"] == 10).any() else b[b["n"] == b["n"].min()]).iloc[0]
+    k_in = k_all = 0
+    for m in ("conventional", "precomputed"):
+        mean, half = b[f"{m}_corrected_mean"], b[f"{m}_corrected_ci95"]
+        ok = np.isfinite(mean) & np.isfinite(half)
+        k_in += int(((mean[ok] - half[ok] <= 1) & (1 <= mean[ok] + half[ok])).sum())
+        k_all += int(ok.sum())
+    law = at["law_n_over_n_minus_1"]
+    on_law = abs(at["conventional_paper_mean"] - law) <= at["conventional_paper_ci95"]
+    fix = ("removes it for both methods" if k_in == k_all else f"leaves 1 inside {k_in} of {k_all} intervals")
+    return (f"- **The paper's estimator is biased{' by a law' if on_law else ''}**: "
+            f"{fmt(at['conventional_paper_mean'], 5)} ± {fmt(at['conventional_paper_ci95'], 2)} at n = {int(at['n'])} "
+            f"in the analytic scene, where n/(n-1) gives {fmt(law, 5)}, and `--bias-correction` {fix} "
+            f"(1 inside {k_in} of {k_all} intervals; `results/estimator-bias/estimator-bias.md`).")
+
+
+def summary_rules(d):
+    r = load(d["rep"], ["rule", "label", "verdict"], "make rep-study")
+    bad = r[r["verdict"] == "incompatible"]
+    head = ("**Which photons are representatives is not settled by the paper's times**: no representative rule "
+            f"of the {len(r)} is rejected after Holm" if len(bad) == 0 else
+            f"**The paper's times reject {len(bad)} of the {len(r)} representative rules** after Holm "
+            f"({count_list(list(bad['label']))})")
+    return (f"- {head}, with the paper's times taken as one measurement each, as noisy as our own single runs "
+            "(`results/rep-study/rep-study.md`, which also gives the verdicts at half and twice that noise).")
+
+
+def summary_beyond(d):
+    b = load(d["beyond"], ["case", "variant", "estimate", "speedup", "lo", "hi", "seeds", "best", "above_one",
+                           "goal_met"], "make beyond")
+    b = b[(b["estimate"] == "paper") & b["best"].astype(bool)]
+    if len(b) == 0:
+        raise Missing("`beyond.csv` has no best variant (`make beyond`)")
+    margin = stats.EQUIVALENCE_MARGIN
+    met = b[b["goal_met"].astype(bool)]
+    thin = met[met["lo"] < 1.0 + margin]
+    f3 = lambda x: report.fmt_fixed(x, 3)  # noqa: E731
+    hi, lo = b.loc[b["speedup"].idxmax()], b.loc[b["speedup"].idxmin()]
+    return (f"- **Beyond the paper's rule the variants {'hold everywhere' if len(met) == len(b) else 'do not yet hold everywhere'}**: "
+            f"of lazy evaluation, the plane-gated lookup and both together (`make beyond`, {int(b['seeds'].min())} "
+            f"seeds per case, each against the conventional renders of the same seeds), the best variant's interval "
+            f"lies above 1.0 in {len(met)} of {len(b)} cases"
+            + (f", {len(thin)} of them with its lower end within the {fmt(100 * margin)}% margin of 1.0" if len(thin) else "")
+            + f"; the largest is {hi['case']}'s {ci(hi['speedup'], hi['lo'], hi['hi'], f3)}x, the smallest "
+            f"{lo['case']}'s {ci(lo['speedup'], lo['lo'], lo['hi'], f3)}x (`results/beyond/beyond.md`).")
+
+
+def summary_repro(d):
+    r = load(d["repro"], ["summary_ratio_median_abs_delta_pp", "summary_ratio_max_abs_delta_pp",
+                          "summary_ratio_overlap_cells", "summary_cells", "summary_goal_pp", "summary_met"],
+             "make reproducibility")
+    s = r.iloc[0]
+    all_in = int(s["summary_ratio_overlap_cells"]) == int(s["summary_cells"])
+    head = ("A rerun lands inside the first run's intervals, within the goal" if all_in and bool(s["summary_met"])
+            else "A rerun does not land inside the first run's intervals everywhere" if not all_in
+            else "A rerun overlaps the first run, but beyond the goal")
+    return (f"- **{head}**: two interleaved runs of the grid overlap in {int(s['summary_ratio_overlap_cells'])} of "
+            f"{int(s['summary_cells'])} cells, with a median shift of the paired ratios of "
+            f"{report.fmt_fixed(s['summary_ratio_median_abs_delta_pp'], 2)} pp against the goal of "
+            f"{fmt(s['summary_goal_pp'])}; the largest shift is {report.fmt_fixed(s['summary_ratio_max_abs_delta_pp'], 2)} pp "
+            "(`results/reproducibility/reproducibility.md`).")
+
+
+def summary_peers(d):
+    from experiments.bench import report as bench_report
+    f = load(d["peers"], ["who", "order", "pe", "stored", "k", "queries", "rep", "seconds"], "make bench")
+    got = {}
+    for order, pe, _, k, _, med in bench_report.peer_medians(f):
+        if order == "tiles":
+            got[int(k)] = (pe, med)
+    if not got:
+        raise Missing(f"`{d['peers']}` has no tile-order cell (`make bench`)")
+    names = dict(bench_report.PEERS)
+    parts, nano = [], []
+    for k in sorted(got):
+        pe, med = got[k]
+        best = bench_report.strongest_peer(med)
+        parts.append(f"{report.fmt_fixed(med[best] / med['ours'], 2)}x its strongest peer, {names[best]}, at k = {k}")
+        nano.append(f"{report.fmt_fixed(med['nanoflann'] / med['ours'], 2)}x")
+    pe = next(iter(got.values()))[0]
+    return (f"- **The kd-tree's k nearest against the peers**: on the {k_of(pe)} map in tile order ours answers "
+            + "; ".join(parts) + f" (nanoflann: {' and '.join(nano)}), every neighbour set checked equal; these ratios "
+            "move between bench runs on a shared machine (`results/bench/bench.md`).")
+
+
+def summary_scale(d):
+    sc = load(d["scaling"], ["method", "photons_emitted", "photons_stored", "threads", "total_s", "bytes_per_stored"],
+              "make bench-scaling")
+    th = load(d["threads"], ["photons_emitted", "pair", "threads", "trace_s", "build_s", "total_s"],
+              "make bench-threads")
+    c = sc[sc["method"] == "conventional"]
+    if len(c) == 0:
+        raise Missing("`scaling.csv` has no conventional row (`make bench-scaling`)")
+    r = c.loc[c["photons_emitted"].idxmax()]
+    g = th[th["photons_emitted"] == r["photons_emitted"]]
+    two = g[g["threads"] == 2]["total_s"]
+    tr, bu = threads.speedups(g, "trace_s"), threads.speedups(g, "build_s")
+    pairs = (f"{fmt(np.median(two))} s in total (median of {len(two)} pairs; {fmt(r['total_s'])} s in the scaling run)"
+             if len(two) else f"{fmt(r['total_s'])} s in total (the scaling run)")
+    speed = (f"; two threads against one: photon pass {fmt(np.median(tr))}x, build {fmt(np.median(bu))}x"
+             if len(tr) and len(bu) else "")
+    return (f"- **At scale**: {int(r['photons_emitted']) // 1000000}M emitted photons ({int(r['photons_stored']):,} "
+            f"stored), conventional, n = 100, 512x384, {int(r['threads'])} threads: {pairs}, peak memory "
+            f"{fmt(r['bytes_per_stored'])} bytes per stored photon{speed} (`results/bench/threads.md`, "
+            "`results/bench/scaling.md`).")
+
+
+SUMMARY = (summary_table, summary_equal_error, summary_cost, summary_resolution, summary_bias, summary_rules,
+           summary_beyond, summary_repro, summary_peers, summary_scale)
+
+
+def summary(d):
+    """README's summary block: SUMMARY_BEGIN, one bullet per SUMMARY
+    function (a missing input is said as such), SUMMARY_END."""
+    out = [SUMMARY_BEGIN]
+    for fn in SUMMARY:
+        try:
+            out.append(fn(d))
+        except Missing as e:
+            out.append(f"- Not answered here: {e}.")
+    return "\n".join(out + [SUMMARY_END])
+
+
+def readme_block(text):
+    """(start, end) of the summary block in README TEXT, markers included,
+    or None when either marker is missing."""
+    a = text.find(SUMMARY_BEGIN)
+    b = text.find(SUMMARY_END, a + 1) if a >= 0 else -1
+    return (a, b + len(SUMMARY_END)) if a >= 0 and b >= 0 else None
+
+
 def paths(root):
     """The results files the findings read, under ROOT."""
     j = os.path.join
@@ -526,7 +812,7 @@ def paths(root):
             "scenes": j(root, "scenes", "scenes.csv"), "resolution": j(root, "resolution"), "runs": j(root, "table1", "runs.csv"), "stability": j(root, "stability", "stability-extremes.md"),
             "repro": j(root, "reproducibility", "reproducibility.csv"), "rep": j(root, "rep-study", "rep-study-rules.csv"),
             "scaling": j(root, "bench", "scaling.csv"), "threads": j(root, "bench", "threads.csv"),
-            "beyond": j(root, "beyond", "beyond.csv")}
+            "beyond": j(root, "beyond", "beyond.csv"), "peers": j(root, "bench", "bench-peers.csv")}
 
 
 def markdown(d):
@@ -591,8 +877,10 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--results", default="results")
     ap.add_argument("--out", help="write FINDINGS.md here")
-    ap.add_argument("--check-readme", metavar="README", help="exit 1 when a number of README's findings section "
-                    "appears in no results file under --results")
+    ap.add_argument("--write-readme", metavar="README", help="write the summary block of README's findings "
+                    "section from the results files (between its markers)")
+    ap.add_argument("--check-readme", metavar="README", help="exit 1 when README's summary block is not the one the "
+                    "results files give now, or a number of its findings section appears in no results file")
     for k in ("runs", "table", "cells", "equal_error", "bias", "caustic", "scenes", "stability", "repro", "rep", "beyond"):
         ap.add_argument("--" + k.replace("_", "-"), default=None, help=f"override the {k} file")
     args = ap.parse_args(argv)
@@ -607,19 +895,49 @@ def main(argv=None):
         except OSError as e:
             report.die(WHERE, f"{args.out}: {e}")
         print(f"wrote {args.out}")
+    if args.write_readme:
+        try:
+            with open(args.write_readme, encoding="utf-8") as f:
+                text = f.read()
+        except OSError as e:
+            report.die(WHERE, f"{args.write_readme}: {e}")
+        at = readme_block(text)
+        if at is None:
+            report.die(WHERE, f"{args.write_readme}: no summary block (the lines {SUMMARY_BEGIN} and {SUMMARY_END})")
+        new = text[:at[0]] + summary(d) + text[at[1]:]
+        if new != text:
+            try:
+                report.write_atomic(args.write_readme, new)
+            except OSError as e:
+                report.die(WHERE, f"{args.write_readme}: {e}")
+            print(f"wrote the findings summary of {args.write_readme}")
     if args.check_readme:
         try:
             with open(args.check_readme, encoding="utf-8") as f:
-                section = findings_section(f.read())
+                text = f.read()
         except OSError as e:
             report.die(WHERE, f"{args.check_readme}: {e}")
+        section = findings_section(text)
         if not section.strip():
             report.die(WHERE, f"{args.check_readme}: no findings section")
-        bad = unbacked_numbers(section, results_text(args.results))
+        at = readme_block(text)
+        if at is None:
+            report.die(WHERE, f"{args.check_readme}: no summary block (the lines {SUMMARY_BEGIN} and {SUMMARY_END})")
+        if text[at[0]:at[1]] != summary(d):
+            have = text[at[0]:at[1]].splitlines()
+            want = summary(d).splitlines()
+            first = next((i for i in range(max(len(have), len(want)))
+                          if i >= len(have) or i >= len(want) or have[i] != want[i]), 0)
+            line = text[:at[0]].count("\n") + 1 + first
+            report.die(WHERE, f"{args.check_readme}:{line}: the findings summary is not the one the files under "
+                       f"{args.results}/ give now (run `make findings`)")
+        # the block's numbers are written from the files; the check covers the rest
+        bad = unbacked_numbers(section.replace(text[at[0]:at[1]], ""), results_text(args.results))
         if bad:
             report.die(WHERE, f"{args.check_readme}: numbers of the findings in no file under {args.results}/: "
                        + ", ".join(bad))
-        print(f"{args.check_readme}: every number of the findings appears in {args.results}/")
+        print(f"{args.check_readme}: the findings summary is the one {args.results}/ gives, and every number of "
+              f"the findings appears there")
 
 
 if __name__ == "__main__":
