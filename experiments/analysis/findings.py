@@ -745,15 +745,19 @@ def summary_peers(d):
     if not got:
         raise Missing(f"`{d['peers']}` has no tile-order cell (`make bench`)")
     names = dict(bench_report.PEERS)
-    parts, nano = [], []
-    for k in sorted(got):
-        pe, med = got[k]
+    ks = sorted(got)
+    ratio, nano, who = [], [], []
+    for k in ks:
+        med = got[k][1]
         best = bench_report.strongest_peer(med)
-        parts.append(f"{report.fmt_fixed(med[best] / med['ours'], 2)}x its strongest peer, {names[best]}, at k = {k}")
+        ratio.append(f"{report.fmt_fixed(med[best] / med['ours'], 2)}x")
         nano.append(f"{report.fmt_fixed(med['nanoflann'] / med['ours'], 2)}x")
-    pe = next(iter(got.values()))[0]
+        who.append(names[best])
+    peer = f"{who[0]} at every k" if len(set(who)) == 1 else ", ".join(f"{w} at k = {k}" for w, k in zip(who, ks))
+    pe = got[ks[0]][0]
     return (f"- **The kd-tree's k nearest against the peers**: on the {k_of(pe)} map in tile order ours answers "
-            + "; ".join(parts) + f" (nanoflann: {' and '.join(nano)}), every neighbour set checked equal; these ratios "
+            f"{count_list(ratio)} as many queries per second as the strongest peer at k = {count_list([str(k) for k in ks])} "
+            f"({peer}; nanoflann: {count_list(nano)}), every neighbour set checked equal; these ratios "
             "move between bench runs on a shared machine (`results/bench/bench.md`).")
 
 
