@@ -876,6 +876,20 @@ def unbacked_numbers(section, haystack):
     return missing
 
 
+def read_readme(path):
+    """(text, (start, end) of its summary block) of the README at PATH; exits 1
+    when it cannot be read or lacks either marker."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+    except OSError as e:
+        report.die(WHERE, f"{path}: {e}")
+    at = readme_block(text)
+    if at is None:
+        report.die(WHERE, f"{path}: no summary block (the lines {SUMMARY_BEGIN} and {SUMMARY_END})")
+    return text, at
+
+
 def main(argv=None):
     """Entry point; exits 1 when the output cannot be written."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
@@ -900,14 +914,7 @@ def main(argv=None):
             report.die(WHERE, f"{args.out}: {e}")
         print(f"wrote {args.out}")
     if args.write_readme:
-        try:
-            with open(args.write_readme, encoding="utf-8") as f:
-                text = f.read()
-        except OSError as e:
-            report.die(WHERE, f"{args.write_readme}: {e}")
-        at = readme_block(text)
-        if at is None:
-            report.die(WHERE, f"{args.write_readme}: no summary block (the lines {SUMMARY_BEGIN} and {SUMMARY_END})")
+        text, at = read_readme(args.write_readme)
         new = text[:at[0]] + summary(d) + text[at[1]:]
         if new != text:
             try:
@@ -916,17 +923,10 @@ def main(argv=None):
                 report.die(WHERE, f"{args.write_readme}: {e}")
             print(f"wrote the findings summary of {args.write_readme}")
     if args.check_readme:
-        try:
-            with open(args.check_readme, encoding="utf-8") as f:
-                text = f.read()
-        except OSError as e:
-            report.die(WHERE, f"{args.check_readme}: {e}")
+        text, at = read_readme(args.check_readme)
         section = findings_section(text)
         if not section.strip():
             report.die(WHERE, f"{args.check_readme}: no findings section")
-        at = readme_block(text)
-        if at is None:
-            report.die(WHERE, f"{args.check_readme}: no summary block (the lines {SUMMARY_BEGIN} and {SUMMARY_END})")
         if text[at[0]:at[1]] != summary(d):
             have = text[at[0]:at[1]].splitlines()
             want = summary(d).splitlines()
