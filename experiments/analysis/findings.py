@@ -97,6 +97,33 @@ def pairs_text(pairs):
     return f"{lo} pairs" if lo == hi else f"{lo}-{hi} pairs"
 
 
+def excess_and_bias(q, c):
+    """(relMSE excess, bias excess) of the precomputed rows Q of a cells.csv
+    over the conventional rows C of the same cell (the first row of each)."""
+    return (q["relmse_ref_mean"].iloc[0] - c["relmse_ref_mean"].iloc[0],
+            q["bias_ref"].iloc[0] - c["bias_ref"].iloc[0])
+
+
+def corrected_coverage(b):
+    """Of an estimator-bias CSV's corrected intervals (both methods, every
+    n): (how many contain 1, how many there are, [(mean, half-width)])."""
+    k_in = k_all = 0
+    vals = []
+    for m in ("conventional", "precomputed"):
+        mean, half = b[f"{m}_corrected_mean"], b[f"{m}_corrected_ci95"]
+        ok = np.isfinite(mean) & np.isfinite(half)
+        k_in += int(((mean[ok] - half[ok] <= 1) & (1 <= mean[ok] + half[ok])).sum())
+        k_all += int(ok.sum())
+        vals += list(zip(mean[ok], half[ok]))
+    return k_in, k_all, vals
+
+
+def resolution_files(d):
+    """The resolution study's equal-error-WxH.csv files, smallest width first."""
+    return sorted(glob.glob(os.path.join(d["resolution"], "equal-error-*.csv")),
+                  key=lambda f: int(os.path.basename(f)[len("equal-error-"):-4].split("x")[0]))
+
+
 def finding1(d):
     """The table's shape: the paired time ratio over n and P_e, and the paper's values."""
     t = load(d["table"], ["photons", "nn", "method", "paper_ratio_percent", "paired_ratio_percent",
@@ -233,8 +260,7 @@ def finding3(d):
             c = h[h["method"] == "conventional"]
             q = h[h["method"] == "precomputed"]
             if len(c) and len(q) and (est, ph, n) in worse:
-                ex = q["relmse_ref_mean"].iloc[0] - c["relmse_ref_mean"].iloc[0]
-                bx = q["bias_ref"].iloc[0] - c["bias_ref"].iloc[0]
+                ex, bx = excess_and_bias(q, c)
                 if ex > 0:
                     shares.append((est, ph, n, ex, bx, bx / ex))
     if shares:
@@ -279,14 +305,7 @@ def finding4(d):
         lines.append(f"- Conventional, paper estimate, at n = 10: {fmt(r['conventional_paper_mean'], 5)} ± "
                      f"{fmt(r['conventional_paper_ci95'], 2)} ({int(r['conventional_paper_seeds'])} seeds); the law "
                      f"n/(n-1) gives {fmt(r['law_n_over_n_minus_1'], 5)}.")
-    k_in = k_all = 0
-    vals = []
-    for m in ("conventional", "precomputed"):
-        mean, half = b[f"{m}_corrected_mean"], b[f"{m}_corrected_ci95"]
-        ok = np.isfinite(mean) & np.isfinite(half)
-        k_in += int(((mean[ok] - half[ok] <= 1) & (1 <= mean[ok] + half[ok])).sum())
-        k_all += int(ok.sum())
-        vals += list(zip(mean[ok], half[ok]))
+    k_in, k_all, vals = corrected_coverage(b)
     lo = min(vals, key=lambda v: v[0])
     hi = max(vals, key=lambda v: v[0])
     lines.append(f"- With `--bias-correction`, 1 (the exact radiance) lies inside {k_in} of the {k_all} intervals "
@@ -335,8 +354,7 @@ def finding6(d):
 
 def finding7(d):
     """Small images: the speed-up at equal error per output size."""
-    files = sorted(glob.glob(os.path.join(d["resolution"], "equal-error-*.csv")),
-                   key=lambda f: int(os.path.basename(f)[len("equal-error-"):-4].split("x")[0]))
+    files = resolution_files(d)
     if not files:
         raise Missing(f"no `{os.path.relpath(d['resolution'], d['root'])}/equal-error-WxH.csv` (`make resolution`)")
     lines = []
@@ -636,8 +654,7 @@ def summary_cost(d):
         q, v = c[c["method"] == "precomputed"], c[c["method"] == "conventional"]
         share = ""
         if len(q) and len(v):
-            ex = q["relmse_ref_mean"].iloc[0] - v["relmse_ref_mean"].iloc[0]
-            bx = q["bias_ref"].iloc[0] - v["bias_ref"].iloc[0]
+            ex, bx = excess_and_bias(q, v)
             if ex > 0:
                 share = f", {pct(100 * bx / ex)}% of it bias"
         worst = (f"; the largest excess is at {cell(r['photons'], r['nn'])}: "
@@ -648,8 +665,7 @@ def summary_cost(d):
 
 
 def summary_resolution(d):
-    files = sorted(glob.glob(os.path.join(d["resolution"], "equal-error-*.csv")),
-                   key=lambda f: int(os.path.basename(f)[len("equal-error-"):-4].split("x")[0]))
+    files = resolution_files(d)
     if len(files) < 2:
         raise Missing(f"fewer than two `{os.path.relpath(d['resolution'], d['root'])}/equal-error-WxH.csv` "
                       "(`make resolution`)")
@@ -673,12 +689,7 @@ def summary_bias(d):
                          "conventional_corrected_mean", "conventional_corrected_ci95", "precomputed_corrected_mean",
                          "precomputed_corrected_ci95"], "make estimator-bias")
     at = (b[b["n"] == 10] if (b["n"] == 10).any() else b[b["n"] == b["n"].min()]).iloc[0]
-    k_in = k_all = 0
-    for m in ("conventional", "precomputed"):
-        mean, half = b[f"{m}_corrected_mean"], b[f"{m}_corrected_ci95"]
-        ok = np.isfinite(mean) & np.isfinite(half)
-        k_in += int(((mean[ok] - half[ok] <= 1) & (1 <= mean[ok] + half[ok])).sum())
-        k_all += int(ok.sum())
+    k_in, k_all, _ = corrected_coverage(b)
     law = at["law_n_over_n_minus_1"]
     on_law = abs(at["conventional_paper_mean"] - law) <= at["conventional_paper_ci95"]
     fix = ("removes it for both methods" if k_in == k_all else f"leaves 1 inside {k_in} of {k_all} intervals")
