@@ -623,7 +623,7 @@ def summary_equal_error(d):
     curve = span is not None and \
         stats.rank((span[0]["lo"], span[0]["hi"]), (span[1]["lo"], span[1]["hi"])) == "lower"
     head = "**The speed-up at equal error is a curve, not a number**" if curve else \
-        "**The speed-up at equal error, over the targets**"
+        "**The speed-up at equal error**"
     rest = (f"; where 95% of the resamples reach both fronts it runs from {fmt(span[0]['speedup'])} to "
             f"{fmt(span[1]['speedup'])} with the target" if span is not None else
             "; at no target do 95% of the resamples reach both fronts")
