@@ -32,6 +32,7 @@ from experiments.analysis import metrics
 from experiments.analysis import report
 from experiments.analysis import stats
 from experiments.analysis.report import fmt
+from experiments.bench import report as bench_report
 from experiments.bench import threads
 
 WHERE = "findings.py"
@@ -191,20 +192,19 @@ def equal_error_lines(e):
     reach, and the range of the curve where it is defined."""
     lines = []
     for est, g in e.groupby("estimate", sort=False):
-        t = g[g["kind"] == "tightest"]
         c = g[g["kind"] == "curve"]
-        if len(t) == 0:
+        try:
+            t, span = tightest_and_curve(g, est)
+        except Missing:
             lines.append(f"- {est} estimate: the two fronts reach no common {metrics.PRIMARY}: no speed-up at equal "
                          "error is defined.")
             continue
-        t = t.iloc[0]
         s = f"- {est} estimate: the tightest {metrics.PRIMARY} both fronts reach (defined as the larger of the two " \
             f"fronts' smallest errors) is {fmt(t['target'])}; there the speed-up is " \
             f"{ci(t['speedup'], t['lo'], t['hi'])}x, with {pct(100 * t['defined_fraction'])}% of the bootstrap " \
             "resamples reaching it on both fronts"
-        full = c[c["defined_fraction"] >= 0.95]
-        if len(full):
-            a, b = full.loc[full["speedup"].idxmin()], full.loc[full["speedup"].idxmax()]
+        if span is not None:
+            a, b = span
             s += f". Over the {len(c)} targets of the curve ({fmt(c['target'].min())} to {fmt(c['target'].max())}), " \
                  f"where at least 95% of the resamples reach the target the speed-up runs from " \
                  f"{ci(a['speedup'], a['lo'], a['hi'])} (at {fmt(a['target'])}) to " \
@@ -747,7 +747,6 @@ def summary_repro(d):
 
 
 def summary_peers(d):
-    from experiments.bench import report as bench_report
     f = load(d["peers"], ["who", "order", "pe", "stored", "k", "queries", "rep", "seconds"], "make bench")
     got = {}
     for order, pe, _, k, _, med in bench_report.peer_medians(f):
