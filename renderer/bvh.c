@@ -345,11 +345,15 @@ static int linear_intersect(const shape *shapes, size_t n, const shape_ray *r, d
     return best;
 }
 
-int bvh_intersect(const bvh *b, const shape *shapes, const shape_ray *r, double tmax, double *t)
+int bvh_intersect_counted(const bvh *b, const shape *shapes, const shape_ray *r, double tmax, double *t,
+                          uint64_t *tests)
 {
-    assert(b && shapes && r && t);
-    if (!(max_abs3(r->origin) <= b->reach))
+    assert(b && shapes && r && t && tests);
+    if (!(max_abs3(r->origin) <= b->reach)) {
+        *tests += b->nprims;
         return linear_intersect(shapes, b->nprims, r, tmax, t);
+    }
+    uint64_t n = 0;
     prepared p = prepare(r);
     uint32_t stack[BVH_MAX_DEPTH + 1];
     int top = 0;
@@ -368,6 +372,7 @@ int bvh_intersect(const bvh *b, const shape *shapes, const shape_ray *r, double 
                 node = flip ? second : first;
                 continue;
             }
+            n += nd->count;
             for (uint32_t j = 0; j < nd->count; j++) {
                 uint32_t s = b->prims[nd->index + j];
                 /* a hit at best_t itself may win the tie by a lower index */
@@ -386,15 +391,25 @@ int bvh_intersect(const bvh *b, const shape *shapes, const shape_ray *r, double 
     }
     if (best >= 0)
         *t = best_t;
+    *tests += n;
     return best;
 }
 
-int bvh_occluded(const bvh *b, const shape *shapes, const shape_ray *r, double tmax)
+int bvh_intersect(const bvh *b, const shape *shapes, const shape_ray *r, double tmax, double *t)
 {
-    assert(b && shapes && r);
+    uint64_t tests = 0;
+    return bvh_intersect_counted(b, shapes, r, tmax, t, &tests);
+}
+
+int bvh_occluded_counted(const bvh *b, const shape *shapes, const shape_ray *r, double tmax, uint64_t *tests)
+{
+    assert(b && shapes && r && tests);
     double tt;
-    if (!(max_abs3(r->origin) <= b->reach))
+    if (!(max_abs3(r->origin) <= b->reach)) {
+        *tests += b->nprims;
         return linear_intersect(shapes, b->nprims, r, tmax, &tt) >= 0;
+    }
+    uint64_t n = 0;
     prepared p = prepare(r);
     uint32_t stack[BVH_MAX_DEPTH + 1];
     int top = 0;
@@ -408,12 +423,24 @@ int bvh_occluded(const bvh *b, const shape *shapes, const shape_ray *r, double t
                 node = node + 1;
                 continue;
             }
-            for (uint32_t j = 0; j < nd->count; j++)
-                if (shape_intersect(&shapes[b->prims[nd->index + j]], r, 0.0, tmax, &tt))
+            for (uint32_t j = 0; j < nd->count; j++) {
+                n++;
+                if (shape_intersect(&shapes[b->prims[nd->index + j]], r, 0.0, tmax, &tt)) {
+                    *tests += n;
                     return 1;
+                }
+            }
         }
-        if (top == 0)
+        if (top == 0) {
+            *tests += n;
             return 0;
+        }
         node = stack[--top];
     }
+}
+
+int bvh_occluded(const bvh *b, const shape *shapes, const shape_ray *r, double tmax)
+{
+    uint64_t tests = 0;
+    return bvh_occluded_counted(b, shapes, r, tmax, &tests);
 }

@@ -14,6 +14,7 @@
 #define PM_BVH_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "shapes.h"
 
@@ -41,6 +42,10 @@ void bvh_free(bvh *b);
 int bvh_intersect(const bvh *b, const shape *shapes, const shape_ray *r, double tmax, double *t);
 /* 1 if any shape has a hit of r in (0, tmax), else 0. */
 int bvh_occluded(const bvh *b, const shape *shapes, const shape_ray *r, double tmax);
+/* The same, adding the shape tests made (shape_intersect calls) to *tests. */
+int bvh_intersect_counted(const bvh *b, const shape *shapes, const shape_ray *r, double tmax, double *t,
+                          uint64_t *tests);
+int bvh_occluded_counted(const bvh *b, const shape *shapes, const shape_ray *r, double tmax, uint64_t *tests);
 
 /* For tests and reports: the number of shapes, nodes, leaves, the depth
  * (a single leaf has depth 1), and the most shapes in one leaf. */

@@ -32,6 +32,7 @@ config_render config_defaults(void)
     c.rep_eval = CONFIG_REP_EVAL_EAGER;
     c.rep_gate = CONFIG_REP_GATE_NONE;
     c.rep_gate_tau = CONFIG_DEFAULT_REP_GATE_TAU;
+    c.repeats = CONFIG_DEFAULT_REPEATS;
     return c;
 }
 

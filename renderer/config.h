@@ -50,6 +50,8 @@ typedef struct {
     config_rep_eval rep_eval; /* when the representatives' irradiance is computed */
     config_rep_gate rep_gate; /* which representative a lookup accepts */
     double rep_gate_tau;      /* plane gate: the largest distance from the tangent plane, in kNN radii */
+    uint32_t repeats;         /* times the timed pipeline runs, same seed, same bits (repeat.h);
+                                 CONFIG_REPEATS_AUTO: adaptive */
 } config_render;
 
 #define CONFIG_DEFAULT_PHOTONS 100000u
@@ -75,6 +77,20 @@ typedef struct {
 #define CONFIG_DEFAULT_REP_GATE_TAU 0.1
 #define CONFIG_MIN_REP_GATE_TAU 1e-3
 #define CONFIG_MAX_REP_GATE_TAU 1.0
+/* --repeats: 1 is a single render; auto (CONFIG_REPEATS_AUTO) repeats at
+ * least CONFIG_REPEATS_AUTO_MIN times, then until the repeats' totals add
+ * up to CONFIG_REPEATS_AUTO_BUDGET_S seconds, at most
+ * CONFIG_REPEATS_AUTO_MAX times; an explicit count is at most
+ * CONFIG_MAX_REPEATS. */
+#define CONFIG_DEFAULT_REPEATS 1u
+#define CONFIG_REPEATS_AUTO 0u
+#define CONFIG_REPEATS_AUTO_MIN 3u
+#define CONFIG_REPEATS_AUTO_MAX 10u
+#define CONFIG_REPEATS_AUTO_BUDGET_S 2.0
+#define CONFIG_MAX_REPEATS 100u
+/* The same as text, for the usage line (keep them equal to the above). */
+#define CONFIG_REPEATS_AUTO_TEXT "at least 3 times, then until the repeats' totals add up to 2 s, at most 10 times"
+#define CONFIG_DEFAULT_REPEATS_TEXT "1; auto or an integer in [1, 100]"
 /* Eye paths through glass split into reflected and refracted branches; a
  * branch whose throughput falls below this is dropped (bias < this). */
 #define CONFIG_EYE_MIN_THROUGHPUT 1e-4

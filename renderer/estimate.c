@@ -42,6 +42,25 @@ void est_scratch_delete(est_scratch *s, unsigned threads)
     free(s);
 }
 
+void est_scratch_forget(est_scratch *s)
+{
+    kd_query_forget(&s->query);
+    s->last_rep = KD_NONE;
+}
+
+void est_scratch_work(const est_scratch *s, unsigned threads, work_counts *w)
+{
+    for (unsigned t = 0; t < threads; t++) {
+        w->knn_queries += s[t].query.queries;
+        w->map_nodes += s[t].query.work.nodes;
+        w->map_points += s[t].query.work.points;
+        w->rep_lookups += s[t].rep_lookups;
+        w->rep_nodes += s[t].rep_work.nodes;
+        w->rep_points += s[t].rep_work.points;
+        w->rep_evaluations += s[t].rep_evaluations;
+    }
+}
+
 est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius, int corrected)
 {
     double r = max_radius / m->scale;

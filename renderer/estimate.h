@@ -24,6 +24,7 @@
 #include "kdtree.h"
 #include "photons.h"
 #include "vec.h"
+#include "work.h"
 
 #define EST_MIN_RADIUS_FRAC 1e-3
 
@@ -52,8 +53,12 @@ typedef struct {
     uint32_t cap;
     uint32_t *idx;
     float *d2;
-    kd_query query;
+    kd_query query;    /* its queries and work: the photon map's (work.h's knn_queries, map_nodes, map_points) */
     uint32_t last_rep; /* reps_lookup's last answer (a tree index), tried first by its next one */
+    /* the representatives' lookups (reps.c): their count, nodes and points, and the
+     * representatives whose irradiance this thread computed */
+    uint64_t rep_lookups, rep_evaluations;
+    kd_work rep_work;
     char pad[64];      /* threads' scratch structs share no cache line */
 } est_scratch;
 
@@ -62,6 +67,15 @@ typedef struct {
 est_scratch *est_scratch_new(unsigned threads, uint32_t nn);
 /* Frees what est_scratch_new returned; NULL is fine. */
 void est_scratch_delete(est_scratch *s, unsigned threads);
+/* Drops what s carries from one query to the next (the k-nearest starting
+ * radius, the lookup's last answer), so that the work of the queries that
+ * follow does not depend on those before (each tile and chunk starts so).
+ * Results never depend on it. Never fails. */
+void est_scratch_forget(est_scratch *s);
+/* Adds the work counted by the `threads` scratch structs s to w: the
+ * photon map's queries, nodes and points, the representatives' lookups,
+ * nodes and points, and their evaluations. Never fails. */
+void est_scratch_work(const est_scratch *s, unsigned threads, work_counts *w);
 
 /* Conventional irradiance (W per unit^2 of the scene) at world point x for
  * unit normal n (facing the side seen). *found receives how many photons

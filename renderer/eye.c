@@ -17,8 +17,9 @@
 
 typedef struct {
     uint64_t samples, depth_hits, empty, underflow, flushed, fallbacks;
+    uint64_t rays, shape_tests; /* work.h */
     double peak; /* the largest channel value of any pixel, before the conversion to float */
-    char pad[128 - 6 * sizeof(uint64_t) - sizeof(double)]; /* one per thread: no two threads' counters share a cache line */
+    char pad[128 - 8 * sizeof(uint64_t) - sizeof(double)]; /* one per thread: no two threads' counters share a cache line */
 } eye_counts;
 
 typedef struct {
@@ -37,7 +38,7 @@ typedef struct {
 } eye_ctx;
 
 /* Direct light at the hit h by one shadow ray. */
-static vec3 direct_light(const eye_ctx *c, const scene_hit *h)
+static vec3 direct_light(const eye_ctx *c, unsigned thread, const scene_hit *h)
 {
     vec3 to = vec_sub(c->sc->light.position, h->p);
     double d2 = vec_len2(to);
@@ -49,7 +50,8 @@ static vec3 direct_light(const eye_ctx *c, const scene_hit *h)
     if (cosv <= 0.0)
         return vec_make(0, 0, 0);
     shape_ray sr = scene_spawn(h, w, 1);
-    if (scene_occluded(c->sc, &sr, d - h->eps))
+    c->counts[thread].rays++;
+    if (scene_occluded_counted(c->sc, &sr, d - h->eps, &c->counts[thread].shape_tests))
         return vec_make(0, 0, 0);
     return vec_scale(c->light_intensity, cosv / d2);
 }
@@ -58,7 +60,8 @@ static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t de
 {
     const scene *sc = c->sc;
     scene_hit h;
-    if (!scene_intersect(sc, &r, INFINITY, &h))
+    c->counts[thread].rays++;
+    if (!scene_intersect_counted(sc, &r, INFINITY, &h, &c->counts[thread].shape_tests))
         return vec_make(0, 0, 0);
     const material *m = &sc->materials[sc->shapes[h.shape].material];
     if (m->kind == MATERIAL_LAMBERT) {
@@ -74,7 +77,7 @@ static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t de
             c->counts[thread].empty += found == 0;
         }
         if (c->cfg->direct == CONFIG_DIRECT_SHADOW_RAYS)
-            e = vec_add(e, direct_light(c, &h));
+            e = vec_add(e, direct_light(c, thread, &h));
         return vec_mul(vec_scale(m->color, 1.0 / VEC_PI), e);
     }
     if (depth >= c->cfg->eye_depth) {
@@ -116,6 +119,8 @@ static void eye_tile(uint64_t tile, unsigned thread, void *arg)
     uint32_t y1 = y0 + EYE_TILE < cfg->height ? y0 + EYE_TILE : cfg->height;
     uint32_t S = cfg->subpixels;
     double inv = 1.0 / ((double)S * S);
+    /* a tile's queries cost the same on any thread after any tile */
+    est_scratch_forget(&c->scratch[thread]);
     for (uint32_t y = y0; y < y1; y++) {
         for (uint32_t x = x0; x < x1; x++) {
             vec3 sum = vec_make(0, 0, 0);
@@ -180,7 +185,10 @@ pm_status eye_render(const eye_input *in, unsigned threads, int show_progress, i
             st->flushed_values += c.counts[t].flushed;
             st->peak_radiance = fmax(st->peak_radiance, c.counts[t].peak);
             st->rep_fallbacks += c.counts[t].fallbacks;
+            st->work.render.rays += c.counts[t].rays;
+            st->work.render.shape_tests += c.counts[t].shape_tests;
         }
+        est_scratch_work(c.scratch, threads, &st->work.render);
         st->nonfinite_pixels = image_count_nonfinite(out);
         image_mean(out, st->mean_radiance);
     }

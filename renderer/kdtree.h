@@ -85,6 +85,15 @@ static inline void kd_point(const kd_tree *t, uint32_t i, float out[3])
  * x86-64 (portable C elsewhere); KD_SIMD_AVX2 needs the CPU to have it. */
 typedef enum { KD_SIMD_BASE = 1, KD_SIMD_AVX2 = 2 } kd_simd;
 
+/* The work of searches, counted exactly (work.h): nodes visited (each
+ * inner node whose split was compared with the query point, plus each
+ * point range scanned: a leaf, or a subtree the k-nearest search scans
+ * whole) and points examined (points whose distance to the query was
+ * computed, padding not counted). */
+typedef struct {
+    uint64_t nodes, points;
+} kd_work;
+
 /* One thread's k-nearest query state: the squared radius that held the
  * last query's k nearest (a starting guess for the next search; it changes
  * the cost of a query, never its result) and the candidate buffer. Not
@@ -97,6 +106,7 @@ typedef struct {
     kd_simd simd;      /* leaf scan in use */
     uint64_t queries;  /* kd_query_knn calls that searched the tree */
     uint64_t passes;   /* tree traversals they made (>= queries; more when a guess was too small) */
+    kd_work work;      /* the nodes and points those traversals visited */
 } kd_query;
 
 /* Prepares s for queries of up to k_max neighbours (larger k grows the
@@ -106,6 +116,10 @@ typedef struct {
 int kd_query_init(kd_query *s, uint32_t k_max);
 /* Frees the buffer; the struct is left empty. */
 void kd_query_free(kd_query *s);
+/* Drops s's starting radius, so that the next query's cost does not depend
+ * on the queries before it (a tile's first query; the result never
+ * depends on it). Never fails. */
+void kd_query_forget(kd_query *s);
 /* Restricts s's leaf scans to `want` or the best set below it that the CPU
  * has; returns the set now in use (the tests run every path with it). */
 kd_simd kd_query_simd(kd_query *s, kd_simd want);
@@ -130,5 +144,9 @@ typedef int (*kd_pred)(uint32_t i, const void *ctx);
  * answer, for coherent queries). */
 uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx, uint32_t hint,
                        float *d2);
+/* kd_nearest_if that adds the nodes and points it visited to *w (the
+ * hint's distance counts as one point). */
+uint32_t kd_nearest_if_counted(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx,
+                               uint32_t hint, float *d2, kd_work *w);
 
 #endif

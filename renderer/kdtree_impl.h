@@ -102,6 +102,13 @@ static inline uint32_t descend(const kd_tree *t, uint32_t node, const float q[3]
     return node - first_leaf;
 }
 
+/* The inner nodes descend compares on its way from node to a leaf: the
+ * leaves all lie at depth log2(nleaves). */
+static inline uint32_t descent_length(const kd_tree *t, uint32_t node)
+{
+    return (uint32_t)__builtin_ctz(t->nleaves) - (31u - (uint32_t)__builtin_clz(node + 1));
+}
+
 /* Pops the next deferred cell within `bound` into node/rd/off; returns 0
  * when none is left. */
 static inline int pop(kd_frame *stack, int *sp, float bound, uint32_t *node, float *rd, float off[3])
@@ -224,15 +231,18 @@ kd_simd kd_simd_best(void);
 /* kdtree_simd.c: one gathering pass (kdtree_gather.inc says what it does)
  * with the base or the AVX2 leaf scan, appending (the plain ones) or
  * keeping the k nearest sorted (the _small ones, for k <= KD_SMALL_K).
- * Each returns the count of keys in buf and lowers *r2p to the radius it
- * ended with; cap >= k + 2 KD_CHUNK. */
-uint32_t kd_gather_base(const kd_tree *t, const float q[3], uint32_t k, uint64_t *buf, uint32_t cap, float *r2p);
+ * Each returns the count of keys in buf, lowers *r2p to the radius it
+ * ended with and adds the nodes and points it visited to *w; cap >= k +
+ * 2 KD_CHUNK. */
+uint32_t kd_gather_base(const kd_tree *t, const float q[3], uint32_t k, uint64_t *buf, uint32_t cap, float *r2p,
+                        kd_work *w);
 uint32_t kd_gather_small_base(const kd_tree *t, const float q[3], uint32_t k, uint64_t *buf, uint32_t cap,
-                              float *r2p);
+                              float *r2p, kd_work *w);
 #if KD_HAVE_AVX2
-uint32_t kd_gather_avx2(const kd_tree *t, const float q[3], uint32_t k, uint64_t *buf, uint32_t cap, float *r2p);
+uint32_t kd_gather_avx2(const kd_tree *t, const float q[3], uint32_t k, uint64_t *buf, uint32_t cap, float *r2p,
+                        kd_work *w);
 uint32_t kd_gather_small_avx2(const kd_tree *t, const float q[3], uint32_t k, uint64_t *buf, uint32_t cap,
-                              float *r2p);
+                              float *r2p, kd_work *w);
 #endif
 
 /* kdtree_select.c: reorders the n distinct keys a[0..n) so that a[k-1] is

@@ -31,8 +31,9 @@ static inline uint64_t heap_key(const uint32_t *hi, const float *hd, uint32_t j)
 }
 
 static uint32_t knn_heap(const kd_tree *t, const float q[3], uint32_t k, float max_d2, uint32_t *hi, float *hd,
-                         float *r2)
+                         float *r2, kd_work *w)
 {
+    uint64_t nodes = 0, points = 0;
     uint32_t n = 0;
     float worst = max_d2, bound = prune_bound(worst);
     kd_frame stack[KD_STACK];
@@ -42,8 +43,10 @@ static uint32_t knn_heap(const kd_tree *t, const float q[3], uint32_t k, float m
     uint32_t node = 0;
     if (rd <= bound) {
         do {
+            nodes += descent_length(t, node) + 1;
             uint32_t leaf = descend(t, node, q, rd, off, bound, stack, &sp);
             uint32_t beg = t->leaf_start[leaf], end = t->leaf_start[leaf + 1];
+            points += end - beg;
             for (uint32_t c = beg; c < end; c += KD_CHUNK) {
                 float dd[KD_CHUNK];
                 chunk_d2(t, c, q[0], q[1], q[2], dd);
@@ -90,6 +93,8 @@ static uint32_t knn_heap(const kd_tree *t, const float q[3], uint32_t k, float m
         } while (pop(stack, &sp, bound, &node, &rd, off));
     }
     *r2 = n > 0 ? hd[0] : 0.0f;
+    w->nodes += nodes;
+    w->points += points;
     return n;
 }
 
@@ -139,10 +144,12 @@ static uint32_t knn_run(const kd_tree *t, kd_query *s, const float q[3], uint32_
         float used = r;
 #if KD_HAVE_AVX2
         if (s->simd == KD_SIMD_AVX2)
-            n = small ? kd_gather_small_avx2(t, q, k, buf, s->cap, &r) : kd_gather_avx2(t, q, k, buf, s->cap, &r);
+            n = small ? kd_gather_small_avx2(t, q, k, buf, s->cap, &r, &s->work)
+                      : kd_gather_avx2(t, q, k, buf, s->cap, &r, &s->work);
         else
 #endif
-            n = small ? kd_gather_small_base(t, q, k, buf, s->cap, &r) : kd_gather_base(t, q, k, buf, s->cap, &r);
+            n = small ? kd_gather_small_base(t, q, k, buf, s->cap, &r, &s->work)
+                      : kd_gather_base(t, q, k, buf, s->cap, &r, &s->work);
         s->passes++;
         if (n >= k || !(used < max_d2))
             break;
@@ -181,6 +188,12 @@ void kd_query_free(kd_query *s)
     memset(s, 0, sizeof *s);
 }
 
+void kd_query_forget(kd_query *s)
+{
+    s->hint_k = 0;
+    s->hint_r2 = 0.0f;
+}
+
 kd_simd kd_query_simd(kd_query *s, kd_simd want)
 {
     kd_simd best = kd_simd_best();
@@ -195,12 +208,16 @@ uint32_t kd_query_knn(const kd_tree *t, kd_query *s, const float q[3], uint32_t 
     if (k == 0 || t->n == 0 || !(max_d2 >= 0.0f))
         return 0;
     k = k < t->n ? k : t->n;
-    if (k > KD_MAX_BUF_K)
-        return knn_heap(t, q, k, max_d2, idx, d2, r2);
+    if (k > KD_MAX_BUF_K) {
+        s->queries++;
+        return knn_heap(t, q, k, max_d2, idx, d2, r2, &s->work);
+    }
     if (s->cap < buf_entries(k)) {
         uint64_t *b = realloc(s->buf, sizeof(uint64_t) * buf_keys(buf_entries(k)));
-        if (!b)
-            return knn_heap(t, q, k, max_d2, idx, d2, r2);
+        if (!b) {
+            s->queries++;
+            return knn_heap(t, q, k, max_d2, idx, d2, r2, &s->work);
+        }
         s->buf = b;
         s->cap = buf_entries(k);
     }
@@ -213,8 +230,9 @@ uint32_t kd_knn(const kd_tree *t, const float q[3], uint32_t k, float max_d2, ui
     if (k == 0 || t->n == 0 || !(max_d2 >= 0.0f))
         return 0;
     k = k < t->n ? k : t->n;
+    kd_work unused = {0, 0};
     if (k > KD_LOCAL_K)
-        return knn_heap(t, q, k, max_d2, idx, d2, r2);
+        return knn_heap(t, q, k, max_d2, idx, d2, r2, &unused);
     uint64_t local[3 * (2 * KD_LOCAL_K + 5 * KD_CHUNK)];
     kd_query s;
     memset(&s, 0, sizeof s);

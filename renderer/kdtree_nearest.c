@@ -29,11 +29,12 @@ static uint32_t leaf_of(const kd_tree *t, uint32_t i)
  * `bound`, and *rd and off become the leaf's cell's. Returns 1, or 0 when
  * the path leaves `bound` (then what is still to search is on the stack). */
 static int descend_to(const kd_tree *t, uint32_t leaf, const float q[3], float *rd, float off[3], float bound,
-                      kd_frame *stack, int *sp)
+                      kd_frame *stack, int *sp, uint64_t *nodes)
 {
     assert((t->nleaves & (t->nleaves - 1)) == 0 && leaf < t->nleaves);
     uint32_t depth = (uint32_t)__builtin_ctz(t->nleaves), node = 0;
     for (uint32_t level = depth; level-- > 0;) {
+        ++*nodes;
         uint32_t right = (leaf >> level) & 1u, path = 2 * node + 1 + right;
         int a = t->axis[node];
         float diff = q[a] - t->split[node];
@@ -91,14 +92,16 @@ static inline void scan_leaf(const kd_tree *t, uint32_t leaf, kd_pred pred, cons
     }
 }
 
-uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx, uint32_t hint,
-                       float *d2)
+uint32_t kd_nearest_if_counted(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx,
+                               uint32_t hint, float *d2, kd_work *w)
 {
     uint32_t best = KD_NONE;
     float best_d2 = max_d2;
+    uint64_t nodes = 0, points = 0;
     if (hint < t->n) {
         float dx = t->x[hint] - q[0], dy = t->y[hint] - q[1], dz = t->z[hint] - q[2];
         float d = dx * dx + dy * dy + dz * dz; /* as chunk_d2 computes it */
+        points++;
         if (d <= max_d2 && (!pred || pred(hint, ctx))) {
             best = hint;
             best_d2 = d;
@@ -114,19 +117,38 @@ uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred
             kd_qbase qv;
             KD_QBASE_INIT(qv, q, best_d2);
             /* the first leaf: the hint's, reached along its known path, or q's by descent */
+            uint32_t leaf = KD_NONE;
             if (best != KD_NONE) {
-                uint32_t leaf = leaf_of(t, best);
-                if (descend_to(t, leaf, q, &rd, off, prune_bound(best_d2), stack, &sp))
-                    scan_leaf(t, leaf, pred, ctx, &qv, &best, &best_d2);
+                uint32_t hl = leaf_of(t, best);
+                if (descend_to(t, hl, q, &rd, off, prune_bound(best_d2), stack, &sp, &nodes))
+                    leaf = hl;
             } else {
-                scan_leaf(t, descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp), pred, ctx, &qv, &best,
-                          &best_d2);
+                nodes += descent_length(t, node);
+                leaf = descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp);
             }
-            while (pop(stack, &sp, prune_bound(best_d2), &node, &rd, off))
-                scan_leaf(t, descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp), pred, ctx, &qv, &best,
-                          &best_d2);
+            for (;;) {
+                if (leaf != KD_NONE) {
+                    nodes++;
+                    points += t->leaf_start[leaf + 1] - t->leaf_start[leaf];
+                    scan_leaf(t, leaf, pred, ctx, &qv, &best, &best_d2);
+                }
+                if (!pop(stack, &sp, prune_bound(best_d2), &node, &rd, off))
+                    break;
+                nodes += descent_length(t, node);
+                leaf = descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp);
+            }
         }
     }
     *d2 = best == KD_NONE ? 0.0f : best_d2;
+    if (w) {
+        w->nodes += nodes;
+        w->points += points;
+    }
     return best;
+}
+
+uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx, uint32_t hint,
+                       float *d2)
+{
+    return kd_nearest_if_counted(t, q, max_d2, pred, ctx, hint, d2, NULL);
 }

@@ -25,7 +25,9 @@
 #include "parallel.h"
 #include "pbrt.h"
 #include "povray.h"
+#include "provenance.h"
 #include "render.h"
+#include "repeat.h"
 #include "scene.h"
 #include "stats.h"
 #include "status.h"
@@ -39,6 +41,7 @@ typedef struct {
     double exposure;
     int quiet;
     int no_output; /* --no-output: a render for its times only, no file */
+    const char *repeats; /* --repeats: "auto" or a count (repeat_parse); NULL: the default */
 } render_args;
 
 static const char *const method_names[] = {"conventional", "precomputed", NULL};
@@ -137,6 +140,10 @@ static const cli_option render_options[] = {
              "otherwise exit 2, no image)"},
     {.name = "--quiet", .kind = CLI_FLAG, .offset = RO(quiet), .flag_value = 1,
      .help = "no progress bar and no summary line"},
+    {.name = "--repeats", .kind = CLI_STRING, .metavar = "R|auto", .offset = RO(repeats),
+     .help = "run the timed pipeline R times (same seed, the same image): the stats give each phase's minimum, "
+             "median and every repeat's time, the first as the cold time; auto: " CONFIG_REPEATS_AUTO_TEXT,
+     .default_text = CONFIG_DEFAULT_REPEATS_TEXT},
     {.name = "--no-output", .kind = CLI_FLAG, .offset = RO(no_output), .flag_value = 1,
      .help = "write no file, only the summary line's times (benchmarks); without it a render needs -o, --png, "
              "--stats or --dump-reps"},
@@ -392,6 +399,9 @@ static pm_status cmd_render(int argc, char **argv)
     const char *names[4] = {"-o", "--png", "--stats", "--dump-reps"};
     const char *exts[4] = {".exr", ".png", ".json", ".csv"};
     const char *formats[4] = {"OpenEXR", "PNG", "JSON", "CSV"};
+    char err[1024];
+    if (a.repeats && repeat_parse(a.repeats, &a.cfg.repeats, err, sizeof err))
+        return cli_error(&render_command, "%s", err);
     const char *why = config_check(cfg);
     if (why)
         return cli_error(&render_command, "%s", why);
@@ -406,7 +416,6 @@ static pm_status cmd_render(int argc, char **argv)
         return rc;
     }
     warn_camera(a.scene, sc);
-    char err[1024];
     if ((rc = render_prepare(sc, cfg, err, sizeof err))) {
         fprintf(stderr, "photonmap: %s: %s\n", a.scene, err);
         scene_free(sc);
@@ -423,8 +432,10 @@ static pm_status cmd_render(int argc, char **argv)
     }
     unsigned threads = cfg->threads ? cfg->threads : parallel_cores();
     int show = !a.quiet && isatty(STDERR_FILENO);
+    provenance_info prov;
+    provenance_collect(&prov); /* the load average before the render */
     render_result res;
-    if ((rc = render_run(sc, cfg, threads, show, &res, err, sizeof err)) != PM_OK) {
+    if ((rc = repeat_render(sc, cfg, threads, show, &res, err, sizeof err)) != PM_OK) {
         if (rc == PM_ERR_INPUT)
             fprintf(stderr, "%s: %s\n", a.scene, err);
         else
@@ -432,6 +443,7 @@ static pm_status cmd_render(int argc, char **argv)
         scene_free(sc);
         return rc;
     }
+    res.st.provenance = prov;
     warn_run(a.scene, cfg, &res.st);
     /* the representatives first: when they cannot be written, nothing else is */
     if (cfg->dump_reps && (rc = write_reps(cfg->dump_reps, &res))) {

@@ -48,6 +48,7 @@ typedef struct {
     double *pos;
     photons_record *ph;
     uint64_t truncated, escaped;
+    uint64_t rays, shape_tests; /* rays cast and their shape tests (work.h) */
     int failed;
 } photons_chunk;
 
@@ -127,7 +128,8 @@ static int trace_one(const trace_ctx *tc, uint64_t index, photons_chunk *c)
             return 0;
         }
         scene_hit h;
-        if (!scene_intersect(sc, &r, INFINITY, &h)) {
+        c->rays++;
+        if (!scene_intersect_counted(sc, &r, INFINITY, &h, &c->shape_tests)) {
             c->escaped++;
             return 0;
         }
@@ -243,6 +245,8 @@ pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threa
         total += chunks[i].count;
         out->truncated += chunks[i].truncated;
         out->escaped += chunks[i].escaped;
+        out->rays += chunks[i].rays;
+        out->shape_tests += chunks[i].shape_tests;
     }
     if (!failed) {
         out->pos = mem_alloc((total ? total : 1) * 3 * sizeof(double));

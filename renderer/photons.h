@@ -54,6 +54,7 @@ typedef struct {
     photons_record *ph;  /* count */
     vec3 unit;           /* the emitted photon's power: records' power is relative to it */
     uint64_t truncated, escaped;
+    uint64_t rays, shape_tests; /* rays the photon paths cast, and their ray-shape tests */
 } photons_list;
 
 typedef struct {

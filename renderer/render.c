@@ -60,6 +60,10 @@ static pm_status step_trace(render_state *rs)
     rs->st->photons_stored = rs->list.count;
     rs->st->photon_paths_truncated = rs->list.truncated;
     rs->st->photons_escaped = rs->list.escaped;
+    rs->st->work.trace.traced_photons = cfg->photons;
+    rs->st->work.trace.stored_photons = rs->list.count;
+    rs->st->work.trace.rays = rs->list.rays;
+    rs->st->work.trace.shape_tests = rs->list.shape_tests;
     return PM_OK;
 }
 
@@ -76,6 +80,7 @@ static pm_status step_build(render_state *rs)
     if (rc)
         return rc;
     rs->st->build = seconds_since(t0);
+    rs->st->work.build.tree_points = rs->map.count;
     /* the representatives' sites count with the map, whose build finds them */
     rs->st->bytes_photon_map = photons_map_bytes(&rs->map) + reps_sites_bytes(&rs->reps);
     rs->max_radius = render_max_radius(rs->sc, rs->cfg, &rs->map);
@@ -135,6 +140,7 @@ static pm_status step_precompute(render_state *rs)
     progress_end(&prog);
     rs->st->precompute = seconds_since(t0);
     rs->st->representatives = rs->reps.count;
+    rs->st->work.precompute = rs->reps.work;
     rs->st->bytes_representatives = reps_bytes(&rs->reps, &rs->map);
     return PM_OK;
 }

@@ -174,6 +174,8 @@ static void evaluate_chunk(uint64_t chunk, unsigned thread, void *arg)
     const reps_set *r = c->r;
     uint32_t lo = (uint32_t)chunk * REPS_CHUNK;
     uint32_t hi = lo + REPS_CHUNK < r->count ? lo + REPS_CHUNK : r->count;
+    /* a chunk's queries cost the same on any thread after any chunk */
+    est_scratch_forget(&c->scratch[thread]);
     for (uint32_t i = lo; i < hi; i++) {
         const reps_site *rp = &r->site[c->order ? c->order[i] : i];
         reps_value *v = &r->value[i];
@@ -184,6 +186,7 @@ static void evaluate_chunk(uint64_t chunk, unsigned thread, void *arg)
         v->normal[2] = (float)n.z;
         if (r->eval == CONFIG_REP_EVAL_EAGER) {
             evaluate_value(r, c->m, rp, v, &c->scratch[thread]);
+            c->scratch[thread].rep_evaluations++;
         } else {
             v->irradiance[0] = v->irradiance[1] = v->irradiance[2] = 0.0f;
             v->radius2 = 0.0f;
@@ -248,6 +251,11 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
         evaluate_ctx c = {r, m, order, scratch, prog};
         parallel_for(threads, (count + REPS_CHUNK - 1) / REPS_CHUNK, evaluate_chunk, &c);
     }
+    if (rc == 0) {
+        memset(&r->work, 0, sizeof r->work);
+        r->work.tree_points = r->tree == CONFIG_REP_TREE_SEPARATE ? count : 0;
+        est_scratch_work(scratch, nt, &r->work);
+    }
     if (rc == 0 && r->eval == CONFIG_REP_EVAL_LAZY) {
         r->site_of = order; /* the lookup finds a value's site by it */
         order = NULL;
@@ -283,27 +291,38 @@ static int pred_shared(uint32_t i, const void *arg)
     return j != KD_NONE && agrees(&c->r->value[j], c);
 }
 
-/* Value i of r, its irradiance computed: eager, as it is; lazy, computed
- * by the first thread that claims it (with s's buffers) while any other
- * waits for it to be published. */
-static const reps_value *ready_value(const reps_set *r, const photons_map *m, uint32_t i, est_scratch *s)
+/* Lazy: computes value i's irradiance with s's buffers, once, or waits
+ * while another thread does; apart from the lookup's fast path. */
+static __attribute__((noinline)) void lazy_evaluate(const reps_set *r, const photons_map *m, uint32_t i,
+                                                    est_scratch *s)
 {
-    if (!r->state)
-        return &r->value[i];
     atomic_uchar *st = &r->state[i];
-    if (atomic_load_explicit(st, memory_order_acquire) == REPS_READY)
-        return &r->value[i];
     unsigned char expect = REPS_PENDING;
     if (atomic_compare_exchange_strong_explicit(st, &expect, REPS_CLAIMED, memory_order_acq_rel,
                                                 memory_order_acquire)) {
         const reps_site *rp = &r->site[r->site_of ? r->site_of[i] : i];
+        /* the thread's own query stream keeps its starting radius */
+        uint32_t hint_k = s->query.hint_k;
+        float hint_r2 = s->query.hint_r2;
         evaluate_value(r, m, rp, &r->value[i], s);
+        s->query.hint_k = hint_k;
+        s->query.hint_r2 = hint_r2;
+        s->rep_evaluations++;
         atomic_store_explicit(st, REPS_READY, memory_order_release);
     } else {
         /* another thread computes it: one kNN query, microseconds */
         while (atomic_load_explicit(st, memory_order_acquire) != REPS_READY)
             sched_yield();
     }
+}
+
+/* Value i of r, its irradiance computed: eager, as it is; lazy, computed
+ * by the first thread that claims it (with s's buffers) while any other
+ * waits for it to be published. */
+static const reps_value *ready_value(const reps_set *r, const photons_map *m, uint32_t i, est_scratch *s)
+{
+    if (r->state && atomic_load_explicit(&r->state[i], memory_order_acquire) != REPS_READY)
+        lazy_evaluate(r, m, i, s);
     return &r->value[i];
 }
 
@@ -317,7 +336,14 @@ static const reps_value *gate_accept(const reps_set *r, const photons_map *m, co
 {
     uint32_t idx[REPS_GATE_CANDIDATES];
     float d2[REPS_GATE_CANDIDATES], top;
+    /* the representatives' tree's work is the lookup's, not the photon map's */
+    uint64_t queries = s->query.queries;
+    kd_work before = s->query.work;
     uint32_t k = kd_query_knn(&r->own, &s->query, q, REPS_GATE_CANDIDATES, max_r2, idx, d2, &top);
+    s->rep_work.nodes += s->query.work.nodes - before.nodes;
+    s->rep_work.points += s->query.work.points - before.points;
+    s->query.work = before;
+    s->query.queries = queries;
     /* kd_query_knn answers in no particular order: sort by (d2, index) */
     for (uint32_t a = 1; a < k; a++) {
         for (uint32_t b = a; b > 0 && (d2[b] < d2[b - 1] || (d2[b] == d2[b - 1] && idx[b] < idx[b - 1])); b--) {
@@ -357,6 +383,7 @@ vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, double
     photons_map_point(m, x, q);
     lookup_ctx c = {r, n, cos_min};
     const reps_value *v = NULL;
+    s->rep_lookups++;
     if (r->gate != CONFIG_REP_GATE_NONE) {
         assert(r->tree == CONFIG_REP_TREE_SEPARATE); /* reps_check */
         v = gate_accept(r, m, q, n, cos_min, max_r2, s);
@@ -368,12 +395,12 @@ vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, double
         }
     } else if (r->tree == CONFIG_REP_TREE_SEPARATE) {
         /* the paper's: the nearest representative whose normal agrees */
-        uint32_t i = kd_nearest_if(&r->own, q, max_r2, pred_separate, &c, s->last_rep, &d2);
+        uint32_t i = kd_nearest_if_counted(&r->own, q, max_r2, pred_separate, &c, s->last_rep, &d2, &s->rep_work);
         if (i != KD_NONE)
             v = ready_value(r, m, i, s);
         s->last_rep = i;
     } else {
-        uint32_t i = kd_nearest_if(&m->tree, q, max_r2, pred_shared, &c, s->last_rep, &d2);
+        uint32_t i = kd_nearest_if_counted(&m->tree, q, max_r2, pred_shared, &c, s->last_rep, &d2, &s->rep_work);
         if (i != KD_NONE)
             v = ready_value(r, m, r->rep_of[i], s);
         s->last_rep = i;

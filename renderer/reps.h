@@ -35,6 +35,7 @@
 #include "progress.h"
 #include "status.h"
 #include "vec.h"
+#include "work.h"
 
 /* Which photons are representatives and where they live, as the pipeline
  * needs it (reps_params_of derives it from a config_render). */
@@ -108,6 +109,7 @@ typedef struct {
      * REPS_READY (published with release order); NULL when eager */
     atomic_uchar *state;
     uint32_t *site_of;  /* lazy, separate layout: value index -> site index */
+    work_counts work;   /* what reps_evaluate did: the representatives' tree, its queries and evaluations */
 } reps_set;
 
 enum { REPS_PENDING = 0, REPS_CLAIMED = 1, REPS_READY = 2 };

@@ -667,12 +667,13 @@ pm_status scene_set_accel(scene *s, scene_accel mode)
     return s->accel ? PM_OK : PM_ERR_NOMEM;
 }
 
-int scene_intersect(const scene *s, const shape_ray *r, double tmax, scene_hit *h)
+int scene_intersect_counted(const scene *s, const shape_ray *r, double tmax, scene_hit *h, uint64_t *tests)
 {
     int best = -1;
     if (s->accel) {
-        best = bvh_intersect(s->accel, s->shapes, r, tmax, &tmax);
+        best = bvh_intersect_counted(s->accel, s->shapes, r, tmax, &tmax, tests);
     } else {
+        *tests += s->nshapes;
         double tt;
         for (size_t i = 0; i < s->nshapes; i++) {
             if (shape_intersect(&s->shapes[i], r, 0.0, tmax, &tt)) {
@@ -699,16 +700,33 @@ int scene_intersect(const scene *s, const shape_ray *r, double tmax, scene_hit *
     return 1;
 }
 
-int scene_occluded(const scene *s, const shape_ray *r, double tmax)
+int scene_occluded_counted(const scene *s, const shape_ray *r, double tmax, uint64_t *tests)
 {
     if (s->accel)
-        return bvh_occluded(s->accel, s->shapes, r, tmax);
+        return bvh_occluded_counted(s->accel, s->shapes, r, tmax, tests);
     double t;
     for (size_t i = 0; i < s->nshapes; i++)
-        if (shape_intersect(&s->shapes[i], r, 0.0, tmax, &t))
+        if (shape_intersect(&s->shapes[i], r, 0.0, tmax, &t)) {
+            *tests += i + 1;
             return 1;
+        }
+    *tests += s->nshapes;
     return 0;
 }
+
+int scene_intersect(const scene *s, const shape_ray *r, double tmax, scene_hit *h)
+{
+    uint64_t tests = 0;
+    return scene_intersect_counted(s, r, tmax, h, &tests);
+}
+
+int scene_occluded(const scene *s, const shape_ray *r, double tmax)
+{
+    uint64_t tests = 0;
+    return scene_occluded_counted(s, r, tmax, &tests);
+}
+
+
 
 shape_ray scene_spawn(const scene_hit *h, vec3 dir, int same_side)
 {

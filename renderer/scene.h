@@ -5,6 +5,7 @@
 #define PM_SCENE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "bvh.h"
 #include "material.h"
@@ -82,6 +83,10 @@ int scene_intersect(const scene *s, const shape_ray *r, double tmax, scene_hit *
 /* 1 if any shape blocks r closer than tmax, else 0; stops at the first hit
  * (shadow rays need no nearest hit). */
 int scene_occluded(const scene *s, const shape_ray *r, double tmax);
+/* scene_intersect and scene_occluded that add the ray-shape tests they
+ * made (shape_intersect calls) to *tests. */
+int scene_intersect_counted(const scene *s, const shape_ray *r, double tmax, scene_hit *h, uint64_t *tests);
+int scene_occluded_counted(const scene *s, const shape_ray *r, double tmax, uint64_t *tests);
 /* A ray leaving the hit h in direction dir: from the side it came from
  * (same_side = 1: reflection) or through the surface (0: refraction), its
  * origin moved off the surface by h->eps so it cannot hit the surface it

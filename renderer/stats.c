@@ -51,6 +51,77 @@ static void json_number(FILE *f, double x)
         fputs("null", f);
 }
 
+/* The median of the n values v (sorted in place). */
+static double median(double *v, uint32_t n)
+{
+    for (uint32_t i = 1; i < n; i++)
+        for (uint32_t j = i; j > 0 && v[j] < v[j - 1]; j--) {
+            double x = v[j];
+            v[j] = v[j - 1];
+            v[j - 1] = x;
+        }
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static const char *const phase_names[STATS_PHASES] = {"trace", "build", "precompute", "render", "total"};
+
+/* The times of every repeat: cold (the first), median, and each repeat's. */
+static void write_repeats(FILE *f, const stats_run *st)
+{
+    stats_repeats one;
+    const stats_repeats *r = &st->repeats;
+    if (r->n == 0) {
+        one.n = 1;
+        one.t[0][STATS_TRACE] = st->trace;
+        one.t[0][STATS_BUILD] = st->build;
+        one.t[0][STATS_PRECOMPUTE] = st->precompute;
+        one.t[0][STATS_RENDER] = st->render;
+        one.t[0][STATS_TOTAL] = st->total;
+        r = &one;
+    }
+    fprintf(f, "  \"repeats\": %u,\n  \"time_s_cold\": {", r->n);
+    for (int p = 0; p < STATS_PHASES; p++)
+        fprintf(f, "%s\"%s\": %.6f", p ? ", " : "", phase_names[p], r->t[0][p]);
+    fputs("},\n  \"time_s_median\": {", f);
+    for (int p = 0; p < STATS_PHASES; p++) {
+        double v[CONFIG_MAX_REPEATS];
+        for (uint32_t i = 0; i < r->n; i++)
+            v[i] = r->t[i][p];
+        fprintf(f, "%s\"%s\": %.6f", p ? ", " : "", phase_names[p], median(v, r->n));
+    }
+    fputs("},\n  \"time_s_repeats\": {", f);
+    for (int p = 0; p < STATS_PHASES; p++) {
+        fprintf(f, "%s\"%s\": [", p ? ", " : "", phase_names[p]);
+        for (uint32_t i = 0; i < r->n; i++)
+            fprintf(f, "%s%.6f", i ? ", " : "", r->t[i][p]);
+        fputc(']', f);
+    }
+    fputs("},\n", f);
+}
+
+/* The provenance object (threads: the render's). */
+static void write_provenance(FILE *f, const provenance_info *p, unsigned threads)
+{
+    fputs("  \"provenance\": {\"commit\": ", f);
+    json_string(f, p->commit ? p->commit : "unknown");
+    fputs(", \"tree\": ", f);
+    json_string(f, p->tree ? p->tree : "unknown");
+    fputs(", \"compiler\": ", f);
+    json_string(f, p->compiler ? p->compiler : "unknown");
+    fputs(", \"flags\": ", f);
+    json_string(f, p->flags ? p->flags : "unknown");
+    fputs(", \"cpu\": ", f);
+    json_string(f, p->cpu[0] ? p->cpu : "unknown");
+    fprintf(f, ", \"threads\": %u, \"loadavg\": [", threads);
+    for (int i = 0; i < 3; i++) {
+        if (p->commit && p->loadavg[i] >= 0.0)
+            fprintf(f, "%.2f", p->loadavg[i]);
+        else
+            fputs("null", f);
+        fputs(i < 2 ? ", " : "]},\n", f);
+    }
+}
+
 pm_status stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, unsigned threads,
                            const stats_run *st, const char *refused)
 {
@@ -89,6 +160,11 @@ pm_status stats_write_json(FILE *f, const char *scene_path, const config_render 
     fprintf(f, "  \"time_s\": {\"trace\": %.6f, \"build\": %.6f, \"precompute\": %.6f, \"render\": %.6f, "
                "\"total\": %.6f},\n",
             st->trace, st->build, st->precompute, st->render, st->total);
+    write_repeats(f, st);
+    fputs("  \"work\": ", f);
+    work_write_json(f, &st->work);
+    fputs(",\n", f);
+    write_provenance(f, &st->provenance, threads);
     fprintf(f, "  \"samples\": %llu,\n", (unsigned long long)st->samples);
     fprintf(f, "  \"eye_depth_limit_hits\": %llu,\n", (unsigned long long)st->eye_depth_limit_hits);
     fprintf(f, "  \"empty_estimates\": %llu,\n", (unsigned long long)st->empty_estimates);

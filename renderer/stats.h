@@ -7,11 +7,24 @@
 #include <stdio.h>
 
 #include "config.h"
+#include "provenance.h"
 #include "status.h"
+#include "work.h"
+
+/* The timed phases and their total, in the order of stats_repeats' rows. */
+enum { STATS_TRACE, STATS_BUILD, STATS_PRECOMPUTE, STATS_RENDER, STATS_TOTAL, STATS_PHASES };
+
+/* Every repeat's times (repeat.h), seconds: t[i][phase] for repeat i. */
+typedef struct {
+    uint32_t n; /* repeats done; 0: one render, whose times are stats_run's */
+    double t[CONFIG_MAX_REPEATS][STATS_PHASES];
+} stats_repeats;
 
 typedef struct {
-    /* seconds, monotonic clock */
+    /* seconds, monotonic clock; over repeats, each phase's minimum and the
+     * smallest total (not the sum of the phases' minima) */
     double trace, build, precompute, render, total;
+    stats_repeats repeats;
     /* photon pass */
     uint64_t photons_emitted, photons_stored, photon_paths_truncated, photons_escaped;
     uint64_t representatives;
@@ -34,6 +47,8 @@ typedef struct {
     /* precomputed, beyond the paper (reps.h) */
     uint64_t reps_evaluated;      /* representatives whose irradiance was computed (all but for --rep-eval lazy) */
     uint64_t rep_fallbacks;       /* eye samples the plane gate sent to the conventional estimate */
+    work_phases work;             /* what each phase did, counted exactly (work.h) */
+    provenance_info provenance;   /* the binary and the machine (its strings NULL: "unknown") */
 } stats_run;
 
 /* Monotonic time in nanoseconds. */

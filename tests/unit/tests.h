@@ -89,7 +89,13 @@
     X(bvh_matches_brute_force) \
     X(bvh_degenerate_sets) \
     X(bvh_scene_switch) \
-    X(bvh_parser_stays_linear)
+    X(bvh_parser_stays_linear) \
+    /* test_work.c */ \
+    X(work_kdtree_by_hand) \
+    X(work_one_photon_by_hand) \
+    X(work_same_for_any_thread_count) \
+    X(repeat_same_bits) \
+    X(repeat_rule)
 
 #define TEST_DECLARE(name) void test_##name(void);
 TEST_LIST(TEST_DECLARE)

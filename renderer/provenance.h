@@ -1,0 +1,22 @@
+/* provenance: where a render's times come from, for its stats file: the
+ * binary's commit and whether its tree had uncommitted changes (given by
+ * the build: PM_COMMIT, PM_TREE), the compiler and the flags it was built
+ * with (PM_FLAGS), the CPU model, and the load average when the render
+ * started. Outside a git checkout the commit is "unknown". */
+#ifndef PM_PROVENANCE_H
+#define PM_PROVENANCE_H
+
+typedef struct {
+    const char *commit;   /* the short hash, or "unknown" */
+    const char *tree;     /* "clean", "dirty" (uncommitted changes to tracked files) or "unknown" */
+    const char *compiler; /* "gcc 12.2.0", "clang 14.0.6", ... */
+    const char *flags;    /* the optimisation and debug flags, or "unknown" */
+    char cpu[128];        /* /proc/cpuinfo's first "model name", or "unknown" */
+    double loadavg[3];    /* the 1, 5 and 15 minute load averages; negative when unknown */
+} provenance_info;
+
+/* Fills p for a render that starts now. Never fails: what cannot be read
+ * is "unknown" (or negative). */
+void provenance_collect(provenance_info *p);
+
+#endif
