@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "camera.h"
+#include "clock.h"
 #include "estimate.h"
 #include "material.h"
 #include "parallel.h"
@@ -168,9 +169,9 @@ pm_status eye_render(const eye_input *in, unsigned threads, int show_progress, i
         progress prog;
         progress_begin(&prog, "render", tiles, show_progress);
         c.prog = &prog;
-        int64_t t0 = stats_now_ns();
+        int64_t t0 = clock_now_ns();
         parallel_for(threads, tiles, eye_tile, &c);
-        st->render = (double)(stats_now_ns() - t0) * 1e-9;
+        st->render = (double)(clock_now_ns() - t0) * 1e-9;
         progress_end(&prog);
         for (unsigned t = 0; t < threads; t++) {
             st->samples += c.counts[t].samples;

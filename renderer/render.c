@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clock.h"
 #include "estimate.h"
 #include "eye.h"
 #include "photons.h"
@@ -36,10 +37,10 @@ typedef struct {
     double max_radius; /* the radius cap, scene units */
 } render_state;
 
-/* Seconds since t0 (stats_now_ns). */
+/* Seconds since t0 (clock_now_ns). */
 static double seconds_since(int64_t t0)
 {
-    return (double)(stats_now_ns() - t0) * 1e-9;
+    return (double)(clock_now_ns() - t0) * 1e-9;
 }
 
 /* Step 1: emit and trace the photons, and choose the representatives among
@@ -50,7 +51,7 @@ static pm_status step_trace(render_state *rs)
     photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS};
     progress prog;
     progress_begin(&prog, "photons", cfg->photons, rs->show_progress);
-    int64_t t0 = stats_now_ns();
+    int64_t t0 = clock_now_ns();
     if (photons_trace(rs->sc, &pp, rs->threads, &prog, &rs->list))
         return PM_ERR_NOMEM;
     reps_choose(&rs->rp, &rs->list);
@@ -67,7 +68,7 @@ static pm_status step_trace(render_state *rs)
  * sites in it. Returns PM_OK, or PM_ERR_NOMEM. */
 static pm_status step_build(render_state *rs)
 {
-    int64_t t0 = stats_now_ns();
+    int64_t t0 = clock_now_ns();
     photons_list left;
     if (photons_build_map(&rs->list, reps_leave_out_mask(&rs->rp), rs->threads, &rs->map, &left))
         return PM_ERR_NOMEM;
@@ -129,7 +130,7 @@ static pm_status step_precompute(render_state *rs)
     est_gather g = est_gather_make(&rs->map, cfg->nn, rs->max_radius, cfg->bias_correction);
     progress prog;
     progress_begin(&prog, "precompute", rs->reps.count, rs->show_progress);
-    int64_t t0 = stats_now_ns();
+    int64_t t0 = clock_now_ns();
     if (reps_evaluate(&rs->reps, &rs->map, &g, rs->threads, &prog))
         return PM_ERR_NOMEM;
     progress_end(&prog);
@@ -196,7 +197,7 @@ pm_status render_run(const scene *sc, const config_render *cfg, unsigned threads
     rs.show_progress = show_progress;
     rs.st = st;
     rs.rp = reps_params_of(cfg);
-    int64_t t_start = stats_now_ns();
+    int64_t t_start = clock_now_ns();
     pm_status rc = step_trace(&rs);
     if (rc == PM_OK)
         rc = reps_check_stored(cfg, rs.list.count, err, errlen);
