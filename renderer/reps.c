@@ -181,23 +181,23 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
     if (r->eval == CONFIG_REP_EVAL_LAZY)
         r->state = malloc(sizeof(atomic_uchar) * (count ? count : 1));
     est_scratch *scratch = est_scratch_new(nt, g->nn);
-    int rc = (!r->value || !scratch || (r->eval == CONFIG_REP_EVAL_LAZY && !r->state)) ? -1 : 0;
-    if (rc == 0 && r->tree == CONFIG_REP_TREE_SEPARATE) {
+    pm_status rc = (!r->value || !scratch || (r->eval == CONFIG_REP_EVAL_LAZY && !r->state)) ? PM_ERR_NOMEM : PM_OK;
+    if (rc == PM_OK && r->tree == CONFIG_REP_TREE_SEPARATE) {
         /* the representatives' own tree first: the precompute then runs in
          * its leaf order (nearby queries in a row) and stores in that order */
         float *pos = malloc(sizeof(float) * 3 * (count ? count : 1));
         order = malloc(sizeof(uint32_t) * (count ? count : 1));
-        rc = (!pos || !order) ? -1 : 0;
-        if (rc == 0) {
+        rc = (!pos || !order) ? PM_ERR_NOMEM : PM_OK;
+        if (rc == PM_OK) {
             for (uint32_t i = 0; i < count; i++)
                 memcpy(pos + 3 * (size_t)i, r->site[i].pos, 3 * sizeof(float));
             rc = kd_build(&r->own, pos, count, KD_DEFAULT_LEAF, order, nt);
         }
         free(pos);
-    } else if (rc == 0) {
+    } else if (rc == PM_OK) {
         r->rep_of = malloc(sizeof(uint32_t) * (m->count ? m->count : 1));
-        rc = r->rep_of ? 0 : -1;
-        if (rc == 0) {
+        rc = r->rep_of ? PM_OK : PM_ERR_NOMEM;
+        if (rc == PM_OK) {
             for (uint32_t i = 0; i < m->count; i++)
                 r->rep_of[i] = KD_NONE;
             for (uint32_t i = 0; i < count; i++) {
@@ -206,21 +206,21 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
             }
         }
     }
-    if (rc == 0) {
+    if (rc == PM_OK) {
         /* eager: every representative's irradiance, now, before the eye
          * pass (the paper's precompute); lazy: the normals only */
         evaluate_ctx c = {r, m, order, scratch, prog};
         parallel_for(threads, (count + REPS_CHUNK - 1) / REPS_CHUNK, evaluate_chunk, &c);
     }
-    if (rc == 0 && r->eval == CONFIG_REP_EVAL_LAZY) {
+    if (rc == PM_OK && r->eval == CONFIG_REP_EVAL_LAZY) {
         r->site_of = order; /* the lookup finds a value's site by it */
         order = NULL;
     }
     free(order);
     est_scratch_delete(scratch, nt);
-    if (rc != 0)
+    if (rc != PM_OK)
         free_values(r);
-    return rc == 0 ? PM_OK : PM_ERR_NOMEM;
+    return rc;
 }
 
 typedef struct {
