@@ -127,7 +127,7 @@ pm_status cli_parse(const cli_command *cmd, int argc, char **argv, int first, vo
         if (i + 1 >= argc)
             return cli_error(cmd, "%s needs a value", a);
         pm_status rc = parse_value(cmd, o, argv[++i], args);
-        if (rc)
+        if (rc != PM_OK)
             return rc;
     }
     if (!positional)

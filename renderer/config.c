@@ -3,7 +3,6 @@
 
 #include <stddef.h>
 
-#include "reps.h"
 
 config_render config_defaults(void)
 {
@@ -40,7 +39,38 @@ const char *config_check(const config_render *c)
 {
     if (c->nn < CONFIG_MIN_NN)
         return "--nn 1: the estimate has no finite mean (1/r^2 of the nearest photon diverges); use --nn 2 or more";
-    return reps_check(c);
+    if (c->dump_reps && c->method != CONFIG_METHOD_PRECOMPUTED)
+        return "--dump-reps writes the representatives of the precomputed method: use it with --method precomputed";
+    if (c->rep_count > 0 && c->rep_every != CONFIG_DEFAULT_REP_EVERY)
+        return "--rep-count and --rep-every are two rules for choosing the representatives: give one";
+    /* the variants beyond the paper */
+    if (c->rep_eval != CONFIG_REP_EVAL_EAGER && c->method != CONFIG_METHOD_PRECOMPUTED)
+        return "--rep-eval lazy evaluates the representatives of the precomputed method on first use; the "
+               "conventional method has none: use it with --method precomputed";
+    if (c->rep_gate != CONFIG_REP_GATE_NONE && c->method != CONFIG_METHOD_PRECOMPUTED)
+        return "--rep-gate plane (and plane-lookup) chooses among the representatives of the precomputed method; the conventional "
+               "method has none: use it with --method precomputed";
+    if (c->rep_gate_tau != CONFIG_DEFAULT_REP_GATE_TAU && c->rep_gate == CONFIG_REP_GATE_NONE)
+        return "--rep-gate-tau is the plane gate's tolerance: use it with --rep-gate plane or plane-lookup";
+    if (c->rep_gate != CONFIG_REP_GATE_NONE && c->rep_tree == CONFIG_REP_TREE_SHARED)
+        return "--rep-gate plane (and plane-lookup) tries the nearest representatives in their own kd-tree; --rep-tree shared has "
+               "none: use --rep-tree separate";
+    if (c->rep_eval == CONFIG_REP_EVAL_LAZY && c->dump_reps)
+        return "--dump-reps writes every representative's precomputed irradiance; --rep-eval lazy computes only "
+               "those the eye pass selects: use --rep-eval eager";
+    if (c->method != CONFIG_METHOD_PRECOMPUTED)
+        return NULL;
+    if (!c->bias_correction && c->nn < 3)
+        return "--method precomputed with --nn 2: a representative is its own nearest photon, so r is the "
+               "distance to one other photon and the estimate has no finite mean (it follows n/(n-2)); use --nn 3 "
+               "or more, or --bias-correction";
+    if (c->bias_correction && c->rep_every < 2)
+        return "--bias-correction with --method precomputed estimates at representatives from the photons that "
+               "are not representatives; --rep-every 1 leaves none: use --rep-every 2 or more";
+    if (c->bias_correction && c->rep_tree == CONFIG_REP_TREE_SHARED)
+        return "--bias-correction with --method precomputed keeps the representatives out of the photon tree; "
+               "--rep-tree shared finds them there: use --rep-tree separate";
+    return NULL;
 }
 
 const char *config_method_name(config_method m)

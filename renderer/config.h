@@ -119,8 +119,7 @@ typedef struct {
 /* The defaults above as a struct; never fails. */
 config_render config_defaults(void);
 /* NULL when the settings of c go together, else why they do not (a user
- * error: degenerate estimates are refused rather than computed). The
- * representatives' settings are checked by reps_check (reps.h). */
+ * error: degenerate estimates are refused rather than computed). */
 const char *config_check(const config_render *c);
 /* "conventional"/"precomputed", "photons"/"shadow-rays". */
 const char *config_method_name(config_method m);

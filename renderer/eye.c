@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "camera.h"
+#include "clock.h"
 #include "estimate.h"
 #include "material.h"
 #include "parallel.h"
@@ -168,14 +169,14 @@ pm_status eye_render(const eye_input *in, unsigned threads, int show_progress, i
     uint64_t tiles = (uint64_t)c.tiles_x * ((cfg->height + EYE_TILE - 1) / EYE_TILE);
     c.scratch = est_scratch_new(threads, cfg->nn);
     c.counts = calloc(threads, sizeof(eye_counts));
-    int rc = (!c.scratch || !c.counts || image_init(out, cfg->width, cfg->height)) ? -1 : 0;
-    if (rc == 0) {
+    pm_status rc = (!c.scratch || !c.counts) ? PM_ERR_NOMEM : image_init(out, cfg->width, cfg->height);
+    if (rc == PM_OK) {
         progress prog;
         progress_begin(&prog, "render", tiles, show_progress);
         c.prog = &prog;
-        int64_t t0 = stats_now_ns();
+        int64_t t0 = clock_now_ns();
         parallel_for(threads, tiles, eye_tile, &c);
-        st->render = (double)(stats_now_ns() - t0) * 1e-9;
+        st->render = (double)(clock_now_ns() - t0) * 1e-9;
         progress_end(&prog);
         for (unsigned t = 0; t < threads; t++) {
             st->samples += c.counts[t].samples;
@@ -194,5 +195,5 @@ pm_status eye_render(const eye_input *in, unsigned threads, int show_progress, i
     }
     est_scratch_delete(c.scratch, threads);
     free(c.counts);
-    return rc == 0 ? PM_OK : PM_ERR_NOMEM;
+    return rc;
 }

@@ -56,10 +56,12 @@ static void exr_quiet(exr_const_context_t ctxt, exr_result_t code, const char *m
     (void)msg;
 }
 
-static int exr_fail(exr_result_t rc, const char *path, const char *what, char *err, size_t errlen)
+/* Writes "PATH: WHAT: the library's message for rc" into err; returns
+ * PM_ERR_IO. */
+static pm_status exr_fail(exr_result_t rc, const char *path, const char *what, char *err, size_t errlen)
 {
     snprintf(err, errlen, "%s: %s: %s", path, what, exr_get_default_error_message(rc));
-    return -1;
+    return PM_ERR_IO;
 }
 
 /* OpenEXRCore 3.1 stores a ZIP chunk compressed even when the compressed size
@@ -82,7 +84,9 @@ static exr_result_t exr_compress_unambiguous(exr_encode_pipeline_t *enc)
 }
 
 /* Writes the EXR to `file` (the temporary name). */
-static int exr_write_to(const image *im, const char *file, const char *path, char *err, size_t errlen)
+/* Writes im as OpenEXR to file (path names it in messages). Returns PM_OK,
+ * PM_ERR_NOMEM, or PM_ERR_IO with the reason in err. */
+static pm_status exr_write_to(const image *im, const char *file, const char *path, char *err, size_t errlen)
 {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = exr_quiet;
@@ -91,7 +95,7 @@ static int exr_write_to(const image *im, const char *file, const char *path, cha
     if (rc != EXR_ERR_SUCCESS)
         return exr_fail(rc, path, "cannot create", err, errlen);
     int part = 0;
-    int ok = -1;
+    pm_status ok = PM_ERR_IO;
     exr_encode_pipeline_t enc;
     memset(&enc, 0, sizeof enc);
     int enc_init = 0;
@@ -117,6 +121,7 @@ static int exr_write_to(const image *im, const char *file, const char *path, cha
     planes = malloc(sizeof(float) * w * 3 * (size_t)lines);
     if (!planes) {
         snprintf(err, errlen, "%s: out of memory", path);
+        ok = PM_ERR_NOMEM;
         goto done;
     }
     for (int32_t y = 0; y < (int32_t)im->height; y += lines) {
@@ -164,13 +169,13 @@ static int exr_write_to(const image *im, const char *file, const char *path, cha
             goto done;
         }
     }
-    ok = 0;
+    ok = PM_OK;
 done:
     if (enc_init || enc.channels)
         exr_encoding_destroy(ctx, &enc);
     free(planes);
     rc = exr_finish(&ctx);
-    if (ok == 0 && rc != EXR_ERR_SUCCESS)
+    if (ok == PM_OK && rc != EXR_ERR_SUCCESS)
         ok = exr_fail(rc, path, "cannot finish", err, errlen);
     return ok;
 }
@@ -178,11 +183,12 @@ done:
 pm_status image_write_exr(const image *im, const char *path, char *err, size_t errlen)
 {
     outfile o;
-    if (outfile_begin(&o, path, 0, err, errlen))
-        return PM_ERR_IO;
-    if (exr_write_to(im, o.tmp, path, err, errlen)) {
+    pm_status rc;
+    if ((rc = outfile_begin(&o, path, 0, err, errlen)) != PM_OK)
+        return rc;
+    if ((rc = exr_write_to(im, o.tmp, path, err, errlen)) != PM_OK) {
         outfile_abort(&o);
-        return PM_ERR_IO;
+        return rc;
     }
     return outfile_commit(&o, err, errlen);
 }
@@ -195,8 +201,8 @@ pm_status image_read_exr(image *im, const char *path, char *err, size_t errlen)
     exr_context_t ctx = NULL;
     exr_result_t rc = exr_start_read(&ctx, path, &init);
     if (rc != EXR_ERR_SUCCESS)
-        return exr_fail(rc, path, "cannot read", err, errlen) ? PM_ERR_IO : PM_OK;
-    int ok = -1;
+        return exr_fail(rc, path, "cannot read", err, errlen);
+    pm_status ok = PM_ERR_IO;
     exr_decode_pipeline_t dec;
     memset(&dec, 0, sizeof dec);
     int dec_init = 0;
@@ -208,8 +214,9 @@ pm_status image_read_exr(image *im, const char *path, char *err, size_t errlen)
         goto done;
     }
     uint32_t w = (uint32_t)(dw.max.x - dw.min.x + 1), h = (uint32_t)(dw.max.y - dw.min.y + 1);
-    if (image_init(im, w, h) || !(planes = malloc(sizeof(float) * w * 3 * (size_t)lines))) {
+    if (image_init(im, w, h) != PM_OK || !(planes = malloc(sizeof(float) * w * 3 * (size_t)lines))) {
         snprintf(err, errlen, "%s: out of memory", path);
+        ok = PM_ERR_NOMEM;
         goto done;
     }
     for (int32_t y = dw.min.y; y <= dw.max.y; y += lines) {
@@ -257,15 +264,15 @@ pm_status image_read_exr(image *im, const char *path, char *err, size_t errlen)
             }
         }
     }
-    ok = 0;
+    ok = PM_OK;
 done:
     if (dec_init || dec.channels)
         exr_decoding_destroy(ctx, &dec);
     free(planes);
     exr_finish(&ctx);
-    if (ok != 0)
+    if (ok != PM_OK)
         image_free(im);
-    return ok == 0 ? PM_OK : PM_ERR_IO;
+    return ok;
 }
 
 /* ---- PNG ---- */

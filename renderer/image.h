@@ -26,10 +26,12 @@ uint64_t image_count_nonfinite(const image *im);
 void image_mean(const image *im, double mean[3]);
 
 /* Writes a linear float RGB OpenEXR (ZIP compressed) to `path` by way of a
- * temporary file. Returns PM_OK, or PM_ERR_IO with "path: reason" in err. */
+ * temporary file. Returns PM_OK, or PM_ERR_IO (PM_ERR_NOMEM when memory
+ * runs out) with "path: reason" in err. */
 pm_status image_write_exr(const image *im, const char *path, char *err, size_t errlen);
 /* Reads an RGB(A) OpenEXR into im (for tests and tools). Returns PM_OK, or
- * PM_ERR_IO with "path: reason" in err (im is then empty). */
+ * PM_ERR_IO (PM_ERR_NOMEM when memory runs out) with "path: reason" in err
+ * (im is then empty). */
 pm_status image_read_exr(image *im, const char *path, char *err, size_t errlen);
 /* Writes an 8-bit sRGB PNG of im * exposure (clamped) to `path` by way of a
  * temporary file. Returns PM_OK, or PM_ERR_IO (PM_ERR_NOMEM when memory

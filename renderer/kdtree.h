@@ -25,6 +25,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "status.h"
+
 #define KD_DEFAULT_LEAF 12u
 #define KD_NONE UINT32_MAX
 
@@ -42,9 +44,9 @@ typedef struct {
 /* Builds a tree over n points (xyz triples in pts) on `threads` threads (0
  * or 1: the calling thread only); the tree is the same for any thread
  * count. If perm is not NULL it receives n entries: perm[i] = input index
- * of the point at leaf position i. Returns 0, or -1 when memory runs out
+ * of the point at leaf position i. Returns PM_OK, or PM_ERR_NOMEM
  * (the tree is then empty and safe to kd_free). n may be 0. */
-int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint32_t *perm, unsigned threads);
+pm_status kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint32_t *perm, unsigned threads);
 /* An item of kd_build_items: a point and 20 bytes that are the caller's,
  * which move with it (32 bytes in all). */
 typedef struct {
@@ -56,9 +58,9 @@ typedef struct {
  * in place: the items are reordered into the tree's leaf order (item i
  * holds leaf-order point i and its payload), and the build holds no
  * memory beyond the items and the tree's own arrays (kd_tree_bytes).
- * Returns 0, or -1 when memory runs out (the tree is then empty and the
- * items untouched). n may be 0. */
-int kd_build_items(kd_tree *t, kd_build_item *items, uint32_t n, uint32_t leaf_size, unsigned threads);
+ * Returns PM_OK, or PM_ERR_NOMEM (the tree is then empty and the items
+ * untouched). n may be 0. */
+pm_status kd_build_items(kd_tree *t, kd_build_item *items, uint32_t n, uint32_t leaf_size, unsigned threads);
 /* Frees the tree's arrays; the struct is left empty. A zeroed tree is fine. */
 void kd_free(kd_tree *t);
 /* Bytes of memory the tree holds. */
@@ -110,10 +112,10 @@ typedef struct {
 } kd_query;
 
 /* Prepares s for queries of up to k_max neighbours (larger k grows the
- * buffer on demand) with the best instruction set this CPU has. Returns 0,
- * or -1 when memory runs out (s is then empty and safe to kd_query_free;
+ * buffer on demand) with the best instruction set this CPU has. Returns
+ * PM_OK, or PM_ERR_NOMEM (s is then empty and safe to kd_query_free;
  * kd_query_knn still works with it, more slowly). */
-int kd_query_init(kd_query *s, uint32_t k_max);
+pm_status kd_query_init(kd_query *s, uint32_t k_max);
 /* Frees the buffer; the struct is left empty. */
 void kd_query_free(kd_query *s);
 /* Drops s's starting radius, so that the next query's cost does not depend

@@ -163,8 +163,8 @@ static void out_block(uint64_t blk, unsigned thread, void *arg)
 }
 
 /* Sets up t for n points (its shape and arrays) and kp's block bounds.
- * Returns 0, or -1 when memory runs out (t is then empty). */
-static int tree_begin(kd_tree *t, uint32_t n, uint32_t leaf_size, kd_par *kp)
+ * Returns PM_OK, or PM_ERR_NOMEM (t is then empty). */
+static pm_status tree_begin(kd_tree *t, uint32_t n, uint32_t leaf_size, kd_par *kp)
 {
     memset(t, 0, sizeof *t);
     if (leaf_size == 0)
@@ -189,9 +189,9 @@ static int tree_begin(kd_tree *t, uint32_t n, uint32_t leaf_size, kd_par *kp)
         free(kp->box);
         kp->box = NULL;
         kd_free(t);
-        return -1;
+        return PM_ERR_NOMEM;
     }
-    return 0;
+    return PM_OK;
 }
 
 /* Copies the points (in leaf order in kp->items) out to the tree's arrays
@@ -214,16 +214,17 @@ static void tree_end(kd_par *kp, unsigned threads)
     kp->box = NULL;
 }
 
-int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint32_t *perm, unsigned threads)
+pm_status kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint32_t *perm, unsigned threads)
 {
     kd_par kp = {pts, NULL, NULL, sizeof(kd_item), perm, t, n, NULL};
-    if (tree_begin(t, n, leaf_size, &kp))
-        return -1;
+    pm_status rc;
+    if ((rc = tree_begin(t, n, leaf_size, &kp)) != PM_OK)
+        return rc;
     kp.it = mem_alloc(sizeof(kd_item) * (n ? n : 1));
     if (!kp.it) {
         free(kp.box);
         kd_free(t);
-        return -1;
+        return PM_ERR_NOMEM;
     }
     kp.items = (const char *)kp.it;
     threads = threads ? threads : 1;
@@ -232,20 +233,21 @@ int kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint3
     build_all_id(&b, n, threads);
     tree_end(&kp, threads);
     mem_free(kp.it);
-    return 0;
+    return PM_OK;
 }
 
-int kd_build_items(kd_tree *t, kd_build_item *items, uint32_t n, uint32_t leaf_size, unsigned threads)
+pm_status kd_build_items(kd_tree *t, kd_build_item *items, uint32_t n, uint32_t leaf_size, unsigned threads)
 {
     assert(items || n == 0);
     kd_par kp = {NULL, NULL, (const char *)items, sizeof(kd_build_item), NULL, t, n, NULL};
-    if (tree_begin(t, n, leaf_size, &kp))
-        return -1;
+    pm_status rc;
+    if ((rc = tree_begin(t, n, leaf_size, &kp)) != PM_OK)
+        return rc;
     threads = threads ? threads : 1;
     builder_items b = {items, t};
     build_all_items(&b, n, threads);
     tree_end(&kp, threads);
-    return 0;
+    return PM_OK;
 }
 
 void kd_free(kd_tree *t)

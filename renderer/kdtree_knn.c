@@ -170,16 +170,16 @@ static uint32_t knn_run(const kd_tree *t, kd_query *s, const float q[3], uint32_
     return n;
 }
 
-int kd_query_init(kd_query *s, uint32_t k_max)
+pm_status kd_query_init(kd_query *s, uint32_t k_max)
 {
     memset(s, 0, sizeof *s);
     s->simd = kd_simd_best();
     uint32_t cap = buf_entries(k_max == 0 ? 1 : (k_max < KD_MAX_BUF_K ? k_max : KD_MAX_BUF_K));
     s->buf = malloc(sizeof(uint64_t) * buf_keys(cap));
     if (!s->buf)
-        return -1;
+        return PM_ERR_NOMEM;
     s->cap = cap;
-    return 0;
+    return PM_OK;
 }
 
 void kd_query_free(kd_query *s)

@@ -226,9 +226,10 @@ static pm_status claim_outputs(const cli_command *cmd, const char *const *paths,
         if (!paths[i])
             continue;
         outfile probe;
-        if (outfile_begin(&probe, paths[i], 0, err, sizeof err)) {
+        pm_status rc = outfile_begin(&probe, paths[i], 0, err, sizeof err);
+        if (rc != PM_OK) {
             fprintf(stderr, "photonmap: %s\n", err);
-            return PM_ERR_IO;
+            return rc;
         }
         outfile_abort(&probe);
     }
@@ -252,17 +253,18 @@ static pm_status write_reps(const char *path, const render_result *r)
 {
     char err[1024];
     outfile f;
-    if (outfile_begin(&f, path, 1, err, sizeof err) == 0) {
-        if (render_write_reps(r, f.f) == 0) {
-            if (outfile_commit(&f, err, sizeof err) == 0)
+    pm_status rc;
+    if ((rc = outfile_begin(&f, path, 1, err, sizeof err)) == PM_OK) {
+        if ((rc = render_write_reps(r, f.f)) == PM_OK) {
+            if ((rc = outfile_commit(&f, err, sizeof err)) == PM_OK)
                 return PM_OK;
         } else {
-            snprintf(err, sizeof err, "%s: write error", path);
+            snprintf(err, sizeof err, "%s: %s", path, pm_status_message(rc));
             outfile_abort(&f);
         }
     }
     fprintf(stderr, "photonmap: %s\n", err);
-    return PM_ERR_IO;
+    return rc;
 }
 
 /* Why the image of a finished render cannot be written, into why (the
@@ -318,29 +320,30 @@ static pm_status write_outputs(const render_args *a, unsigned threads, const ren
     if (a->stats) {
         outfile f;
         pm_status rc = outfile_begin(&f, a->stats, 1, err, sizeof err);
-        if (rc == PM_OK && stats_write_json(f.f, a->scene, &a->cfg, threads, st, why[0] ? why : NULL)) {
-            snprintf(err, sizeof err, "%s: write error", a->stats);
+        if (rc == PM_OK &&
+            (rc = stats_write_json(f.f, a->scene, &a->cfg, threads, st, why[0] ? why : NULL)) != PM_OK) {
+            snprintf(err, sizeof err, "%s: %s", a->stats, pm_status_message(rc));
             outfile_abort(&f);
-            rc = PM_ERR_IO;
         } else if (rc == PM_OK) {
             rc = outfile_commit(&f, err, sizeof err);
         }
-        if (rc) {
+        if (rc != PM_OK) {
             fprintf(stderr, "photonmap: %s\n", err);
-            exit_code = PM_ERR_IO;
+            exit_code = rc;
         }
     }
     if (why[0]) {
         fprintf(stderr, "%s: %s\n", a->scene, why);
         return PM_ERR_INPUT;
     }
-    if (a->exr && image_write_exr(img, a->exr, err, sizeof err)) {
+    pm_status rc;
+    if (a->exr && (rc = image_write_exr(img, a->exr, err, sizeof err)) != PM_OK) {
         fprintf(stderr, "photonmap: %s\n", err);
-        exit_code = PM_ERR_IO;
+        exit_code = rc;
     }
-    if (a->png && image_write_png(img, a->png, a->exposure, err, sizeof err)) {
+    if (a->png && (rc = image_write_png(img, a->png, a->exposure, err, sizeof err)) != PM_OK) {
         fprintf(stderr, "photonmap: %s\n", err);
-        exit_code = PM_ERR_IO;
+        exit_code = rc;
     }
     return exit_code;
 }
@@ -352,7 +355,7 @@ static void warn_camera(const char *path, const scene *sc)
 {
     vec3 c = sc->camera.position;
     int i = scene_sphere_between(sc, c, sc->light.position);
-    if (i < 0)
+    if (i == SCENE_NO_SHAPE)
         return;
     const shape *s = &sc->shapes[i];
     int cam_in = vec_len2(vec_sub(c, s->center)) < s->radius * s->radius;
@@ -409,24 +412,24 @@ static pm_status cmd_render(int argc, char **argv)
         return cli_error(&render_command, "an image of %ux%u pixels is too large (at most %llu pixels)", cfg->width,
                          cfg->height, (unsigned long long)CONFIG_MAX_PIXELS);
     scene *sc = NULL;
-    if ((rc = load_scene(a.scene, &sc)))
+    if ((rc = load_scene(a.scene, &sc)) != PM_OK)
         return rc;
-    if ((rc = check_outputs(&a, paths, names, exts, formats, 4))) {
+    if ((rc = check_outputs(&a, paths, names, exts, formats, 4)) != PM_OK) {
         scene_free(sc);
         return rc;
     }
     warn_camera(a.scene, sc);
-    if ((rc = render_prepare(sc, cfg, err, sizeof err))) {
+    if ((rc = render_prepare(sc, cfg, err, sizeof err)) != PM_OK) {
         fprintf(stderr, "photonmap: %s: %s\n", a.scene, err);
         scene_free(sc);
         return rc;
     }
-    if ((rc = render_check_memory(sc, cfg, physical_memory(), err, sizeof err))) {
+    if ((rc = render_check_memory(sc, cfg, physical_memory(), err, sizeof err)) != PM_OK) {
         fprintf(stderr, "photonmap: %s\n", err);
         scene_free(sc);
         return rc;
     }
-    if ((rc = claim_outputs(&render_command, paths, names, 4))) {
+    if ((rc = claim_outputs(&render_command, paths, names, 4)) != PM_OK) {
         scene_free(sc);
         return rc;
     }
@@ -446,7 +449,7 @@ static pm_status cmd_render(int argc, char **argv)
     res.st.provenance = prov;
     warn_run(a.scene, cfg, &res.st);
     /* the representatives first: when they cannot be written, nothing else is */
-    if (cfg->dump_reps && (rc = write_reps(cfg->dump_reps, &res))) {
+    if (cfg->dump_reps && (rc = write_reps(cfg->dump_reps, &res)) != PM_OK) {
         render_result_free(&res);
         scene_free(sc);
         return rc;
@@ -548,18 +551,19 @@ static pm_status export_write(const char *out, export_writer write, const scene 
     }
     char err[1024];
     outfile f;
-    if (outfile_begin(&f, out, 1, err, sizeof err)) {
+    pm_status rc;
+    if ((rc = outfile_begin(&f, out, 1, err, sizeof err)) != PM_OK) {
         fprintf(stderr, "photonmap: %s\n", err);
-        return PM_ERR_IO;
+        return rc;
     }
-    if (write(f.f, sc, scene_name, opts)) {
-        fprintf(stderr, "photonmap: %s: write error\n", out);
+    if ((rc = write(f.f, sc, scene_name, opts)) != PM_OK) {
+        fprintf(stderr, "photonmap: %s: %s\n", out, pm_status_message(rc));
         outfile_abort(&f);
-        return PM_ERR_IO;
+        return rc;
     }
-    if (outfile_commit(&f, err, sizeof err)) {
+    if ((rc = outfile_commit(&f, err, sizeof err)) != PM_OK) {
         fprintf(stderr, "photonmap: %s\n", err);
-        return PM_ERR_IO;
+        return rc;
     }
     return PM_OK;
 }
@@ -572,7 +576,7 @@ static pm_status cmd_export_pov(int argc, char **argv)
     if (rc != PM_OK)
         return rc;
     scene *sc = NULL;
-    if ((rc = load_scene(a.scene, &sc)))
+    if ((rc = load_scene(a.scene, &sc)) != PM_OK)
         return rc;
     pm_status exit_code = export_write(a.out, pov_writer, sc, a.scene, &a.pov);
     scene_free(sc);
@@ -640,7 +644,7 @@ static pm_status cmd_export_pbrt(int argc, char **argv)
     if (rc != PM_OK)
         return rc;
     scene *sc = NULL;
-    if ((rc = load_scene(a.scene, &sc)))
+    if ((rc = load_scene(a.scene, &sc)) != PM_OK)
         return rc;
     char err[1024];
     pm_status exit_code = pbrt_check(sc, &a.pbrt, err, sizeof err);

@@ -55,8 +55,8 @@ static void outfile_install_handlers(void)
     }
 }
 
-/* Remembers tmp for the handler; returns its slot or -1 when all are used
- * (the file is still written, only not removed on a signal). */
+/* Remembers tmp for the handler; returns its slot, or OUTFILE_NO_SLOT when
+ * all are used (the file is still written, only not removed on a signal). */
 static int outfile_track(const char *tmp)
 {
     outfile_install_handlers();
@@ -67,20 +67,20 @@ static int outfile_track(const char *tmp)
             return i;
         }
     }
-    return -1;
+    return OUTFILE_NO_SLOT;
 }
 
 static void outfile_untrack(outfile *o)
 {
-    if (o->slot >= 0)
+    if (o->slot != OUTFILE_NO_SLOT)
         outfile_used[o->slot] = 0;
-    o->slot = -1;
+    o->slot = OUTFILE_NO_SLOT;
 }
 
 pm_status outfile_begin(outfile *o, const char *path, int stream, char *err, size_t errlen)
 {
     memset(o, 0, sizeof *o);
-    o->slot = -1;
+    o->slot = OUTFILE_NO_SLOT;
     size_t n = strlen(path);
     if (n == 0 || n + 32 >= OUTFILE_PATH_MAX) {
         snprintf(err, errlen, "%s: bad output path", path);
@@ -122,27 +122,27 @@ pm_status outfile_begin(outfile *o, const char *path, int stream, char *err, siz
 
 pm_status outfile_commit(outfile *o, char *err, size_t errlen)
 {
-    int rc = 0;
+    pm_status rc = PM_OK;
     if (o->f) {
         if (fflush(o->f) != 0 || ferror(o->f) || fsync(fileno(o->f)) != 0) {
             snprintf(err, errlen, "%s: write failed: %s", o->path, strerror(errno));
-            rc = -1;
+            rc = PM_ERR_IO;
         }
-        if (fclose(o->f) != 0 && rc == 0) {
+        if (fclose(o->f) != 0 && rc == PM_OK) {
             snprintf(err, errlen, "%s: write failed: %s", o->path, strerror(errno));
-            rc = -1;
+            rc = PM_ERR_IO;
         }
         o->f = NULL;
     }
-    if (rc == 0 && rename(o->tmp, o->path) != 0) {
+    if (rc == PM_OK && rename(o->tmp, o->path) != 0) {
         snprintf(err, errlen, "%s: cannot rename into place: %s", o->path, strerror(errno));
-        rc = -1;
+        rc = PM_ERR_IO;
     }
-    if (rc != 0)
+    if (rc != PM_OK)
         unlink(o->tmp);
     outfile_untrack(o);
     o->tmp[0] = '\0';
-    return rc == 0 ? PM_OK : PM_ERR_IO;
+    return rc;
 }
 
 void outfile_abort(outfile *o)
@@ -158,16 +158,16 @@ void outfile_abort(outfile *o)
 }
 
 /* The canonical name of path (which need not exist): its directory resolved
- * by realpath, then its last component. Returns 0, or -1 if the directory
- * cannot be resolved. */
-static int canonical_name(const char *path, char *out, size_t cap)
+ * by realpath, then its last component. Returns PM_OK, or PM_ERR_IO when
+ * the directory cannot be resolved or the name does not fit. */
+static pm_status canonical_name(const char *path, char *out, size_t cap)
 {
     char dir[OUTFILE_PATH_MAX], real[PATH_MAX];
     const char *slash = strrchr(path, '/');
     const char *base = slash ? slash + 1 : path;
     size_t dlen = slash ? (size_t)(slash - path) : 0;
     if (dlen + 1 > sizeof dir)
-        return -1;
+        return PM_ERR_IO;
     if (slash && dlen == 0)
         strcpy(dir, "/");
     else if (slash) {
@@ -176,9 +176,9 @@ static int canonical_name(const char *path, char *out, size_t cap)
     } else
         strcpy(dir, ".");
     if (!realpath(dir, real))
-        return -1;
+        return PM_ERR_IO;
     int n = snprintf(out, cap, "%s/%s", real, base);
-    return n < 0 || (size_t)n >= cap ? -1 : 0;
+    return n < 0 || (size_t)n >= cap ? PM_ERR_IO : PM_OK;
 }
 
 int outfile_same_target(const char *a, const char *b)
@@ -189,5 +189,5 @@ int outfile_same_target(const char *a, const char *b)
     if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
         return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
     char ca[OUTFILE_PATH_MAX + PATH_MAX], cb[OUTFILE_PATH_MAX + PATH_MAX];
-    return canonical_name(a, ca, sizeof ca) == 0 && canonical_name(b, cb, sizeof cb) == 0 && !strcmp(ca, cb);
+    return canonical_name(a, ca, sizeof ca) == PM_OK && canonical_name(b, cb, sizeof cb) == PM_OK && !strcmp(ca, cb);
 }

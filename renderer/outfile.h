@@ -18,8 +18,10 @@ typedef struct {
     char path[OUTFILE_PATH_MAX]; /* final name */
     char tmp[OUTFILE_PATH_MAX];  /* temporary name beside it */
     FILE *f;                     /* open on tmp when a stream was asked for */
-    int slot;                    /* where the signal handler finds tmp (-1: nowhere) */
+    int slot;                    /* where the signal handler finds tmp (OUTFILE_NO_SLOT: nowhere) */
 } outfile;
+
+#define OUTFILE_NO_SLOT (-1)
 
 /* Prepares writing `path`: creates the temporary file (so an unwritable
  * directory fails now, before any work) and, if `stream`, keeps it open as

@@ -31,7 +31,7 @@ static void *parallel_run(void *arg)
     return NULL;
 }
 
-int parallel_for(unsigned threads, uint64_t nitems, parallel_fn fn, void *ctx)
+void parallel_for(unsigned threads, uint64_t nitems, parallel_fn fn, void *ctx)
 {
     parallel_job job;
     job.fn = fn;
@@ -44,22 +44,19 @@ int parallel_for(unsigned threads, uint64_t nitems, parallel_fn fn, void *ctx)
         threads = nitems > 0 ? (unsigned)nitems : 1;
     pthread_t *tid = threads > 1 ? malloc(sizeof(pthread_t) * threads) : NULL;
     parallel_worker *w = malloc(sizeof(parallel_worker) * threads);
-    int rc = 0;
     if (!w || (threads > 1 && !tid)) {
         free(tid);
         free(w);
         parallel_worker self = {&job, 0};
         parallel_run(&self);
-        return -1;
+        return;
     }
     unsigned started = 1;
     for (unsigned t = 1; t < threads; t++) {
         w[t].job = &job;
         w[t].thread = t;
-        if (pthread_create(&tid[t], NULL, parallel_run, &w[t]) != 0) {
-            rc = -1;
+        if (pthread_create(&tid[t], NULL, parallel_run, &w[t]) != 0)
             break;
-        }
         started++;
     }
     w[0].job = &job;
@@ -69,7 +66,6 @@ int parallel_for(unsigned threads, uint64_t nitems, parallel_fn fn, void *ctx)
         pthread_join(tid[t], NULL);
     free(tid);
     free(w);
-    return rc;
 }
 
 unsigned parallel_cores(void)

@@ -10,9 +10,9 @@
 typedef void (*parallel_fn)(uint64_t item, unsigned thread, void *ctx);
 
 /* Runs fn for every item in [0, nitems) on `threads` workers (the calling
- * thread is one of them). Returns 0, or -1 if a thread could not be started
- * (every item is still run, by the threads that did start). */
-int parallel_for(unsigned threads, uint64_t nitems, parallel_fn fn, void *ctx);
+ * thread is one of them). Never fails: when a thread cannot be started,
+ * the threads that did (at least the caller) run every item. */
+void parallel_for(unsigned threads, uint64_t nitems, parallel_fn fn, void *ctx);
 /* Online CPU cores (at least 1). */
 unsigned parallel_cores(void);
 

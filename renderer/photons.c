@@ -49,7 +49,7 @@ typedef struct {
     photons_record *ph;
     uint64_t truncated, escaped;
     uint64_t rays, shape_tests; /* rays cast and their shape tests (work.h) */
-    int failed;
+    pm_status status; /* PM_OK, or why the chunk stopped */
 } photons_chunk;
 
 typedef struct {
@@ -63,9 +63,9 @@ typedef struct {
 } trace_ctx;
 
 /* Sets c's buffers to hold at least `want` records (and what that costs
- * no more pages: mem_round), keeping its photons. Returns -1 when memory
- * runs out (c is then unchanged). */
-static int chunk_reserve(photons_chunk *c, uint64_t want)
+ * no more pages: mem_round), keeping its photons. Returns PM_OK, or
+ * PM_ERR_NOMEM (c is then unchanged). */
+static pm_status chunk_reserve(photons_chunk *c, uint64_t want)
 {
     /* never below what mem_round makes a mapping of: a chunk's memory
      * then goes back to the system when the join frees it (malloc would
@@ -76,23 +76,25 @@ static int chunk_reserve(photons_chunk *c, uint64_t want)
     uint64_t a = pos_bytes / (3 * sizeof(double)), b = ph_bytes / sizeof(photons_record);
     double *np = mem_realloc(c->pos, pos_bytes);
     if (!np)
-        return -1;
+        return PM_ERR_NOMEM;
     c->pos = np;
     photons_record *nph = mem_realloc(c->ph, ph_bytes);
     if (!nph)
-        return -1;
+        return PM_ERR_NOMEM;
     c->ph = nph;
     c->cap = a < b ? a : b;
     assert(c->cap >= want);
-    return 0;
+    return PM_OK;
 }
 
-/* Appends one photon of relative power `power` to c. Returns -1 when memory
- * runs out. */
-static int chunk_store(photons_chunk *c, vec3 p, vec3 dir, vec3 power, vec3 n, unsigned flags)
+/* Appends one photon of relative power `power` to c. Returns PM_OK, or
+ * PM_ERR_NOMEM. */
+static pm_status chunk_store(photons_chunk *c, vec3 p, vec3 dir, vec3 power, vec3 n, unsigned flags)
 {
-    if (c->count == c->cap && chunk_reserve(c, c->cap ? c->cap + c->cap / 2 : PHOTONS_FIRST_CAP))
-        return -1;
+    pm_status rc;
+    if (c->count == c->cap &&
+        (rc = chunk_reserve(c, c->cap ? c->cap + c->cap / 2 : PHOTONS_FIRST_CAP)) != PM_OK)
+        return rc;
     double *q = c->pos + 3 * c->count;
     q[0] = p.x;
     q[1] = p.y;
@@ -106,12 +108,12 @@ static int chunk_store(photons_chunk *c, vec3 p, vec3 dir, vec3 power, vec3 n, u
     ph->flags = (uint8_t)flags;
     ph->pad = 0;
     c->count++;
-    return 0;
+    return PM_OK;
 }
 
 /* Traces photon `index` into chunk c; its power starts at 1 (the list's
- * unit). Returns -1 when memory runs out. */
-static int trace_one(const trace_ctx *tc, uint64_t index, photons_chunk *c)
+ * unit). Returns PM_OK, or PM_ERR_NOMEM. */
+static pm_status trace_one(const trace_ctx *tc, uint64_t index, photons_chunk *c)
 {
     const scene *sc = tc->sc;
     const photons_params *pp = tc->p;
@@ -125,30 +127,31 @@ static int trace_one(const trace_ctx *tc, uint64_t index, photons_chunk *c)
     for (uint32_t depth = 0;; depth++) {
         if (depth >= pp->max_depth) {
             c->truncated++;
-            return 0;
+            return PM_OK;
         }
         scene_hit h;
         c->rays++;
         if (!scene_intersect_counted(sc, &r, INFINITY, &h, &c->shape_tests)) {
             c->escaped++;
-            return 0;
+            return PM_OK;
         }
         const material *m = &sc->materials[sc->shapes[h.shape].material];
         if (m->kind == MATERIAL_LAMBERT) {
             if (pp->store_first_hits || bounces > 0) {
-                if (chunk_store(c, h.p, r.dir, power, h.n, bounces == 0 ? PHOTONS_FLAG_DIRECT : 0))
-                    return -1;
+                pm_status rc = chunk_store(c, h.p, r.dir, power, h.n, bounces == 0 ? PHOTONS_FLAG_DIRECT : 0);
+                if (rc != PM_OK)
+                    return rc;
             }
             double pc = vec_maxc(m->color);
             if (!(rng_next_double(&rs) < pc))
-                return 0;
+                return PM_OK;
             power = vec_scale(vec_mul(power, m->color), 1.0 / pc);
             double v1 = rng_next_double(&rs), v2 = rng_next_double(&rs);
             r = scene_spawn(&h, material_sample_cosine(h.n, v1, v2), 1);
         } else if (m->kind == MATERIAL_MIRROR) {
             power = vec_mul(power, m->color);
             if (vec_maxc(power) <= 0.0)
-                return 0;
+                return PM_OK;
             r = scene_spawn(&h, material_reflect(r.dir, h.n), 1);
         } else {
             double n1 = h.front ? 1.0 : m->ior, n2 = h.front ? m->ior : 1.0;
@@ -173,12 +176,10 @@ static void trace_chunk(uint64_t chunk, unsigned thread, void *arg)
     uint64_t lo = chunk * tc->chunk_len;
     uint64_t hi = lo + tc->chunk_len < tc->p->photons ? lo + tc->chunk_len : tc->p->photons;
     if (tc->cap)
-        c.failed = chunk_reserve(&c, tc->cap) != 0;
-    for (uint64_t i = lo; i < hi && !c.failed; i++) {
-        if (trace_one(tc, i, &c))
-            c.failed = 1;
-    }
-    if (!c.failed && c.cap > c.count) {
+        c.status = chunk_reserve(&c, tc->cap);
+    for (uint64_t i = lo; i < hi && c.status == PM_OK; i++)
+        c.status = trace_one(tc, i, &c);
+    if (c.status == PM_OK && c.cap > c.count) {
         /* the buffers' unused tails go back: their last huge page is
          * backed whole once touched, a waste of up to 2 MiB each while the
          * chunk waits to be joined (a failed shrink keeps them as they are) */
@@ -237,10 +238,11 @@ pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threa
         tc.first = 1;
     }
     parallel_for(threads, nchunks, trace_chunk, &tc);
-    int failed = 0;
+    pm_status rc = PM_OK;
     uint64_t total = 0;
     for (uint64_t i = 0; i < nchunks; i++) {
-        failed |= chunks[i].failed;
+        if (rc == PM_OK)
+            rc = chunks[i].status;
         at[i] = total;
         total += chunks[i].count;
         out->truncated += chunks[i].truncated;
@@ -248,12 +250,13 @@ pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threa
         out->rays += chunks[i].rays;
         out->shape_tests += chunks[i].shape_tests;
     }
-    if (!failed) {
+    if (rc == PM_OK) {
         out->pos = mem_alloc((total ? total : 1) * 3 * sizeof(double));
         out->ph = mem_alloc((total ? total : 1) * sizeof(photons_record));
-        failed = !out->pos || !out->ph;
+        if (!out->pos || !out->ph)
+            rc = PM_ERR_NOMEM;
     }
-    if (!failed) {
+    if (rc == PM_OK) {
         join_ctx jc = {chunks, at, out};
         parallel_for(threads, nchunks, join_chunk, &jc);
     }
@@ -263,13 +266,13 @@ pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threa
     }
     free(chunks);
     free(at);
-    if (failed) {
+    if (rc != PM_OK) {
         photons_list_free(out);
-        return PM_ERR_NOMEM;
+        return rc;
     }
     out->count = total;
     out->unit = p->photons ? vec_scale(sc->light.power, 1.0 / (double)p->photons) : vec_make(0, 0, 0);
-    return 0;
+    return PM_OK;
 }
 
 void photons_list_free(photons_list *l)
@@ -459,9 +462,9 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, unsigned threads
     build_ctx bc = {l, leave_out, m, left, NULL, 0, 0, NULL, NULL};
     bc.box = malloc(sizeof *bc.box * (nblocks ? nblocks : 1));
     bc.at = malloc(sizeof *bc.at * (nblocks ? nblocks : 1));
-    int rc = (!bc.box || !bc.at) ? -1 : 0;
+    pm_status rc = (!bc.box || !bc.at) ? PM_ERR_NOMEM : PM_OK;
     uint32_t n = 0, nout = 0;
-    if (rc == 0) {
+    if (rc == PM_OK) {
         parallel_for(threads, nblocks, scan_block, &bc);
         double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
         for (uint64_t k = 0; k < nblocks; k++) {
@@ -478,16 +481,16 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, unsigned threads
         }
         map_frame(l->count, lo, hi, &m->centre, &m->scale, &m->extent);
         bc.items = mem_alloc(sizeof(kd_build_item) * (n ? n : 1));
-        rc = !bc.items ? -1 : 0;
+        rc = !bc.items ? PM_ERR_NOMEM : PM_OK;
     }
-    if (rc == 0 && left) {
+    if (rc == PM_OK && left) {
         left->pos = mem_alloc(sizeof(double) * 3 * (nout ? nout : 1));
         left->ph = mem_alloc(sizeof(photons_record) * (nout ? nout : 1));
         left->unit = l->unit;
-        rc = (!left->pos || !left->ph) ? -1 : 0;
+        rc = (!left->pos || !left->ph) ? PM_ERR_NOMEM : PM_OK;
     }
-    assert(rc != 0 || left || nout == 0);
-    if (rc == 0) {
+    assert(rc != PM_OK || left || nout == 0);
+    if (rc == PM_OK) {
         convert_list(&bc, nblocks, threads);
         if (left)
             left->count = nout;
@@ -495,9 +498,9 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, unsigned threads
     free(bc.box);
     free(bc.at);
     photons_list_free(l);
-    if (rc == 0)
+    if (rc == PM_OK)
         rc = kd_build_items(&m->tree, bc.items, n, KD_DEFAULT_LEAF, threads);
-    if (rc == 0) {
+    if (rc == PM_OK) {
         m->count = n;
         compact_items(&bc, n, threads);
         /* the records' tail of the items' buffer goes back (a shrink
@@ -511,7 +514,7 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, unsigned threads
         if (left)
             photons_list_free(left);
     }
-    return rc == 0 ? PM_OK : PM_ERR_NOMEM;
+    return rc;
 }
 
 void photons_map_free(photons_map *m)
@@ -544,16 +547,18 @@ double photons_peak_bytes(double stored)
     return fmax(convert, build);
 }
 
-double photons_stored_per_emitted(const scene *sc, const photons_params *p)
+pm_status photons_stored_per_emitted(const scene *sc, const photons_params *p, double *per)
 {
     photons_params pilot = *p;
     pilot.photons = p->photons < PHOTONS_PILOT ? p->photons : PHOTONS_PILOT;
+    *per = 0.0;
     if (pilot.photons == 0)
-        return 0.0;
+        return PM_OK;
     photons_list l;
-    if (photons_trace(sc, &pilot, 1, NULL, &l))
-        return -1.0;
-    double per = (double)l.count / (double)pilot.photons;
+    pm_status rc = photons_trace(sc, &pilot, 1, NULL, &l);
+    if (rc != PM_OK)
+        return rc;
+    *per = (double)l.count / (double)pilot.photons;
     photons_list_free(&l);
-    return per;
+    return PM_OK;
 }

@@ -102,9 +102,9 @@ size_t photons_map_bytes(const photons_map *m);
  * tree's items, then the items (built in place) beside the tree's arrays.
  * About 45 bytes a stored photon; never fails. */
 double photons_peak_bytes(double stored);
-/* Traces a pilot of min(p->photons, 4096) photons on one thread and returns
- * the photons stored per emitted photon (0 for no photons), or -1 when
- * memory runs out. */
-double photons_stored_per_emitted(const scene *sc, const photons_params *p);
+/* Traces a pilot of min(p->photons, 4096) photons on one thread and sets
+ * *per to the photons stored per emitted photon (0 for no photons).
+ * Returns PM_OK, or PM_ERR_NOMEM. */
+pm_status photons_stored_per_emitted(const scene *sc, const photons_params *p, double *per);
 
 #endif

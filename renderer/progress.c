@@ -3,7 +3,7 @@
 
 #include <stdio.h>
 
-#include "stats.h"
+#include "clock.h"
 
 #define PROGRESS_PERIOD_NS 200000000LL
 
@@ -13,7 +13,7 @@ static void progress_draw(progress *p, int final)
     double frac = p->total ? (double)done / (double)p->total : 1.0;
     if (frac > 1.0)
         frac = 1.0;
-    double elapsed = (double)(stats_now_ns() - p->start_ns) * 1e-9;
+    double elapsed = (double)(clock_now_ns() - p->start_ns) * 1e-9;
     char bar[31];
     int fill = (int)(frac * 30.0);
     for (int i = 0; i < 30; i++)
@@ -34,7 +34,7 @@ void progress_begin(progress *p, const char *label, uint64_t total, int enabled)
     p->label = label;
     p->total = total;
     atomic_init(&p->done, 0);
-    p->start_ns = stats_now_ns();
+    p->start_ns = clock_now_ns();
     atomic_init(&p->next_draw_ns, p->start_ns);
     atomic_flag_clear(&p->drawing);
     p->enabled = enabled;
@@ -47,7 +47,7 @@ void progress_add(progress *p, uint64_t n)
     atomic_fetch_add_explicit(&p->done, n, memory_order_relaxed);
     if (!p->enabled)
         return;
-    int64_t now = stats_now_ns();
+    int64_t now = clock_now_ns();
     if (now < atomic_load_explicit(&p->next_draw_ns, memory_order_relaxed))
         return;
     if (atomic_flag_test_and_set(&p->drawing))

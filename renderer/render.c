@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clock.h"
 #include "estimate.h"
 #include "eye.h"
 #include "photons.h"
@@ -36,10 +37,10 @@ typedef struct {
     double max_radius; /* the radius cap, scene units */
 } render_state;
 
-/* Seconds since t0 (stats_now_ns). */
+/* Seconds since t0 (clock_now_ns). */
 static double seconds_since(int64_t t0)
 {
-    return (double)(stats_now_ns() - t0) * 1e-9;
+    return (double)(clock_now_ns() - t0) * 1e-9;
 }
 
 /* Step 1: emit and trace the photons, and choose the representatives among
@@ -50,9 +51,10 @@ static pm_status step_trace(render_state *rs)
     photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS};
     progress prog;
     progress_begin(&prog, "photons", cfg->photons, rs->show_progress);
-    int64_t t0 = stats_now_ns();
-    if (photons_trace(rs->sc, &pp, rs->threads, &prog, &rs->list))
-        return PM_ERR_NOMEM;
+    int64_t t0 = clock_now_ns();
+    pm_status rc;
+    if ((rc = photons_trace(rs->sc, &pp, rs->threads, &prog, &rs->list)) != PM_OK)
+        return rc;
     reps_choose(&rs->rp, &rs->list);
     progress_end(&prog);
     rs->st->trace = seconds_since(t0);
@@ -71,13 +73,14 @@ static pm_status step_trace(render_state *rs)
  * sites in it. Returns PM_OK, or PM_ERR_NOMEM. */
 static pm_status step_build(render_state *rs)
 {
-    int64_t t0 = stats_now_ns();
+    int64_t t0 = clock_now_ns();
     photons_list left;
-    if (photons_build_map(&rs->list, reps_leave_out_mask(&rs->rp), rs->threads, &rs->map, &left))
-        return PM_ERR_NOMEM;
-    pm_status rc = reps_collect(&rs->rp, &rs->map, &left, &rs->reps);
+    pm_status rc;
+    if ((rc = photons_build_map(&rs->list, reps_leave_out_mask(&rs->rp), rs->threads, &rs->map, &left)) != PM_OK)
+        return rc;
+    rc = reps_collect(&rs->rp, &rs->map, &left, &rs->reps);
     photons_list_free(&left);
-    if (rc)
+    if (rc != PM_OK)
         return rc;
     rs->st->build = seconds_since(t0);
     rs->st->work.build.tree_points = rs->map.count;
@@ -134,9 +137,10 @@ static pm_status step_precompute(render_state *rs)
     est_gather g = est_gather_make(&rs->map, cfg->nn, rs->max_radius, cfg->bias_correction);
     progress prog;
     progress_begin(&prog, "precompute", rs->reps.count, rs->show_progress);
-    int64_t t0 = stats_now_ns();
-    if (reps_evaluate(&rs->reps, &rs->map, &g, rs->threads, &prog))
-        return PM_ERR_NOMEM;
+    int64_t t0 = clock_now_ns();
+    pm_status rc;
+    if ((rc = reps_evaluate(&rs->reps, &rs->map, &g, rs->threads, &prog)) != PM_OK)
+        return rc;
     progress_end(&prog);
     rs->st->precompute = seconds_since(t0);
     rs->st->representatives = rs->reps.count;
@@ -154,19 +158,20 @@ static pm_status step_eye(render_state *rs, image *out)
 
 pm_status render_prepare(scene *sc, const config_render *cfg, char *err, size_t errlen)
 {
-    if (scene_set_accel(sc, cfg->accel) == 0)
-        return PM_OK;
-    snprintf(err, errlen, "out of memory building the BVH of %zu shapes", sc->nshapes);
-    return PM_ERR_NOMEM;
+    pm_status rc = scene_set_accel(sc, cfg->accel);
+    if (rc != PM_OK)
+        snprintf(err, errlen, "%s building the BVH of %zu shapes", pm_status_message(rc), sc->nshapes);
+    return rc;
 }
 
 pm_status render_check_memory(const scene *sc, const config_render *cfg, uint64_t mem, char *err, size_t errlen)
 {
     photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS};
-    double per_emitted = photons_stored_per_emitted(sc, &pp);
-    if (per_emitted < 0.0) {
-        snprintf(err, errlen, "out of memory in the pilot photon pass");
-        return PM_ERR_NOMEM;
+    double per_emitted;
+    pm_status rc = photons_stored_per_emitted(sc, &pp, &per_emitted);
+    if (rc != PM_OK) {
+        snprintf(err, errlen, "the pilot photon pass: %s", pm_status_message(rc));
+        return rc;
     }
     if (per_emitted == 0.0)
         return PM_OK;
@@ -202,7 +207,7 @@ pm_status render_run(const scene *sc, const config_render *cfg, unsigned threads
     rs.show_progress = show_progress;
     rs.st = st;
     rs.rp = reps_params_of(cfg);
-    int64_t t_start = stats_now_ns();
+    int64_t t_start = clock_now_ns();
     pm_status rc = step_trace(&rs);
     if (rc == PM_OK)
         rc = reps_check_stored(cfg, rs.list.count, err, errlen);
@@ -225,8 +230,9 @@ pm_status render_run(const scene *sc, const config_render *cfg, unsigned threads
         reps_free(&rs.reps);
         photons_map_free(&rs.map);
     }
-    if (rc == PM_ERR_NOMEM)
-        snprintf(err, errlen, "out of memory while rendering");
+    /* the steps that fail on input write why into err; the others do not */
+    if (rc != PM_OK && rc != PM_ERR_INPUT)
+        snprintf(err, errlen, "%s while rendering", pm_status_message(rc));
     if (rc != PM_OK) {
         image_free(&out->img);
         memset(out, 0, sizeof *out);

@@ -26,45 +26,9 @@ reps_params reps_params_of(const config_render *cfg)
     return p;
 }
 
-const char *reps_check(const config_render *c)
-{
-    if (c->dump_reps && c->method != CONFIG_METHOD_PRECOMPUTED)
-        return "--dump-reps writes the representatives of the precomputed method: use it with --method precomputed";
-    if (c->rep_count > 0 && c->rep_every != CONFIG_DEFAULT_REP_EVERY)
-        return "--rep-count and --rep-every are two rules for choosing the representatives: give one";
-    /* the variants beyond the paper */
-    if (c->rep_eval != CONFIG_REP_EVAL_EAGER && c->method != CONFIG_METHOD_PRECOMPUTED)
-        return "--rep-eval lazy evaluates the representatives of the precomputed method on first use; the "
-               "conventional method has none: use it with --method precomputed";
-    if (c->rep_gate != CONFIG_REP_GATE_NONE && c->method != CONFIG_METHOD_PRECOMPUTED)
-        return "--rep-gate plane (and plane-lookup) chooses among the representatives of the precomputed method; the conventional "
-               "method has none: use it with --method precomputed";
-    if (c->rep_gate_tau != CONFIG_DEFAULT_REP_GATE_TAU && c->rep_gate == CONFIG_REP_GATE_NONE)
-        return "--rep-gate-tau is the plane gate's tolerance: use it with --rep-gate plane or plane-lookup";
-    if (c->rep_gate != CONFIG_REP_GATE_NONE && c->rep_tree == CONFIG_REP_TREE_SHARED)
-        return "--rep-gate plane (and plane-lookup) tries the nearest representatives in their own kd-tree; --rep-tree shared has "
-               "none: use --rep-tree separate";
-    if (c->rep_eval == CONFIG_REP_EVAL_LAZY && c->dump_reps)
-        return "--dump-reps writes every representative's precomputed irradiance; --rep-eval lazy computes only "
-               "those the eye pass selects: use --rep-eval eager";
-    if (c->method != CONFIG_METHOD_PRECOMPUTED)
-        return NULL;
-    if (!c->bias_correction && c->nn < 3)
-        return "--method precomputed with --nn 2: a representative is its own nearest photon, so r is the "
-               "distance to one other photon and the estimate has no finite mean (it follows n/(n-2)); use --nn 3 "
-               "or more, or --bias-correction";
-    if (c->bias_correction && c->rep_every < 2)
-        return "--bias-correction with --method precomputed estimates at representatives from the photons that "
-               "are not representatives; --rep-every 1 leaves none: use --rep-every 2 or more";
-    if (c->bias_correction && c->rep_tree == CONFIG_REP_TREE_SHARED)
-        return "--bias-correction with --method precomputed keeps the representatives out of the photon tree; "
-               "--rep-tree shared finds them there: use --rep-tree separate";
-    return NULL;
-}
-
 pm_status reps_check_stored(const config_render *cfg, uint64_t stored, char *err, size_t errlen)
 {
-    /* reps_check refuses --rep-every 1 up front; the count's share of the
+    /* config_check refuses --rep-every 1 up front; the count's share of the
      * stored photons is known only after the photon pass */
     if (!(cfg->method == CONFIG_METHOD_PRECOMPUTED && cfg->bias_correction && cfg->rep_count > 0 && stored > 0 &&
           cfg->rep_count >= stored))
@@ -220,23 +184,23 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
     if (r->eval == CONFIG_REP_EVAL_LAZY)
         r->state = malloc(sizeof(atomic_uchar) * (count ? count : 1));
     est_scratch *scratch = est_scratch_new(nt, g->nn);
-    int rc = (!r->value || !scratch || (r->eval == CONFIG_REP_EVAL_LAZY && !r->state)) ? -1 : 0;
-    if (rc == 0 && r->tree == CONFIG_REP_TREE_SEPARATE) {
+    pm_status rc = (!r->value || !scratch || (r->eval == CONFIG_REP_EVAL_LAZY && !r->state)) ? PM_ERR_NOMEM : PM_OK;
+    if (rc == PM_OK && r->tree == CONFIG_REP_TREE_SEPARATE) {
         /* the representatives' own tree first: the precompute then runs in
          * its leaf order (nearby queries in a row) and stores in that order */
         float *pos = malloc(sizeof(float) * 3 * (count ? count : 1));
         order = malloc(sizeof(uint32_t) * (count ? count : 1));
-        rc = (!pos || !order) ? -1 : 0;
-        if (rc == 0) {
+        rc = (!pos || !order) ? PM_ERR_NOMEM : PM_OK;
+        if (rc == PM_OK) {
             for (uint32_t i = 0; i < count; i++)
                 memcpy(pos + 3 * (size_t)i, r->site[i].pos, 3 * sizeof(float));
             rc = kd_build(&r->own, pos, count, KD_DEFAULT_LEAF, order, nt);
         }
         free(pos);
-    } else if (rc == 0) {
+    } else if (rc == PM_OK) {
         r->rep_of = malloc(sizeof(uint32_t) * (m->count ? m->count : 1));
-        rc = r->rep_of ? 0 : -1;
-        if (rc == 0) {
+        rc = r->rep_of ? PM_OK : PM_ERR_NOMEM;
+        if (rc == PM_OK) {
             for (uint32_t i = 0; i < m->count; i++)
                 r->rep_of[i] = KD_NONE;
             for (uint32_t i = 0; i < count; i++) {
@@ -245,26 +209,26 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
             }
         }
     }
-    if (rc == 0) {
+    if (rc == PM_OK) {
         /* eager: every representative's irradiance, now, before the eye
          * pass (the paper's precompute); lazy: the normals only */
         evaluate_ctx c = {r, m, order, scratch, prog};
         parallel_for(threads, (count + REPS_CHUNK - 1) / REPS_CHUNK, evaluate_chunk, &c);
     }
-    if (rc == 0) {
+    if (rc == PM_OK) {
         memset(&r->work, 0, sizeof r->work);
         r->work.tree_points = r->tree == CONFIG_REP_TREE_SEPARATE ? count : 0;
         est_scratch_work(scratch, nt, &r->work);
     }
-    if (rc == 0 && r->eval == CONFIG_REP_EVAL_LAZY) {
+    if (rc == PM_OK && r->eval == CONFIG_REP_EVAL_LAZY) {
         r->site_of = order; /* the lookup finds a value's site by it */
         order = NULL;
     }
     free(order);
     est_scratch_delete(scratch, nt);
-    if (rc != 0)
+    if (rc != PM_OK)
         free_values(r);
-    return rc == 0 ? PM_OK : PM_ERR_NOMEM;
+    return rc;
 }
 
 typedef struct {
@@ -385,7 +349,7 @@ vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, double
     const reps_value *v = NULL;
     s->rep_lookups++;
     if (r->gate != CONFIG_REP_GATE_NONE) {
-        assert(r->tree == CONFIG_REP_TREE_SEPARATE); /* reps_check */
+        assert(r->tree == CONFIG_REP_TREE_SEPARATE); /* config_check */
         v = gate_accept(r, m, q, n, cos_min, max_r2, s);
         if (!v) {
             uint32_t k;

@@ -60,9 +60,6 @@ typedef struct {
  * other photons only. Never fails. */
 reps_params reps_params_of(const config_render *cfg);
 
-/* NULL when cfg's representative settings go together, else why they do
- * not (a user error, found before any work). */
-const char *reps_check(const config_render *cfg);
 /* The check that needs the stored count (known after the photon pass): a
  * fixed count that takes every stored photon leaves the corrected estimate
  * none to gather from. Returns PM_OK, or PM_ERR_INPUT with the reason in

@@ -52,7 +52,7 @@ typedef struct {
     size_t name_cap;    /* 0 or a power of two */
 } parser;
 
-static int perr(parser *p, int col, const char *fmt, ...)
+static pm_status perr(parser *p, int col, const char *fmt, ...)
 {
     int n = snprintf(p->err, p->errlen, "%s:%d:%d: ", p->name, p->line, col);
     if (n >= 0 && (size_t)n < p->errlen) {
@@ -83,7 +83,7 @@ static const char *tok_str(const parser *p, int i, char *buf, size_t cap)
 
 
 /* Splits one line (without its '\n') into tokens, validating every byte. */
-static int tokenize(parser *p, size_t start, size_t end)
+static pm_status tokenize(parser *p, size_t start, size_t end)
 {
     const unsigned char *t = (const unsigned char *)p->text;
     p->ntok = 0;
@@ -128,7 +128,7 @@ static int tokenize(parser *p, size_t start, size_t end)
 }
 
 /* Parses token i as a finite number in [lo, hi]. */
-static int parse_number(parser *p, int i, double lo, double hi, double *out)
+static pm_status parse_number(parser *p, int i, double lo, double hi, double *out)
 {
     char buf[SCENE_MAX_TOKEN + 1];
     const token *tk = &p->tok[i];
@@ -195,7 +195,7 @@ static const material_spec material_specs[] = {
 
 /* Parses "key value..." pairs from token `first` on into val[] (nf fields
  * of spec[]): every field exactly once. */
-static int parse_fields(parser *p, int first, const field_spec *spec, field_val *val, int nf, const char *stmt)
+static pm_status parse_fields(parser *p, int first, const field_spec *spec, field_val *val, int nf, const char *stmt)
 {
     char buf[64];
     for (int k = 0; k < nf; k++)
@@ -227,8 +227,8 @@ static int parse_fields(parser *p, int first, const field_spec *spec, field_val 
         } else {
             double c[3] = {0, 0, 0};
             for (int j = 0; j < arity; j++) {
-                int rc = parse_number(p, i + 1 + j, spec[k].lo, spec[k].hi, &c[j]);
-                if (rc)
+                pm_status rc = parse_number(p, i + 1 + j, spec[k].lo, spec[k].hi, &c[j]);
+                if (rc != PM_OK)
                     return rc;
             }
             val[k].v = vec_make(c[0], c[1], c[2]);
@@ -291,15 +291,15 @@ static int find_material(const parser *p, int i)
 }
 
 /* Makes room for one more name (rehashing into a table twice the size when
- * half full). Returns 0, or -1 when memory runs out. */
-static int names_reserve(parser *p)
+ * half full). Returns PM_OK, or PM_ERR_NOMEM. */
+static pm_status names_reserve(parser *p)
 {
     if (2 * (p->sc->nmaterials + 1) <= p->name_cap)
-        return 0;
+        return PM_OK;
     size_t cap = p->name_cap ? 2 * p->name_cap : 64;
     int *idx = malloc(cap * sizeof(int));
     if (!idx)
-        return -1;
+        return PM_ERR_NOMEM;
     for (size_t j = 0; j < cap; j++)
         idx[j] = -1;
     for (size_t m = 0; m < p->sc->nmaterials; m++) {
@@ -312,16 +312,16 @@ static int names_reserve(parser *p)
     free(p->name_index);
     p->name_index = idx;
     p->name_cap = cap;
-    return 0;
+    return PM_OK;
 }
 
-static int parse_camera(parser *p)
+static pm_status parse_camera(parser *p)
 {
     field_val f[NFIELDS(camera_fields)];
     if (p->camera_line)
         return perr(p, p->tok[0].col, "second camera (the first is on line %d)", p->camera_line);
-    int rc = parse_fields(p, 1, camera_fields, f, NFIELDS(camera_fields), "camera");
-    if (rc)
+    pm_status rc = parse_fields(p, 1, camera_fields, f, NFIELDS(camera_fields), "camera");
+    if (rc != PM_OK)
         return rc;
     vec3 dir = vec_sub(f[CAM_LOOK_AT].v, f[CAM_POSITION].v);
     /* only an exact tie: a relative test refused a room at x = 1e15 - 3 whose
@@ -347,7 +347,7 @@ static int parse_camera(parser *p)
     return PM_OK;
 }
 
-static int parse_light(parser *p)
+static pm_status parse_light(parser *p)
 {
     field_val f[NFIELDS(light_fields)];
     if (p->light_line)
@@ -356,8 +356,8 @@ static int parse_light(parser *p)
     if (p->ntok < 2 || !tok_is(p, 1, "point"))
         return perr(p, p->ntok < 2 ? (int)(p->tok[0].col + p->tok[0].len) : p->tok[1].col,
                     "expected 'light point ...' (the only light type)");
-    int rc = parse_fields(p, 2, light_fields, f, NFIELDS(light_fields), "light");
-    if (rc)
+    pm_status rc = parse_fields(p, 2, light_fields, f, NFIELDS(light_fields), "light");
+    if (rc != PM_OK)
         return rc;
     p->sc->light.position = f[LIGHT_POSITION].v;
     p->sc->light.power = f[LIGHT_POWER].v;
@@ -365,20 +365,22 @@ static int parse_light(parser *p)
     return PM_OK;
 }
 
-static int grow(void **arr, size_t *cap, size_t n, size_t elem)
+/* Makes room for element n of the array *arr of *cap elements of elem
+ * bytes (doubling it). Returns PM_OK, or PM_ERR_NOMEM (*arr unchanged). */
+static pm_status grow(void **arr, size_t *cap, size_t n, size_t elem)
 {
     if (n < *cap)
-        return 0;
+        return PM_OK;
     size_t nc = *cap ? *cap * 2 : 8;
     void *q = realloc(*arr, nc * elem);
     if (!q)
-        return -1;
+        return PM_ERR_NOMEM;
     *arr = q;
     *cap = nc;
-    return 0;
+    return PM_OK;
 }
 
-static int parse_material(parser *p)
+static pm_status parse_material(parser *p)
 {
     char buf[64];
     scene *sc = p->sc;
@@ -404,8 +406,8 @@ static int parse_material(parser *p)
     char stmt[32];
     snprintf(stmt, sizeof stmt, "%s material", ms->name);
     field_val f;
-    int rc = parse_fields(p, 3, &ms->field, &f, 1, stmt);
-    if (rc)
+    pm_status rc = parse_fields(p, 3, &ms->field, &f, 1, stmt);
+    if (rc != PM_OK)
         return rc;
     material m;
     memset(&m, 0, sizeof m);
@@ -415,8 +417,9 @@ static int parse_material(parser *p)
     memcpy(m.name, p->text + p->tok[1].start, p->tok[1].len);
     m.name[p->tok[1].len] = '\0';
     size_t cap = p->cap_materials;
-    if (grow((void **)&sc->materials, &p->cap_materials, sc->nmaterials, sizeof(material)) || names_reserve(p))
-        return PM_ERR_NOMEM;
+    if ((rc = grow((void **)&sc->materials, &p->cap_materials, sc->nmaterials, sizeof(material))) != PM_OK ||
+        (rc = names_reserve(p)) != PM_OK)
+        return rc;
     if (p->cap_materials != cap) {
         int *q = realloc(p->material_line, p->cap_materials * sizeof(int));
         if (!q)
@@ -430,7 +433,7 @@ static int parse_material(parser *p)
     return PM_OK;
 }
 
-static int resolve_material(parser *p, const field_val *f, int *out)
+static pm_status resolve_material(parser *p, const field_val *f, int *out)
 {
     char buf[64];
     int m = find_material(p, f->name);
@@ -441,21 +444,22 @@ static int resolve_material(parser *p, const field_val *f, int *out)
     return PM_OK;
 }
 
-static int add_shape(parser *p, shape s)
+static pm_status add_shape(parser *p, shape s)
 {
     if (p->sc->nshapes >= SCENE_MAX_ITEMS)
         return perr(p, p->tok[0].col, "too many shapes (at most %d)", SCENE_MAX_ITEMS);
-    if (grow((void **)&p->sc->shapes, &p->cap_shapes, p->sc->nshapes, sizeof(shape)))
-        return PM_ERR_NOMEM;
+    pm_status rc;
+    if ((rc = grow((void **)&p->sc->shapes, &p->cap_shapes, p->sc->nshapes, sizeof(shape))) != PM_OK)
+        return rc;
     p->sc->shapes[p->sc->nshapes++] = s;
     return PM_OK;
 }
 
-static int parse_sphere(parser *p)
+static pm_status parse_sphere(parser *p)
 {
     field_val f[NFIELDS(sphere_fields)];
-    int rc = parse_fields(p, 1, sphere_fields, f, NFIELDS(sphere_fields), "sphere");
-    if (rc)
+    pm_status rc = parse_fields(p, 1, sphere_fields, f, NFIELDS(sphere_fields), "sphere");
+    if (rc != PM_OK)
         return rc;
     if (!(f[SPHERE_RADIUS].v.x >= SCENE_MIN_LENGTH))
         return perr(p, f[SPHERE_RADIUS].col, "sphere radius must be positive and at least %g", SCENE_MIN_LENGTH);
@@ -465,11 +469,11 @@ static int parse_sphere(parser *p)
     return add_shape(p, shape_sphere(f[SPHERE_CENTER].v, f[SPHERE_RADIUS].v.x, m));
 }
 
-static int parse_rect(parser *p)
+static pm_status parse_rect(parser *p)
 {
     field_val f[NFIELDS(rect_fields)];
-    int rc = parse_fields(p, 1, rect_fields, f, NFIELDS(rect_fields), "rect");
-    if (rc)
+    pm_status rc = parse_fields(p, 1, rect_fields, f, NFIELDS(rect_fields), "rect");
+    if (rc != PM_OK)
         return rc;
     vec3 e1 = f[RECT_EDGE1].v, e2 = f[RECT_EDGE2].v;
     double l1 = vec_len(e1), l2 = vec_len(e2);
@@ -485,7 +489,7 @@ static int parse_rect(parser *p)
     return add_shape(p, shape_rect(f[RECT_CORNER].v, e1, e2, m));
 }
 
-static int parse_line(parser *p)
+static pm_status parse_line(parser *p)
 {
     char buf[64];
     if (p->ntok == 0)
@@ -636,7 +640,7 @@ int scene_sphere_between(const scene *s, vec3 a, vec3 b)
         if (in_a != in_b)
             return (int)i;
     }
-    return -1;
+    return SCENE_NO_SHAPE;
 }
 
 void scene_free(scene *s)

@@ -63,7 +63,8 @@ void scene_free(scene *s);
 /* The index of the first opaque (not glass) sphere of s that encloses
  * exactly one of the points a and b (spheres are the model's one closed
  * shape: rectangles enclose nothing by themselves), so that no light path
- * joins them, or -1 when none does; never fails. */
+ * joins them, or SCENE_NO_SHAPE when none does; never fails. */
+#define SCENE_NO_SHAPE (-1)
 int scene_sphere_between(const scene *s, vec3 a, vec3 b);
 
 /* A ray's hit: the shape, where, and the normal facing the side the ray

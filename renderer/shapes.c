@@ -12,12 +12,12 @@ static double bounds_magnitude(const shape *s)
     return fmax(fmax(fmax(fabs(lo.x), fabs(lo.y)), fmax(fabs(lo.z), fabs(hi.x))), fmax(fabs(hi.y), fabs(hi.z)));
 }
 
-/* The axis of v's only non-zero component, or -1. */
+/* The axis of v's only non-zero component, or SHAPE_NO_AXIS. */
 static int single_axis(vec3 v)
 {
     int nonzero = (v.x != 0.0) + (v.y != 0.0) + (v.z != 0.0);
     if (nonzero != 1)
-        return -1;
+        return SHAPE_NO_AXIS;
     return v.x != 0.0 ? 0 : v.y != 0.0 ? 1 : 2;
 }
 
@@ -30,7 +30,7 @@ shape shape_sphere(vec3 center, double radius, int material)
     s.center = center;
     s.radius = radius;
     s.magnitude = bounds_magnitude(&s);
-    s.axis[0] = s.axis[1] = s.axis[2] = -1;
+    s.axis[0] = s.axis[1] = s.axis[2] = SHAPE_NO_AXIS;
     return s;
 }
 
@@ -51,8 +51,8 @@ shape shape_rect(vec3 corner, vec3 edge1, vec3 edge2, int material)
     vec3 v[3] = {s.normal, edge1, edge2};
     for (int i = 0; i < 3; i++)
         s.axis[i] = single_axis(v[i]);
-    if (s.axis[0] < 0 || s.axis[1] < 0 || s.axis[2] < 0)
-        s.axis[0] = s.axis[1] = s.axis[2] = -1;
+    if (s.axis[0] == SHAPE_NO_AXIS || s.axis[1] == SHAPE_NO_AXIS || s.axis[2] == SHAPE_NO_AXIS)
+        s.axis[0] = s.axis[1] = s.axis[2] = SHAPE_NO_AXIS;
     return s;
 }
 

@@ -8,6 +8,8 @@
 
 typedef enum { SHAPE_SPHERE = 0, SHAPE_RECT = 1 } shape_kind;
 
+#define SHAPE_NO_AXIS (-1) /* shape.axis of a shape that is not an axis-aligned rectangle */
+
 typedef struct {
     shape_kind kind;
     int material;        /* index into scene.materials */
@@ -21,7 +23,7 @@ typedef struct {
     double inv_len2_2;   /* 1/|edge2|^2 */
     double magnitude;    /* largest |coordinate| of the shape's bounds: the scale of its rounding errors */
     int axis[3];         /* rectangle: the one axis of its normal, edge1, edge2 when each has only one
-                            non-zero component (an axis-aligned rectangle), else -1 */
+                            non-zero component (an axis-aligned rectangle), else SHAPE_NO_AXIS */
 } shape;
 
 typedef struct {
@@ -127,7 +129,7 @@ static inline int shape_rect_aligned_intersect_(const shape *s, const shape_ray 
 
 static inline int shape_rect_intersect_(const shape *s, const shape_ray *r, double tmin, double tmax, double *t)
 {
-    if (s->axis[0] >= 0)
+    if (s->axis[0] != SHAPE_NO_AXIS)
         return shape_rect_aligned_intersect_(s, r, tmin, tmax, t);
     double denom = vec_dot(r->dir, s->normal);
     if (denom == 0.0)

@@ -1,18 +1,10 @@
-/* stats: clock and JSON writer. */
+/* stats: the JSON writer of a run. */
 #include "stats.h"
 
 #include <math.h>
 #include <string.h>
-#include <time.h>
 
 #include "utf8.h"
-
-int64_t stats_now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (int64_t)ts.tv_sec * 1000000000LL + ts.tv_nsec;
-}
 
 /* Writes s as a JSON string: valid UTF-8 as is, control characters
  * escaped, and each byte that is not valid UTF-8 (a path may hold any bytes)

@@ -1,5 +1,5 @@
-/* stats: the monotonic clock, what a render measured (times per phase and
- * counts), and its JSON form. */
+/* stats: what a render measured (times per phase and counts) and its JSON
+ * form. */
 #ifndef PM_STATS_H
 #define PM_STATS_H
 
@@ -51,8 +51,6 @@ typedef struct {
     provenance_info provenance;   /* the binary and the machine (its strings NULL: "unknown") */
 } stats_run;
 
-/* Monotonic time in nanoseconds. */
-int64_t stats_now_ns(void);
 /* Writes the run as one JSON object to f: "status" is "ok", or "refused"
  * with the reason in "reason" when `refused` is not NULL (the run made no
  * image). Returns PM_OK, or PM_ERR_IO on a write error. */

@@ -1,5 +1,5 @@
 /* test_config: the defaults are the documented constants, and config_check
- * (with reps_check) accepts the defaults and every method, and refuses each
+ * accepts the defaults and every method, and refuses each
  * combination that has no finite or meaningful estimate (the negative
  * controls). */
 #include <string.h>

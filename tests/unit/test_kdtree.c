@@ -81,7 +81,7 @@ void test_kdtree_matches_brute_force(void)
             float *pts = random_points(n, 1000 + n, clustered);
             uint32_t *perm = malloc(sizeof(uint32_t) * n);
             kd_tree t;
-            CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == 0);
+            CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == PM_OK);
             rng_stream s = rng_make(7, n);
             for (int qi = 0; qi < 20; qi++) {
                 float q[3];
@@ -108,14 +108,14 @@ void test_kdtree_edge_cases(void)
     uint32_t idx[8];
     float d2[8], r2 = -1.0f;
     /* N = 0 */
-    CHECK(kd_build(&t, NULL, 0, KD_DEFAULT_LEAF, NULL, 1) == 0);
+    CHECK(kd_build(&t, NULL, 0, KD_DEFAULT_LEAF, NULL, 1) == PM_OK);
     CHECK(kd_knn(&t, q, 5, INFINITY, idx, d2, &r2) == 0);
     CHECK(r2 == 0.0f);
     kd_free(&t);
     /* N = 1, k > N */
     float one[3] = {1, 2, 3};
     uint32_t perm1[1];
-    CHECK(kd_build(&t, one, 1, KD_DEFAULT_LEAF, perm1, 1) == 0);
+    CHECK(kd_build(&t, one, 1, KD_DEFAULT_LEAF, perm1, 1) == PM_OK);
     CHECK(kd_knn(&t, q, 5, INFINITY, idx, d2, &r2) == 1);
     CHECK(d2[0] == 14.0f && r2 == 14.0f && perm1[idx[0]] == 0);
     CHECK(kd_knn(&t, q, 5, 13.9f, idx, d2, &r2) == 0); /* radius cap excludes it */
@@ -126,7 +126,7 @@ void test_kdtree_edge_cases(void)
     for (int i = 0; i < 3 * NDUP; i++)
         dup[i] = 0.5f;
     uint32_t *perm = malloc(sizeof(uint32_t) * NDUP);
-    CHECK(kd_build(&t, dup, NDUP, KD_DEFAULT_LEAF, perm, 1) == 0);
+    CHECK(kd_build(&t, dup, NDUP, KD_DEFAULT_LEAF, perm, 1) == PM_OK);
     float on[3] = {0.5f, 0.5f, 0.5f};
     check_query(&t, dup, perm, NDUP, on, 100, INFINITY);
     check_query(&t, dup, perm, NDUP, on, NDUP + 10, INFINITY);
@@ -140,7 +140,7 @@ void test_kdtree_edge_cases(void)
     uint32_t *p2 = malloc(sizeof(uint32_t) * 500);
     const uint32_t leaves[] = {1, 3, 1000};
     for (size_t li = 0; li < 3; li++) {
-        CHECK(kd_build(&t, pts, 500, leaves[li], p2, 1) == 0);
+        CHECK(kd_build(&t, pts, 500, leaves[li], p2, 1) == PM_OK);
         check_query(&t, pts, p2, 500, q, 30, INFINITY);
         check_query(&t, pts, p2, 500, q, 3, 0.01f);
         kd_free(&t);
@@ -161,7 +161,7 @@ void test_kdtree_nearest_if(void)
     float *pts = random_points(n, 11, 0);
     uint32_t *perm = malloc(sizeof(uint32_t) * n);
     kd_tree t;
-    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == 0);
+    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == PM_OK);
     rng_stream s = rng_make(5, 5);
     for (int qi = 0; qi < 200; qi++) {
         float q[3];
@@ -205,7 +205,7 @@ void test_kdtree_nearest_if_hints(void)
         float *pts = random_points(n, 17 + (uint64_t)si, 0);
         uint32_t *perm = malloc(sizeof(uint32_t) * n);
         kd_tree t;
-        CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == 0);
+        CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == PM_OK);
         rng_stream s = rng_make(9, si);
         float q[3] = {0.0f, 0.0f, 0.0f};
         uint32_t prev = KD_NONE;
@@ -374,7 +374,7 @@ static void check_walk(const kd_tree *t, uint32_t n, const float *q, kd_pair **a
     uint32_t *idx = malloc(sizeof(uint32_t) * 301);
     float *d2 = malloc(sizeof(float) * 301);
     kd_query carried;
-    CHECK(kd_query_init(&carried, 16) == 0);
+    CHECK(kd_query_init(&carried, 16) == PM_OK);
     CHECK(kd_query_simd(&carried, simd) == simd);
     int bad = 0;
     for (size_t ci = 0; ci < sizeof caps / sizeof caps[0]; ci++)
@@ -386,7 +386,7 @@ static void check_walk(const kd_tree *t, uint32_t n, const float *q, kd_pair **a
                 uint32_t got = kd_query_knn(t, &carried, qi, k, cap, idx, d2, &r2);
                 bad += !check_answer(all[i], n, k, cap, got, idx, d2, r2, "carried state");
                 kd_query fresh;
-                CHECK(kd_query_init(&fresh, k) == 0);
+                CHECK(kd_query_init(&fresh, k) == PM_OK);
                 kd_query_simd(&fresh, simd);
                 got = kd_query_knn(t, &fresh, qi, k, cap, idx, d2, &r2);
                 bad += !check_answer(all[i], n, k, cap, got, idx, d2, r2, "fresh state");
@@ -419,7 +419,7 @@ static void query_matches_brute_force(kd_simd simd)
                     continue;
                 uint32_t *perm = malloc(sizeof(uint32_t) * n);
                 kd_tree t;
-                CHECK(kd_build(&t, pts, n, leaves[li], perm, 1) == 0);
+                CHECK(kd_build(&t, pts, n, leaves[li], perm, 1) == PM_OK);
                 kd_pair *all[KQ_NQ];
                 for (uint32_t i = 0; i < KQ_NQ; i++)
                     all[i] = brute_sorted(pts, perm, n, q + 3 * (size_t)i);
@@ -436,7 +436,7 @@ static void query_matches_brute_force(kd_simd simd)
 void test_kdtree_query_matches_brute_force(void)
 {
     kd_query probe;
-    CHECK(kd_query_init(&probe, 1) == 0);
+    CHECK(kd_query_init(&probe, 1) == PM_OK);
     CHECK(kd_query_simd(&probe, KD_SIMD_BASE) == KD_SIMD_BASE);
     kd_query_free(&probe);
     query_matches_brute_force(KD_SIMD_BASE);
@@ -451,7 +451,7 @@ static void query_hints(kd_simd simd)
     float *pts = point_set(1, n, 3);
     uint32_t *perm = malloc(sizeof(uint32_t) * n);
     kd_tree t;
-    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == 0);
+    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == PM_OK);
     const float hints[] = {0.0f, 1e-30f, 1e-7f, 1e-4f, 0.01f, 1.0f, 1e30f, INFINITY, NAN};
     const uint32_t hint_ks[] = {1, 10, 300};
     const uint32_t ks[] = {1, 10, 100};
@@ -460,7 +460,7 @@ static void query_hints(kd_simd simd)
     float d2[100];
     int bad = 0;
     kd_query s;
-    CHECK(kd_query_init(&s, 100) == 0);
+    CHECK(kd_query_init(&s, 100) == PM_OK);
     CHECK(kd_query_simd(&s, simd) == simd);
     float q[3] = {0.3f, -1.0f, 0.2f}; /* on the floor wall */
     kd_pair *all = brute_sorted(pts, perm, n, q);
@@ -497,7 +497,7 @@ static void query_history_independent(kd_simd simd)
     float *pts = point_set(3, n, 1);
     uint32_t *perm = malloc(sizeof(uint32_t) * n);
     kd_tree t;
-    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == 0);
+    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == PM_OK);
     float target[3] = {11.0f, 12.0f, 0.0f}, other[3] = {2.5f, 20.0f, 0.0f}, far[3] = {500.0f, 0.0f, 0.0f};
     kd_pair *all = brute_sorted(pts, perm, n, target);
     const uint32_t ks[] = {1, 4, 5, 9, 13, 21, 25, 50, 100};
@@ -512,7 +512,7 @@ static void query_history_independent(kd_simd simd)
         for (size_t b = 0; b < 4; b++)
             for (uint32_t pk = 1; pk <= 64; pk *= 4) {
                 kd_query s;
-                CHECK(kd_query_init(&s, 1) == 0);
+                CHECK(kd_query_init(&s, 1) == PM_OK);
                 CHECK(kd_query_simd(&s, simd) == simd);
                 float pr2;
                 kd_query_knn(&t, &s, before[b], pk, INFINITY, idx, d2, &pr2);
@@ -538,7 +538,7 @@ void test_kdtree_query_history_independent(void)
 void test_kdtree_query_avx2(void)
 {
     kd_query probe;
-    CHECK(kd_query_init(&probe, 1) == 0);
+    CHECK(kd_query_init(&probe, 1) == PM_OK);
     int have_avx2 = kd_query_simd(&probe, KD_SIMD_AVX2) == KD_SIMD_AVX2;
     kd_query_free(&probe);
     if (!have_avx2) {
@@ -558,14 +558,14 @@ void test_kdtree_query_state(void)
     float *pts = point_set(0, n, 9);
     uint32_t *perm = malloc(sizeof(uint32_t) * n);
     kd_tree t, empty;
-    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == 0);
-    CHECK(kd_build(&empty, NULL, 0, KD_DEFAULT_LEAF, NULL, 1) == 0);
+    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == PM_OK);
+    CHECK(kd_build(&empty, NULL, 0, KD_DEFAULT_LEAF, NULL, 1) == PM_OK);
     float q[3] = {0.1f, 0.2f, -0.3f}, nanq[3] = {NAN, 0.0f, 0.0f};
     kd_pair *all = brute_sorted(pts, perm, n, q);
     uint32_t idx[400];
     float d2[400], r2;
     kd_query s;
-    CHECK(kd_query_init(&s, 0) == 0);
+    CHECK(kd_query_init(&s, 0) == PM_OK);
     int bad = 0;
     for (uint32_t k = 1; k <= 400; k = k * 3 + 1) { /* grows the buffer each time */
         uint32_t got = kd_query_knn(&t, &s, q, k, INFINITY, idx, d2, &r2);
@@ -611,7 +611,7 @@ void test_kdtree_build_memory(void)
             float *pts = random_points(n, 31 + n, 0);
             uint32_t *perm = malloc(sizeof(uint32_t) * (n + 1));
             kd_tree t;
-            CHECK(kd_build(&t, pts, n, leaves[li], perm, 1) == 0);
+            CHECK(kd_build(&t, pts, n, leaves[li], perm, 1) == PM_OK);
             double want = (double)kd_bytes(&t) + 16.0 * (n > 0 ? n : 1);
             CHECK(kd_tree_bytes(n, leaves[li]) == (double)kd_bytes(&t));
             CHECK_MSG(kd_build_peak_bytes(n, leaves[li]) == want, "n=%u leaf=%u: %.0f bytes, want %.0f", n,
@@ -667,9 +667,9 @@ void test_kdtree_build_threads(void)
             }
             uint32_t *p1 = malloc(sizeof(uint32_t) * (n + 1)), *pn = malloc(sizeof(uint32_t) * (n + 1));
             kd_tree t1, tn;
-            CHECK(kd_build(&t1, pts, n, leaves[li], p1, 1) == 0);
+            CHECK(kd_build(&t1, pts, n, leaves[li], p1, 1) == PM_OK);
             for (unsigned th = 2; th <= 3; th++) {
-                CHECK(kd_build(&tn, pts, n, leaves[li], pn, th) == 0);
+                CHECK(kd_build(&tn, pts, n, leaves[li], pn, th) == PM_OK);
                 CHECK_MSG(same_tree(&t1, p1, &tn, pn), "n=%u leaf=%u: %u threads build another tree", n,
                           leaves[li], th);
                 kd_free(&tn);
@@ -680,13 +680,13 @@ void test_kdtree_build_threads(void)
                 memcpy(keep, pts, sizeof keep);
                 memcpy(pts, pts + 3 * (n / 2), sizeof keep);
                 memcpy(pts + 3 * (n / 2), keep, sizeof keep);
-                CHECK(kd_build(&tn, pts, n, leaves[li], pn, 2) == 0);
+                CHECK(kd_build(&tn, pts, n, leaves[li], pn, 2) == PM_OK);
                 CHECK_MSG(!same_tree(&t1, p1, &tn, pn), "n=%u: swapped input compares equal", n);
                 kd_free(&tn);
                 t1.split[t1.nleaves / 2] = nextafterf(t1.split[t1.nleaves / 2], INFINITY);
                 memcpy(pts + 3 * (n / 2), pts, sizeof keep);
                 memcpy(pts, keep, sizeof keep);
-                CHECK(kd_build(&tn, pts, n, leaves[li], pn, 2) == 0);
+                CHECK(kd_build(&tn, pts, n, leaves[li], pn, 2) == PM_OK);
                 CHECK_MSG(!same_tree(&t1, p1, &tn, pn), "n=%u: a changed split compares equal", n);
                 kd_free(&tn);
             }

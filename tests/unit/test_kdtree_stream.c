@@ -107,7 +107,7 @@ static void stream_matches_brute_force(kd_simd simd)
     const float caps[] = {INFINITY, 4e-4f};
     float *pts = st_walls(n, 11), *q = malloc(sizeof(float) * 3 * nq);
     kd_tree t;
-    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, NULL, 1) == 0);
+    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, NULL, 1) == PM_OK);
     /* a photon spacing on a wall is about sqrt(5 / n) = 0.022: pixels of
      * a tenth and of twice that */
     const float pixs[] = {0.0022f, 0.044f};
@@ -122,7 +122,7 @@ static void stream_matches_brute_force(kd_simd simd)
         for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ki++)
             for (size_t ci = 0; ci < sizeof caps / sizeof caps[0]; ci++) {
                 kd_query s;
-                CHECK(kd_query_init(&s, ks[ki]) == 0);
+                CHECK(kd_query_init(&s, ks[ki]) == PM_OK);
                 CHECK(kd_query_simd(&s, simd) == simd);
                 for (uint32_t i = 0; i < nq; i++) {
                     float r2 = -1.0f;

@@ -69,11 +69,11 @@ void test_kdtree_build_items(void)
         float *pts = tie_points(n, 91);
         uint32_t *perm = malloc(sizeof(uint32_t) * (n + 1));
         kd_tree ref;
-        CHECK(kd_build(&ref, pts, n, KD_DEFAULT_LEAF, perm, 1) == 0);
+        CHECK(kd_build(&ref, pts, n, KD_DEFAULT_LEAF, perm, 1) == PM_OK);
         for (unsigned th = 1; th <= 3; th++) {
             kd_build_item *it = items_of(pts, n);
             kd_tree t;
-            CHECK(kd_build_items(&t, it, n, KD_DEFAULT_LEAF, th) == 0);
+            CHECK(kd_build_items(&t, it, n, KD_DEFAULT_LEAF, th) == PM_OK);
             CHECK_MSG(trees_equal(&ref, &t), "n=%u, %u threads: another tree than kd_build's", n, th);
             int ok = 1;
             for (uint32_t i = 0; i < n; i++) {
@@ -103,7 +103,7 @@ void test_kdtree_build_items(void)
             memcpy(pts + 3 * (n / 2), keep, sizeof keep);
             kd_build_item *it = items_of(pts, n);
             kd_tree t;
-            CHECK(kd_build_items(&t, it, n, KD_DEFAULT_LEAF, 2) == 0);
+            CHECK(kd_build_items(&t, it, n, KD_DEFAULT_LEAF, 2) == PM_OK);
             CHECK_MSG(!trees_equal(&ref, &t), "n=%u: swapped input compares equal", n);
             kd_free(&t);
             mem_free(it);
@@ -176,7 +176,7 @@ void test_photons_map_matches_plain_build(void)
             CHECK(m.count == n);
             uint32_t *perm = malloc(sizeof(uint32_t) * (n + 1));
             kd_tree ref;
-            CHECK(kd_build(&ref, pts, n, KD_DEFAULT_LEAF, perm, 1) == 0);
+            CHECK(kd_build(&ref, pts, n, KD_DEFAULT_LEAF, perm, 1) == PM_OK);
             CHECK_MSG(trees_equal(&ref, &m.tree), "mask %d, %u threads: another tree", mask, th);
             int ok = 1;
             for (uint32_t i = 0; i < n; i++)
