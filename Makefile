@@ -42,6 +42,7 @@ TEST_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/dbg/test_%.o)
 TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
+.PHONY: calibrate
 .PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm evaluate beyond reproducibility findings bench-threads
 all: $(BUILD)/photonmap ## build build/photonmap
 deps: $(DEPS_STAMP) $(DEPS_TEST) $(DEPS_CLUSTER) ## install the missing Debian packages of every tier (scripts/install-deps.sh)
@@ -75,6 +76,9 @@ help: ## this list
 	@awk -F':.*## ' '/^[a-z][a-z-]*:.*## / { printf "  make %-17s %s\n", $$1, $$2 }' $(firstword $(MAKEFILE_LIST))
 clean: ## remove the build (not results/ or reference/)
 	rm -rf $(BUILD)/obj $(BUILD)/dbg $(BUILD)/san $(BUILD)/photonmap $(BUILD)/unit-tests $(BUILD)/unit-tests-san
+
+calibrate: $(BUILD)/photonmap | $(DEPS_TEST) ## this machine's cost model: each phase's time per unit of its work counters, checked on held-out renders -> results/calibrate/
+	$(PYTHON) -m experiments.calibrate --pm $(BUILD)/photonmap --out $(RESULTS)/calibrate
 
 stability: $(BUILD)/photonmap | $(DEPS_TEST)
 	@mkdir -p $(STABILITY_DIR)
