@@ -26,14 +26,32 @@ import numpy as np
 from scipy.optimize import nnls
 
 PHASES = ("trace", "build", "precompute", "render")
-# the counters each phase's time is a function of, besides a constant
+# the fitted parts of a render's total: its phases, and the rest of the total
+# (allocating and freeing the photon list and map, the image, threads)
+PARTS = PHASES + ("other",)
+# the counters each part's time is a function of, besides a constant; the
+# rest's are the trace's stored photons and the eye pass's rays
 FEATURES = {
     "trace": ("traced_photons", "stored_photons", "rays", "shape_tests"),
     "build": ("tree_points",),
     "precompute": ("tree_points", "knn_queries", "map_nodes", "map_points", "rep_evaluations"),
     "render": ("rays", "shape_tests", "knn_queries", "map_nodes", "map_points", "rep_lookups", "rep_nodes",
                "rep_points", "rep_evaluations"),
+    "other": ("stored_photons", "rays"),
 }
+OTHER_FROM = {"stored_photons": "trace", "rays": "render"}
+
+
+def counter(row, part, name):
+    """Counter `name` of `part` in row (the rest's from their phases)."""
+    return row["work"][OTHER_FROM[name] if part == "other" else part][name]
+
+
+def part_time(row, part):
+    """The measured seconds of a part: a phase's, or the total less them."""
+    if part == "other":
+        return max(0.0, row["time"]["total"] - sum(row["time"][p] for p in PHASES))
+    return row["time"][part]
 GOAL_MEDIAN = 0.05  # the held-out renders' median relative error of the total
 
 # (scene, method, photons, nn, width, height): the fitted renders, then the held-out ones
@@ -51,7 +69,7 @@ HELD_OUT = [(sc, m, p, n, w, h)
 def design(rows, phase):
     """The phase's design matrix: a constant, then its counters, each column
     scaled to a maximum of 1 (returned, to unscale the coefficients)."""
-    cols = [np.ones(len(rows))] + [np.array([r["work"][phase][f] for r in rows], float)
+    cols = [np.ones(len(rows))] + [np.array([counter(r, phase, f) for r in rows], float)
                                     for f in FEATURES[phase]]
     x = np.column_stack(cols)
     scale = np.where(x.max(axis=0) > 0, x.max(axis=0), 1.0)
@@ -64,9 +82,9 @@ def fit(rows):
     row weighted by 1 / its time), so a short render counts as much as a
     long one."""
     model = {}
-    for phase in PHASES:
+    for phase in PARTS:
         x, scale = design(rows, phase)
-        t = np.array([r["time"][phase] for r in rows], float)
+        t = np.array([part_time(r, phase) for r in rows], float)
         wgt = 1.0 / np.maximum(t, 1e-4)
         coef, _ = nnls(x * wgt[:, None], t * wgt)
         model[phase] = coef / scale
@@ -76,10 +94,10 @@ def fit(rows):
 def predict(model, row):
     """Predicted seconds per phase and their total for one render."""
     out = {}
-    for phase in PHASES:
-        v = np.array([1.0] + [row["work"][phase][f] for f in FEATURES[phase]], float)
+    for phase in PARTS:
+        v = np.array([1.0] + [counter(row, phase, f) for f in FEATURES[phase]], float)
         out[phase] = float(v @ model[phase])
-    out["total"] = sum(out[p] for p in PHASES)
+    out["total"] = sum(out[p] for p in PARTS)
     return out
 
 
@@ -105,7 +123,7 @@ def write(out, model, fitted, held, median, largest):
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "coefficients.csv"), "w") as f:
         f.write("phase,counter,seconds_per_unit\n")
-        for phase in PHASES:
+        for phase in PARTS:
             for name, c in zip(("constant",) + FEATURES[phase], model[phase]):
                 f.write("%s,%s,%.6g\n" % (phase, name, c))
     with open(os.path.join(out, "renders.csv"), "w") as f:
@@ -122,7 +140,8 @@ def write(out, model, fitted, held, median, largest):
     with open(os.path.join(out, "calibrate.md"), "w") as f:
         f.write("# Cost model of this machine\n\n")
         f.write("Each phase's time (the minimum over `--repeats auto`, one thread) as a non-negative linear "
-                "function of its work counters, fitted on %d renders, validated on %d renders of other "
+                "function of its work counters (`other`: the total less the phases, on the stored photons and the eye "
+                "rays), fitted on %d renders, validated on %d renders of other "
                 "settings (`renders.csv`). Machine: %s; binary %s (%s), %s `%s`.\n\n" % (
                     len(fitted), len(held), prov["cpu"], prov["commit"], prov["tree"], prov["compiler"],
                     prov["flags"]))
@@ -130,7 +149,7 @@ def write(out, model, fitted, held, median, largest):
                 "at most %.0f%%: %s).\n\n" % (100 * median, 100 * largest, 100 * GOAL_MEDIAN,
                                                "met" if median <= GOAL_MEDIAN else "not met"))
         f.write("| phase | counter | ns per unit |\n|---|---|---:|\n")
-        for phase in PHASES:
+        for phase in PARTS:
             for name, c in zip(("constant",) + FEATURES[phase], model[phase]):
                 if c > 0:
                     f.write("| %s | %s | %.4g |\n" % (phase, name, c * 1e9))
