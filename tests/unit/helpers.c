@@ -35,7 +35,8 @@ int helper_render(const scene *sc, const config_render *cfg, unsigned threads, i
 
 int helper_reps(const photons_map *m, const est_gather *g, config_rep_tree tree, unsigned threads, reps_set *out)
 {
-    reps_params p = {.every = 0, .count = 0, .tree = tree, .leave_out = 0};
+    reps_params p = {.rep_every = 0, .rep_count = 0, .rep_tree = tree, .bias_correction = 0,
+                     .normal_cos = CONFIG_DEFAULT_NORMAL_COS};
     if (reps_collect(&p, m, NULL, out))
         return -1;
     if (reps_evaluate(out, m, g, threads, NULL)) {
