@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "kdtree_test.h"
+#include "helpers.h"
 #include "rng.h"
 #include "tests.h"
 
@@ -20,7 +20,7 @@ static float dist2(const float *p, const float q[3])
     return dx * dx + dy * dy + dz * dz;
 }
 
-/* Checks kd_knn against brute force for one query; returns failures. */
+/* Checks helper_knn against brute force for one query; returns failures. */
 static void check_query(const kd_tree *t, const float *pts, const uint32_t *perm, uint32_t n, const float q[3],
                         uint32_t k, float max_d2)
 {
@@ -28,7 +28,7 @@ static void check_query(const kd_tree *t, const float *pts, const uint32_t *perm
     float *d2 = malloc(sizeof(float) * (k + 1));
     float *all = malloc(sizeof(float) * (n + 1));
     float r2;
-    uint32_t got = kd_knn(t, q, k, max_d2, idx, d2, &r2);
+    uint32_t got = helper_knn(t, q, k, max_d2, idx, d2, &r2);
     uint32_t in_range = 0;
     for (uint32_t i = 0; i < n; i++) {
         float d = dist2(pts + 3 * i, q);
@@ -109,16 +109,16 @@ void test_kdtree_edge_cases(void)
     float d2[8], r2 = -1.0f;
     /* N = 0 */
     CHECK(kd_build(&t, NULL, 0, KD_DEFAULT_LEAF, NULL, 1) == PM_OK);
-    CHECK(kd_knn(&t, q, 5, INFINITY, idx, d2, &r2) == 0);
+    CHECK(helper_knn(&t, q, 5, INFINITY, idx, d2, &r2) == 0);
     CHECK(r2 == 0.0f);
     kd_free(&t);
     /* N = 1, k > N */
     float one[3] = {1, 2, 3};
     uint32_t perm1[1];
     CHECK(kd_build(&t, one, 1, KD_DEFAULT_LEAF, perm1, 1) == PM_OK);
-    CHECK(kd_knn(&t, q, 5, INFINITY, idx, d2, &r2) == 1);
+    CHECK(helper_knn(&t, q, 5, INFINITY, idx, d2, &r2) == 1);
     CHECK(d2[0] == 14.0f && r2 == 14.0f && perm1[idx[0]] == 0);
-    CHECK(kd_knn(&t, q, 5, 13.9f, idx, d2, &r2) == 0); /* radius cap excludes it */
+    CHECK(helper_knn(&t, q, 5, 13.9f, idx, d2, &r2) == 0); /* radius cap excludes it */
     kd_free(&t);
     /* all points identical (r = 0 for the query on them), k > N */
     enum { NDUP = 300 };
@@ -131,7 +131,7 @@ void test_kdtree_edge_cases(void)
     check_query(&t, dup, perm, NDUP, on, 100, INFINITY);
     check_query(&t, dup, perm, NDUP, on, NDUP + 10, INFINITY);
     check_query(&t, dup, perm, NDUP, q, 7, INFINITY);
-    CHECK(kd_knn(&t, on, 7, INFINITY, idx, d2, &r2) == 7 && r2 == 0.0f);
+    CHECK(helper_knn(&t, on, 7, INFINITY, idx, d2, &r2) == 7 && r2 == 0.0f);
     kd_free(&t);
     free(dup);
     free(perm);
@@ -183,7 +183,7 @@ void test_kdtree_nearest_if(void)
         /* without predicate: the plain nearest */
         uint32_t idx;
         float dd, r2;
-        uint32_t k = kd_knn(&t, q, 1, cap, &idx, &dd, &r2);
+        uint32_t k = helper_knn(&t, q, 1, cap, &idx, &dd, &r2);
         uint32_t g2 = kd_nearest_if(&t, q, cap, NULL, NULL, KD_NONE, &d2);
         CHECK(k == (g2 != KD_NONE) && (k == 0 || d2 == dd));
     }
@@ -365,7 +365,7 @@ static void query_walk(const float *pts, uint32_t n, int kind, uint32_t nq, uint
 enum { KQ_NQ = 24 };
 
 /* Runs the walk for every k and cap on one tree and one instruction set:
- * a state carried along the walk, a fresh state per query, and kd_knn
+ * a state carried along the walk, a fresh state per query, and helper_knn
  * must all give the brute-force answer. */
 static void check_walk(const kd_tree *t, uint32_t n, const float *q, kd_pair **all, kd_simd simd)
 {
@@ -391,8 +391,8 @@ static void check_walk(const kd_tree *t, uint32_t n, const float *q, kd_pair **a
                 got = kd_query_knn(t, &fresh, qi, k, cap, idx, d2, &r2);
                 bad += !check_answer(all[i], n, k, cap, got, idx, d2, r2, "fresh state");
                 kd_query_free(&fresh);
-                got = kd_knn(t, qi, k, cap, idx, d2, &r2);
-                bad += !check_answer(all[i], n, k, cap, got, idx, d2, r2, "kd_knn");
+                got = helper_knn(t, qi, k, cap, idx, d2, &r2);
+                bad += !check_answer(all[i], n, k, cap, got, idx, d2, r2, "helper_knn");
             }
     CHECK_MSG(bad == 0, "%d answers differ from brute force", bad);
     kd_query_free(&carried);
@@ -506,7 +506,7 @@ static void query_history_independent(kd_simd simd)
         uint32_t k = ks[ki];
         uint32_t ref_idx[100], idx[100];
         float ref_d2[100], d2[100], ref_r2, r2;
-        uint32_t ref = kd_knn(&t, target, k, INFINITY, ref_idx, ref_d2, &ref_r2);
+        uint32_t ref = helper_knn(&t, target, k, INFINITY, ref_idx, ref_d2, &ref_r2);
         bad += !check_answer(all, n, k, INFINITY, ref, ref_idx, ref_d2, ref_r2, "grid");
         const float *before[] = {other, far, target, pts};
         for (size_t b = 0; b < 4; b++)
@@ -577,7 +577,7 @@ void test_kdtree_query_state(void)
     CHECK(kd_query_knn(&t, &s, nanq, 5, INFINITY, idx, d2, &r2) == 0 && r2 == 0.0f);
     CHECK(kd_query_knn(&t, &s, q, 5, -1.0f, idx, d2, &r2) == 0 && r2 == 0.0f);
     CHECK(kd_query_knn(&t, &s, q, 5, NAN, idx, d2, &r2) == 0 && r2 == 0.0f);
-    CHECK(kd_knn(&t, nanq, 5, INFINITY, idx, d2, &r2) == 0 && r2 == 0.0f);
+    CHECK(helper_knn(&t, nanq, 5, INFINITY, idx, d2, &r2) == 0 && r2 == 0.0f);
     kd_query_free(&s);
     CHECK(s.buf == NULL && s.cap == 0);
     /* a state with no buffer (as kd_query_init leaves it on failure) grows one and answers */
