@@ -82,3 +82,16 @@ void helper_map(photons_map *m, const float (*pos)[3], uint32_t count, vec3 dir,
     if (photons_build_map(&l, 0, 1, m, NULL))
         abort();
 }
+
+int helper_trees_equal(const kd_tree *a, const kd_tree *b)
+{
+    if (a->n != b->n || a->nleaves != b->nleaves || a->scan_h != b->scan_h)
+        return 0;
+    if (memcmp(a->lo, b->lo, sizeof a->lo) || memcmp(a->hi, b->hi, sizeof a->hi))
+        return 0;
+    size_t inner = a->nleaves - 1, n = a->n;
+    return !memcmp(a->split, b->split, inner * sizeof(float)) && !memcmp(a->axis, b->axis, inner) &&
+           !memcmp(a->leaf_start, b->leaf_start, (a->nleaves + 1) * sizeof(uint32_t)) &&
+           !memcmp(a->x, b->x, n * sizeof(float)) && !memcmp(a->y, b->y, n * sizeof(float)) &&
+           !memcmp(a->z, b->z, n * sizeof(float));
+}

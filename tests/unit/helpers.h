@@ -32,5 +32,8 @@ pm_status helper_reps(const photons_map *m, const est_gather *g, config_rep_tree
  * nearest without any history. Never fails. */
 uint32_t helper_knn(const kd_tree *t, const float q[3], uint32_t k, float max_d2, uint32_t *idx, float *d2,
                     float *r2);
+/* 1 when a and b are the same tree to the bit (shape, nodes, points),
+ * else 0. */
+int helper_trees_equal(const kd_tree *a, const kd_tree *b);
 
 #endif
