@@ -67,8 +67,8 @@ static pm_status exr_fail(exr_result_t rc, const char *path, const char *what, c
 /* OpenEXRCore 3.1 stores a ZIP chunk compressed even when the compressed size
  * equals the raw size exactly, but every reader takes a chunk whose stored
  * size equals its raw size as uncompressed: that chunk reads back as garbage
- * (NaN, 1e38; found by the stability tests on a 64x48 Cornell render, rows
- * 16-31). This wraps the library's compressor and stores such a chunk raw. */
+ * (NaN, 1e38; a 64x48 Cornell render has such chunks in rows 16-31). This
+ * wraps the library's compressor and stores such a chunk raw. */
 typedef struct {
     exr_result_t (*compress)(exr_encode_pipeline_t *);
 } exr_compress_guard;
@@ -290,8 +290,9 @@ static unsigned char srgb8(double v)
 pm_status image_write_png(const image *im, const char *path, double exposure, char *err, size_t errlen)
 {
     outfile o;
-    if (outfile_begin(&o, path, 1, err, errlen))
-        return PM_ERR_IO;
+    pm_status rc = outfile_begin(&o, path, 1, err, errlen);
+    if (rc != PM_OK)
+        return rc;
     unsigned char *row = malloc((size_t)im->width * 3 + 1);
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
     png_infop info = png ? png_create_info_struct(png) : NULL;
