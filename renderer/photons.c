@@ -125,7 +125,7 @@ static pm_status trace_one(const trace_ctx *tc, uint64_t index, photons_chunk *c
     vec3 power = vec_make(1, 1, 1);
     unsigned bounces = 0;
     for (uint32_t depth = 0;; depth++) {
-        if (depth >= pp->max_depth) {
+        if (depth >= pp->photon_depth) {
             c->truncated++;
             return PM_OK;
         }

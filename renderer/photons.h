@@ -34,7 +34,7 @@ typedef struct {
 typedef struct {
     uint64_t photons;      /* P_e: photons emitted from the light */
     uint64_t seed;         /* photon i draws from random stream (seed, i) */
-    uint32_t max_depth;    /* bounces before a path is cut */
+    uint32_t photon_depth; /* bounces before a path is cut (--photon-depth) */
     int store_first_hits;  /* 0: direct light comes from shadow rays, store bounced light only */
 } photons_params;
 
