@@ -109,7 +109,7 @@ reference: reference-small $(foreach n,$(REF_LARGE),$(call ref_path,$(n)).exr)
 
 # ---- pbrt-v3 references (reference/pbrt/README.md) ----
 # SCENE:BDPT_SPP:SEEDS for each scene (seeds 1..SEEDS, PBRT_SEED); every seed is
-# BDPT to 10 bounces plus the path tracer for 11-64 (reference/pbrt/render.sh),
+# BDPT to 24 bounces plus the path tracer for 25-64 (reference/pbrt/render.sh),
 # written to reference/SCENE/SCENE-pbrt-bdpt-256x192-seedK.{exr,log}.
 # pbrt is not a Debian package: without it (PBRT=/path/to/pbrt or on PATH)
 # the target refuses, and nothing else needs it.

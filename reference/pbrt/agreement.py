@@ -8,8 +8,8 @@ renderer's 2x2 points (x + (s + 0.5)/2) / W) all hit one shape first; this
 file casts those rays itself (numpy, the scene file's spheres and
 rectangles, the renderer's camera) since the renderer writes no shape ids.
 In each region it takes the mean of the RGB mean over its pixels, per
-image, and reports, as ratios to pbrt (BDPT to 10 bounces + path tracing
-11-64, the mean over its seeds):
+image, and reports, as ratios to pbrt (BDPT to 24 bounces + path tracing
+25-64, the mean over its seeds):
   - photonmap converged (every PM_DIR/*.exr: one per seed), mean of seeds;
   - POV-Ray's reference preset (one render, no seed noise known);
   - photonmap's kernel bias: the corrected estimate's bias falls as the
