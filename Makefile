@@ -49,7 +49,7 @@ test: all unit-tests $(BUILD)/san/photonmap $(DEPS_TEST) $(DEPS_CLUSTER) ## ever
 	bash tests/run.sh
 check: all $(BUILD)/unit-tests $(DEPS_TEST) ## the fast tier: unit tests, command line, hostile input, refusals, pytest tests/ (under 3 min)
 	bash tests/run.sh --fast
-reproduce-table: ## Table 1 over SEEDS seeds, both estimates -> results/table1/ (experiments/studies.mk)
+reproduce-table: ## Table 1 over SEEDS seeds, both estimates -> results/table1/ (Snakemake: experiments/studies.yaml, experiments/rules/table1.smk)
 reproduce-runs: ## only the renders of reproduce-table, one make target each (make -j; resumes)
 list-runs: ## print the target of every render of reproduce-table, one per line (for a job array)
 figures: ## Figures 2 and 3 at 1:1, error maps, trade-off, time ratio and phases -> results/figures/ (after reproduce-table)
@@ -131,6 +131,7 @@ unit-tests: $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 include experiments/config.mk
 include experiments/study.mk
 include experiments/studies.mk
+include experiments/snakemake.mk
 include experiments/beyond.mk
 include experiments/figures.mk
 include experiments/reproducibility.mk

@@ -1,6 +1,6 @@
 """Unit tests of the experiment analysis layer (experiments/analysis/).
 
-Run by pytest from the repository root (tests/analysis.test.sh, part of
+Run by pytest from the repository root (tests/pytest.test.sh, part of
 `make test`: `python3 -m pytest tests/test_analysis.py`); pytest rewrites the
 asserts, so they check under `python3 -O` too.
 Every check compares against a value computed another way (a closed form, a
