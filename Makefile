@@ -54,9 +54,9 @@ reproduce-runs: ## only the renders of reproduce-table, one make target each (ma
 list-runs: ## print the target of every render of reproduce-table, one per line (for a job array)
 figures: ## Figures 2 and 3 at 1:1, error maps, trade-off, time ratio and phases -> results/figures/ (after reproduce-table)
 rep-study: ## representative rules (REP_RULES) against the paper's cost pattern -> results/rep-study/, figures/rep-study.png
-caustic: ## the Fig. 3 cells on the caustic scene, caustic-window error over seeds -> results/caustic/, figures/caustic.png
+caustic: ## the Fig. 3 cells on the caustic scene, caustic-window error over seeds -> results/caustic/, figures/caustic.png (Snakemake: studies.yaml, rules/caustic.smk)
 resolution: ## cheapest settings per output size -> results/resolution/
-estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias/
+estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias/ (Snakemake: studies.yaml, rules/bias.smk)
 reproducibility: ## the grid twice, runs interleaved: how far the paired ratios move between runs -> results/reproducibility/
 findings: ## results/FINDINGS.md from the results files; checks that README's findings numbers are in results/
 scenes: ## the grid on every scene: equal-error speed-up, kNN share, where the error lies -> results/scenes/

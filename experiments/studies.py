@@ -103,7 +103,9 @@ class Study:
         self.threads = k["THREADS"]
         self.threads_arg = self.threads or "0"
         self.tag, self.pm_args = k["TAG"], k["PM_ARGS"]
-        self.root = layout.run_root(self.results, self.scene, self.size, self.subpixels, self.threads, self.tag)
+        self.root = (os.path.join(self.results, decl["root"]) if decl.get("root") else
+                     layout.run_root(self.results, self.scene, self.size, self.subpixels, self.threads, self.tag))
+        self.timed = 1 if decl.get("timed", True) else 0
         self.conv_root = k["CONV_RUNROOT"] or self.root
         self.run_names = layout.run_names(self.photons, self.nns, self.methods, self.estimates, self.seeds)
         self.run_files = [layout.record_path(self.root, n) for n in self.run_names]
@@ -112,18 +114,20 @@ class Study:
         self.ref, self.ref_fast = k["REF"], k["REF_FAST"]
         if decl.get("reference") == "pov" and not self.ref:
             self.ref = pov_reference(self.size, self.scene)
-            self.ref_fast = pov_reference(self.size, self.scene, fast=True)
+            self.ref_fast = pov_reference(self.size, self.scene, fast=True) if decl.get("pov_floor", True) else ""
         name = os.path.splitext(os.path.basename(self.scene))[0]
-        self.no_ref = (f"none of {self.scene} at {self.size} in reference/{name}/: give REF=FILE.exr (a converged "
-                       f"render of the scene at {self.size}), or run `make scenes SCENES={self.scene} SIZE={self.size}`, "
-                       f"which renders its own converged reference")
+        self.no_ref = decl.get("no_reference", "no reference").format(scene=self.scene, size=self.size, name=name)
+        self.figures = k.get("FIGURES") or os.path.join(self.results, "figures")
         tag = f"-{self.tag}" if self.tag else ""
-        self.files = {key: os.path.join(self.results, f.format(tag=tag)) for key, f in decl["files"].items()}
+        self.files = {}
+        for key, f in decl["files"].items():
+            f = f.format(tag=tag, figures=self.figures)
+            self.files[key] = f if f.startswith(self.figures) else os.path.join(self.results, f)
 
     def check_reference(self):
         """Refuses a study whose analysis has no reference (before any render)."""
         if not self.ref:
-            raise StudyError(f"{self.target}: no reference: {self.no_ref}")
+            raise StudyError(f"{self.target}: {self.no_ref}")
 
     def position(self, name):
         """The place (1..N) of the render NAME in the study's run list."""
@@ -158,4 +162,5 @@ def load(sid, given, path=CONFIG):
     knobs = dict(conf["defaults"])
     knobs.update(decl.get("knobs") or {})
     knobs.update({name: v for name, v in given.items() if name in knobs})
+    knobs.update(decl.get("fixed") or {})
     return Study(sid, decl, knobs)

@@ -5,7 +5,8 @@
 # order alternating with the seed, so that they are paired samples of one
 # machine state; otherwise one render is one job (rule render). Renders
 # whose times a study compares hold the resource `timed` (make passes
-# --resources timed=1: one at a time; analysis jobs run beside them). Jobs
+# --resources timed=1: one at a time; analysis jobs and the renders of an
+# untimed study, `timed: false` in studies.yaml, run beside them). Jobs
 # of the group `renders` are sent to a cluster together (--group-components).
 import re
 
@@ -26,7 +27,7 @@ rule pair:
     wildcard_constraints:
         root=PAIRED,
     resources:
-        timed=1,
+        timed=STUDY.timed,
     group: "renders"
     params:
         cmd=lambda wc: STUDY.launch_command(wc.root, ["conventional", "precomputed"], wc.estimate, wc.photons, wc.nn, wc.seed),
@@ -40,14 +41,16 @@ rule render:
         root=SINGLE,
         method="conventional|precomputed",
     resources:
-        timed=1,
+        timed=STUDY.timed,
     group: "renders"
     params:
         cmd=lambda wc: STUDY.launch_command(wc.root, [wc.method], wc.estimate, wc.photons, wc.nn, wc.seed),
     shell:
         "{params.cmd}"
 
-# only the renders of the study (make reproduce-runs)
+# only the renders of the study (make estimator-bias-runs)
+localrules: runs
+
 rule runs:
     input:
         STUDY.run_files,
