@@ -46,19 +46,21 @@ TEST_LIST := $(BUILD)/unit/tests.list.h
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
 .PHONY: calibrate
-.PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm evaluate beyond reproducibility findings bench-threads
+.PHONY: all deps test check help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm evaluate beyond reproducibility findings bench-threads
 all: $(BUILD)/photonmap ## build build/photonmap
 deps: $(DEPS_STAMP) $(DEPS_TEST) $(DEPS_CLUSTER) ## install the missing Debian packages of every tier (scripts/install-deps.sh)
 test: all unit-tests $(BUILD)/san/photonmap $(DEPS_TEST) $(DEPS_CLUSTER) ## every test; ends with "N passed, N failed, N skipped" (README)
 	bash tests/run.sh
-reproduce-table: ## Table 1 over SEEDS seeds, both estimates -> results/table1/ (experiments/studies.mk)
+check: all $(BUILD)/unit-tests $(DEPS_TEST) ## the fast tier: unit tests, command line, hostile input, refusals, pytest tests/ (under 3 min)
+	bash tests/run.sh --fast
+reproduce-table: ## Table 1 over SEEDS seeds, both estimates -> results/table1/ (Snakemake: experiments/studies.yaml, experiments/rules/table1.smk)
 reproduce-runs: ## only the renders of reproduce-table, one make target each (make -j; resumes)
 list-runs: ## print the target of every render of reproduce-table, one per line (for a job array)
 figures: ## Figures 2 and 3 at 1:1, error maps, trade-off, time ratio and phases -> results/figures/ (after reproduce-table)
 rep-study: ## representative rules (REP_RULES) against the paper's cost pattern -> results/rep-study/, figures/rep-study.png
-caustic: ## the Fig. 3 cells on the caustic scene, caustic-window error over seeds -> results/caustic/, figures/caustic.png
+caustic: ## the Fig. 3 cells on the caustic scene, caustic-window error over seeds -> results/caustic/, figures/caustic.png (Snakemake: studies.yaml, rules/caustic.smk)
 resolution: ## cheapest settings per output size -> results/resolution/
-estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias/
+estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias/ (Snakemake: studies.yaml, rules/bias.smk)
 reproducibility: ## the grid twice, runs interleaved: how far the paired ratios move between runs -> results/reproducibility/
 findings: ## results/FINDINGS.md from the results files; checks that README's findings numbers are in results/
 scenes: ## the grid on every scene: equal-error speed-up, kNN share, where the error lies -> results/scenes/
@@ -154,6 +156,7 @@ unit-tests: $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 include experiments/config.mk
 include experiments/study.mk
 include experiments/studies.mk
+include experiments/snakemake.mk
 include experiments/beyond.mk
 include experiments/figures.mk
 include experiments/reproducibility.mk

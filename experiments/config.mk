@@ -60,10 +60,8 @@ CELLS_CSV = $(TABLE1_DIR)/cells$(TAG_SUFFIX).csv
 EQUAL_ERROR = $(TABLE1_DIR)/equal-error$(TAG_SUFFIX)
 REP_DIR = $(RESULTS)/rep-study
 REP_STUDY = $(REP_DIR)/rep-study
-CAUSTIC = $(RESULTS)/caustic/caustic
 RES_DIR = $(RESULTS)/resolution
 SCENES_DIR = $(RESULTS)/scenes
-BIAS_OUT = $(RESULTS)/estimator-bias/estimator-bias
 STABILITY_DIR = $(RESULTS)/stability
 FIGURES = $(RESULTS)/figures
 
@@ -126,17 +124,6 @@ scenes_seeds_default := 3
 # rep-study: 3 seeds per rule (the slopes are fitted over every seed's
 # render, and a rule's cost varies little from seed to seed): about 10 minutes
 rep_seeds := 3
-# caustic: scenes/caustic.scene (the glass sphere lifted so its caustic is in view)
-caustic_scene := $(wildcard scenes/caustic.scene)
-caustic_size := 128x96
-caustic_seeds := 5
-caustic_nns := 10 100
-# estimator-bias: the analytic scene, every n, method and estimate
-bias_scene := scenes/furnace.scene
-bias_size := 48x36
-bias_seeds := 60
-bias_photons := 50000
-bias_nns := 2 3 5 10 20 50 100 200
 
 # make figures (experiments/figures.mk): drawn from the grid's TABLE.csv,
 # RUNS_CSV and CELLS_CSV (their size, seeds, reference) and the renders
@@ -170,10 +157,6 @@ FIG2_DIR = $(RESULTS)/runs/fig2-$(SCENE_NAME)-$(SIZE)-s$(SUBPIXELS)-p$(FIG2_PHOT
 # count1100000: the fixed count that fits the paper's slopes (rep-study.md)
 REP_RULES ?= every1 every2 every8 every16 shared count1100000
 
-# make caustic: the caustic window CAUSTIC_WINDOW given at CAUSTIC_WINDOW_AT
-# (tests/povray.test.sh)
-CAUSTIC_WINDOW ?= 24x20+52+76
-CAUSTIC_WINDOW_AT ?= 128x96
 
 # make bench
 BENCH_BIN := $(BUILD)/bench/bench

@@ -5,7 +5,8 @@
 #
 #   make reproduce-table [SIZE=256x192 SEEDS=3 PHOTONS="50000 500000" NNS="10 100" RESULTS=/tmp/quick]
 #   make -j2 reproduce-runs      # only the renders, two at a time
-#   make rep-study | caustic | resolution | scenes | estimator-bias   (same knobs: SIZE, SEEDS, ...)
+#   make rep-study | resolution | scenes   (same knobs: SIZE, SEEDS, ...)
+# (reproduce-table, caustic and estimator-bias: experiments/studies.yaml, on Snakemake)
 
 # ---- Table 1: the paper's grid on SCENE at SIZE (a variant: TAG, PM_ARGS, CONV_RUNROOT)
 table1_SCENE = $(SCENE)
@@ -33,7 +34,6 @@ RUN_FILES := $(table1_RUN_FILES)
 list-runs:
 	@printf '%s\n' $(RUN_FILES)
 reproduce-runs: $(table1_RUN_FILES)
-reproduce-table: table1-table
 
 # ---- rep-study: each rule of REP_RULES a variant of Table 1 (precomputed,
 # paper estimate), compared with Table 1's conventional renders
@@ -70,28 +70,6 @@ rep-study: table1-table $(REP_RULES:%=rep-%-table)
 	  $(foreach r,$(REP_RULES),--variant $(r)=$(rep-$(r)_RUNS_CSV)) --paper experiments/paper-table1.csv \
 	  --time $(TIME) --out $(REP_STUDY) --figure $(FIGURES)/rep-study.png --bootstrap $(BOOTSTRAP) \
 	  --bootstrap-seed $(BOOTSTRAP_SEED)
-
-# ---- caustic: the Figure 3 cells' P_e and n on the caustic scene, then the caustic window
-caustic_SCENE = $(call knob,SCENE,$(caustic_scene))
-caustic_SIZE = $(call knob,SIZE,$(caustic_size))
-caustic_SEEDS = $(call knob,SEEDS,$(caustic_seeds))
-caustic_PHOTONS = $(PHOTONS)
-caustic_NNS = $(call knob,NNS,$(caustic_nns))
-caustic_METHODS = conventional precomputed
-caustic_ESTIMATES = $(ESTIMATES)
-caustic_REF = $(or $(REF),$(shell bash experiments/findref.sh $(caustic_SIZE) $(caustic_SCENE)))
-caustic_REF_FAST = $(if $(REF),$(REF_FAST))
-caustic_NO_REF = no POV-Ray reference of $(caustic_SCENE) at $(caustic_SIZE) in reference/: give REF=FILE.exr
-caustic_RUNS_CSV = $(CAUSTIC)-runs.csv
-caustic_CELLS_CSV = $(CAUSTIC)-cells.csv
-caustic_TABLE = $(CAUSTIC)-table1
-caustic_EQUAL_ERROR = $(CAUSTIC)-equal-error
-$(eval $(call study,caustic))
-caustic: caustic-table
-	$(if $(caustic_SCENE),,$(error caustic: no caustic scene (scenes/caustic.scene); give SCENE=))
-	@$(PYTHON) -m experiments.analysis.caustic --runs $(caustic_RUNS_CSV) --ref $(caustic_REF) \
-	  --window $(CAUSTIC_WINDOW) --window-at $(CAUSTIC_WINDOW_AT) --cells "$(FIG3_CELLS)" --out $(CAUSTIC) \
-	  --figure $(FIGURES)/caustic.png
 
 # ---- our converged reference of a scene at a size (resolution, scenes,
 # evaluate): method-neutral, its own error measured
@@ -183,34 +161,10 @@ scenes: $(foreach s,$(SCENES),scene-$(call scene_id,$(s))-table)
 	  --grid "P_e in {$(PHOTONS)} x n in {$(NNS)} x {$(METHODS)} x estimates {$(ESTIMATES)}, seeds 1..$(scenes_seeds), threads: $(or $(THREADS),all)" \
 	  --figures "$(FIGURES)" --out "$(SCENES_DIR)/scenes"
 
-# ---- estimator-bias: every method, estimate and n on the analytic scene (radiance 1
-# everywhere); its analysis reads the stats JSONs' mean radiance
-bias_SCENE = $(call knob,SCENE,$(bias_scene))
-bias_SIZE = $(call knob,SIZE,$(bias_size))
-bias_SEEDS = $(call knob,SEEDS,$(bias_seeds))
-bias_PHOTONS = $(call knob,PHOTONS,$(bias_photons))
-bias_NNS = $(call knob,NNS,$(bias_nns))
-bias_METHODS = conventional precomputed
-bias_ESTIMATES = paper corrected
-bias_SUBPIXELS = 1
-bias_RUNROOT = $(RESULTS)/runs/estimator-bias
-$(eval $(call study,bias))
-.PHONY: estimator-bias-runs
-estimator-bias-runs: $(bias_RUN_FILES)
-estimator-bias: $(bias_RUN_FILES)
-	@mkdir -p $(dir $(BIAS_OUT))
-	$(PYTHON) -m experiments.analysis.estimator_bias --dir $(bias_RUNROOT) --nns "$(bias_NNS)" --seeds $(bias_SEEDS) \
-	  --photons $(bias_PHOTONS) --size $(bias_SIZE) --scene $(bias_SCENE) --out $(BIAS_OUT)
-
 # ---- refusals before any render: a study whose reference is missing
-ifneq ($(call goal,reproduce-table rep-study),)
+ifneq ($(call goal,rep-study),)
 ifeq ($(strip $(table1_REF)),)
-$(error $(firstword $(call goal,reproduce-table rep-study)): no reference: $(table1_NO_REF))
-endif
-endif
-ifneq ($(call goal,caustic),)
-ifeq ($(strip $(caustic_REF)),)
-$(error caustic: $(caustic_NO_REF))
+$(error rep-study: no reference: $(table1_NO_REF))
 endif
 endif
 ifneq ($(call goal,resolution),)

@@ -6,7 +6,7 @@
 #   test     what `make test`, the experiments and `make bench` add: clang and
 #            its sanitizer/libFuzzer runtimes, POV-Ray, OpenImageIO, Python
 #            with numpy/scipy/pandas/matplotlib/OIIO/pytest, valgrind, perf,
-#            /usr/bin/time, nanoflann and FLANN (make bench)
+#            /usr/bin/time, nanoflann and FLANN (make bench), Snakemake
 #   cluster  a private single-node Slurm (tests/slurm.test.sh)
 #
 #   bash scripts/install-deps.sh [build] [test] [cluster]    (no argument: all three)
@@ -24,11 +24,13 @@ tier_packages() { # TIER: its packages, one word each
                time \
                valgrind linux-perf libnanoflann-dev libflann-dev \
                python3 python3-numpy python3-scipy python3-pandas python3-matplotlib \
-               python3-openimageio python3-pytest ;;
+               python3-openimageio python3-pytest \
+               snakemake ;;
     # clang + runtimes: the CI's second compiler, the sanitizer build, libFuzzer;
     # oiiotool/idiff: image diffs; POV-Ray 3.7: the independent reference;
     # /usr/bin/time: CPU seconds of every render; valgrind, perf, nanoflann:
-    # make bench; Python: the analysis package and its pytest tests
+    # make bench; Python: the analysis package and its pytest tests;
+    # Snakemake: the workflow engine of the studies (experiments/Snakefile)
     cluster) echo slurmctld slurmd slurm-client munge ;;
     *) echo "install-deps: unknown tier '$1' (build, test or cluster)" >&2; return 2 ;;
   esac

@@ -7,10 +7,7 @@
 cd "$(dirname "$0")/.." || exit 1
 . tests/lib.sh
 PY=${PYTHON:-/usr/bin/python3}
-# the unit cases of beyond.py (tests/test_beyond.py) first: they need no render
-if "$PY" -c 'import pytest, pandas, scipy' 2>/dev/null; then
-  check "pytest tests/test_beyond.py" "$PY" -m pytest -q -p no:cacheprovider tests/test_beyond.py
-fi
+# (the unit cases of beyond.py, tests/test_beyond.py, run in tests/pytest.test.sh)
 if ! "$PY" -c 'import numpy, pandas, scipy, OpenImageIO, matplotlib' 2>/dev/null || [ ! -x "$PM" ]; then
   echo "skipped: needs $PM and numpy, pandas, scipy, OpenImageIO, matplotlib"; echo "$PASS passed, $FAIL failed, 1 skipped"; [ "$FAIL" -eq 0 ]; exit
 fi

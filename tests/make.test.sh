@@ -48,9 +48,9 @@ check "scenes SIZE=40x30 SEEDS=1: renders at 40x30, seed 1 only" \
            ! grep -q 'seed2' <<< \"\$out\""
 check "caustic SIZE=40x30 SEEDS=2 NNS=10: the caustic scene at 40x30" \
   bash -c "dry() { make -n caustic SIZE=40x30 SEEDS=2 NNS=10 PHOTONS=2000 REF=reference/caustic/caustic-reference-128x96.exr RESULTS=$R 2>&1; };
-           out=\$(dry) && grep -q 'pair.sh .*runs/caustic-40x30-s2-t1 paper-p2000-n10/seed2' <<< \"\$out\" && ! grep -q 'seed3' <<< \"\$out\""
+           out=\$(dry) && grep -q -- '--stem paper-p2000-n10/seed2 --member [^ ]*runs/caustic-40x30-s2-t1 ' <<< \"\$out\" && ! grep -q 'seed3' <<< \"\$out\""
 check "estimator-bias SEEDS=2 NNS=5: those seeds and n only" \
-  bash -c "out=\$(make -n estimator-bias SEEDS=2 NNS=5 RESULTS=$R 2>&1) && grep -q 'pair.sh .*estimator-bias paper-p50000-n5/seed2' <<< \"\$out\" &&
+  bash -c "out=\$(make -n estimator-bias SEEDS=2 NNS=5 RESULTS=$R 2>&1) && grep -q 'experiments.launch .*--stem paper-p50000-n5/seed2 --member [^ ]*/runs/estimator-bias ' <<< \"\$out\" &&
            ! grep -q -- '-n10/' <<< \"\$out\" && ! grep -q 'seed3' <<< \"\$out\""
 check "resolution SIZE=40x30: that size only" \
   bash -c "out=\$(make -n resolution SIZE=40x30 SEEDS=1 PHOTONS=2000 NNS=10 RESULTS=$R 2>&1) && grep -q 'convref.*/40x30.exr' <<< \"\$out\" &&
@@ -78,8 +78,8 @@ check "a SCENE path with a space is refused, naming it (control: the same scene 
 # preset of the same sampling; never the one-sample reference (block metrics only)
 check "reproduce-table's default reference and floor at 1024x768 are the 2x2 renders, not the one-sample ones" bash -c "
   out=\$(make -n reproduce-table RESULTS=$R 2>&1) &&
-  grep -q -- '--ref \"reference/cornell/cornell-reference-2x2-1024x768.exr\"' <<< \"\$out\" &&
-  grep -q -- '--ref-fast \"reference/cornell/cornell-fast-2x2-1024x768.exr\"' <<< \"\$out\" &&
+  grep -q -- '--ref reference/cornell/cornell-reference-2x2-1024x768.exr ' <<< \"\$out\" &&
+  grep -q -- '--ref-fast reference/cornell/cornell-fast-2x2-1024x768.exr ' <<< \"\$out\" &&
   ! grep -q 'cornell-reference-1024x768\|cornell-fast-1024x768' <<< \"\$out\""
 # findref.sh on a tree of empty files: the 2x2 pair wins over the one-sample
 # pair; control: with the one-sample pair alone it is found (the check above

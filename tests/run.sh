@@ -1,11 +1,24 @@
 #!/usr/bin/env bash
-# The test runner behind `make test`: the unit tests, the same unit tests
-# under AddressSanitizer + UndefinedBehaviorSanitizer, then every
-# tests/*.test.sh script, then the command-line and hostile-input scripts
-# again against build/san/photonmap (photonmap itself under ASan+UBSan). Each part prints "N passed, N failed" (the unit
-# tests add ", N skipped": tests that cannot run on this machine); this script adds them up, prints the total last
+# The test runner behind `make test` and `make check`.
+#   bash tests/run.sh          (make test) the unit tests, the same unit tests
+#       under AddressSanitizer + UndefinedBehaviorSanitizer, then every
+#       tests/*.test.sh script (tests/pytest.test.sh: one `pytest tests/`),
+#       then the command-line and hostile-input scripts again against
+#       build/san/photonmap (photonmap itself under ASan+UBSan).
+#   bash tests/run.sh --fast   (make check) the fast tier, under three minutes
+#       on two cores: the unit tests, the command line, hostile input,
+#       refusals and the pytest tests; nothing renders a study.
+# Each part prints "N passed, N failed" (some add ", N skipped": tests that
+# cannot run on this machine); this script adds them up, prints the total last
 # ("N passed, N failed, N skipped"), and exits non-zero on any failure.
 set -u
+FAST_PARTS=(tests/cli.test.sh tests/hostile.test.sh tests/refusals.test.sh tests/pytest.test.sh)
+fast=0
+case ${1:-} in
+  --fast) fast=1 ;;
+  "") ;;
+  *) echo "usage: bash tests/run.sh [--fast]" >&2; exit 2 ;;
+esac
 cd "$(dirname "$0")/.."
 # the test scripts run make themselves: not as part of the make that runs
 # this script (its jobserver and flags would leak into their output)
@@ -37,6 +50,12 @@ run_part() { # name, command...
 }
 
 run_part "unit tests" build/unit-tests
+if [ "$fast" -eq 1 ]; then
+  for t in "${FAST_PARTS[@]}"; do run_part "$t" bash "$t"; done
+  echo
+  echo "$total_pass passed, $total_fail failed, $total_skip skipped"
+  [ "$total_fail" -eq 0 ]; exit
+fi
 ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0} \
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
   run_part "unit tests (ASan+UBSan)" build/unit-tests-san

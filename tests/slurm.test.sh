@@ -178,6 +178,24 @@ if [ $CLUSTER_UP -eq 1 ]; then
   }
   check "make finds the array's cells up to date" rerun_nothing
 
+  # the studies on the workflow engine: Snakemake submits the renders to
+  # Slurm itself (sbatch --parsable, experiments/slurm/status.sh on
+  # squeue/scontrol, no sacct), the short renders grouped into one job
+  if [ "$MODE" = slurm ]; then
+    t0=$(date +%s)
+    timeout 600 make -s reproduce-table "${VARS[@]}" RESULTS="$TMP/engine" CLUSTER=slurm GROUP_RENDERS=2 \
+      SLURM_DIR="$TMP/ejob" SBATCH_OPTS="--time=10" REF="$TMP/make/$CELLS/conventional-paper-p2000-n10/seed1.exr" \
+      > "$TMP/engine.log" 2>&1
+    rc=$?
+    [ $rc -eq 0 ] || tail -n 30 "$TMP/engine.log"
+    check "make reproduce-table CLUSTER=slurm: Snakemake runs it on Slurm in $(($(date +%s) - t0)) s" \
+      bash -c "[ $rc -eq 0 ] && [ -s '$TMP/engine/table1/table1.md' ]"
+    check "CLUSTER=slurm: the two pairs of renders went to Slurm as one grouped job, each job logged" \
+      bash -c "[ \$(grep -l '^run ' '$TMP/ejob/logs/'*.out | wc -l) -eq 1 ] &&
+               [ \$(grep -h '^run ' '$TMP/ejob/logs/'*.out | wc -l) -eq 4 ]"
+    check "CLUSTER=slurm: the engine wrote what plain make writes" same_results "$TMP/make" "$TMP/engine"
+  fi
+
   # negative controls: a failing task fails the job; a differing image is seen
   printf '# a task that cannot be made\nno-such-target\n' > "$TMP/bad-tasks"
   make -s sweep-slurm TASKS="$TMP/bad-tasks" SLURM_DIR="$TMP/badjob" > /dev/null 2>&1

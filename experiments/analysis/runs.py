@@ -1,16 +1,17 @@
-"""The run layout, read side: where one render of a study keeps its files
-and what its record (seed<k>.run.json) says.
+"""The run layout: where one render of a study keeps its files and what its
+record (seed<k>.run.json) says. The one place that spells a run's path: the
+Snakemake rules (experiments/Snakefile), the render launcher
+(experiments/launch.py) and every analysis reader call these functions.
 
 A study's renders live under a run root (RESULTS/runs/<scene>-<W>x<H>-s<S>-
-t<T>[-TAG], named by the make function run_root of experiments/study.mk),
-one directory per cell <method>-<estimate>-p<P_e>-n<n>, one set of files per
-seed: seed<k>.exr, seed<k>.stats.json, seed<k>.err and, written last by
-experiments/run.sh, seed<k>.run.json. experiments/README.md ("The run
-layout") states the same; this module and run.sh are its only code.
+t<T>[-TAG], run_root below), one directory per cell
+<method>-<estimate>-p<P_e>-n<n>, one set of files per seed: seed<k>.exr,
+seed<k>.stats.json, seed<k>.err and, written last by the launcher,
+seed<k>.run.json. experiments/README.md ("The run layout") states the same.
 
 The one rule of a record's status: exit 0 is "ok", exit 2 is "refused" (the
 renderer rejected the combination: not applicable), no record is "missing";
-run.sh records nothing else, so any other exit is an error of the files.
+the launcher records nothing else, so any other exit is an error of the files.
 """
 
 import json
@@ -33,6 +34,32 @@ def cell_name(method, estimate, photons, nn):
 def run_base(root, method, estimate, photons, nn, seed):
     """The path of one render's files without their extensions."""
     return os.path.join(root, cell_name(method, estimate, photons, nn), f"seed{seed}")
+
+
+def threads_label(threads):
+    """The run root's thread part: t<N>, or tall for all cores (THREADS empty)."""
+    threads = str(threads).strip()
+    return f"t{threads}" if threads else "tall"
+
+
+def run_root(results, scene, size, subpixels, threads, tag=""):
+    """Where a study's renders live: RESULTS/runs/<scene>-<W>x<H>-s<S>-t<T>[-TAG]."""
+    name = os.path.splitext(os.path.basename(scene))[0]
+    tag = str(tag).strip()
+    return os.path.join(results, "runs", f"{name}-{size}-s{subpixels}-{threads_label(threads)}" + (f"-{tag}" if tag else ""))
+
+
+def run_names(photons, nns, methods, estimates, seeds):
+    """Every render of a grid as CELL/seed<k>, seeds outermost (a partial run
+    has every cell at the first seeds, and slow phases of a shared machine
+    spread over all cells), then P_e, n, method, estimate."""
+    return [f"{cell_name(m, e, p, n)}/seed{s}" for s in seeds for p in photons for n in nns
+            for m in methods for e in estimates]
+
+
+def record_path(root, name):
+    """The record of the render NAME (CELL/seed<k>) under ROOT."""
+    return os.path.join(root, name + ".run.json")
 
 
 def load_json(path):
@@ -58,5 +85,5 @@ def read_record(base):
         if key not in rec:
             raise RunError(f"{path}: no '{key}'")
     if rec["exit"] not in EXIT_STATUS:
-        raise RunError(f"{path}: exit {rec['exit']} (run.sh records only 0 and 2)")
+        raise RunError(f"{path}: exit {rec['exit']} (the launcher records only 0 and 2)")
     return EXIT_STATUS[rec["exit"]], rec

@@ -1,0 +1,56 @@
+# The render rules: every record of the run layout
+# (experiments/analysis/runs.py) is made by one of them, through the render
+# launcher (experiments/launch.py). With both methods in the study, the two
+# renders of one (cell, seed) are one job (rule pair), back to back, their
+# order alternating with the seed, so that they are paired samples of one
+# machine state; otherwise one render is one job (rule render). Renders
+# whose times a study compares hold the resource `timed` (make passes
+# --resources timed=1: one at a time; analysis jobs and the renders of an
+# untimed study, `timed: false` in studies.yaml, run beside them). Jobs
+# of the group `renders` are sent to a cluster together (--group-components).
+import re
+
+NONE = "(?!)"  # a root regex that matches nothing
+PAIRED = re.escape(STUDY.root) if STUDY.paired else NONE
+SINGLE = NONE if STUDY.paired else re.escape(STUDY.root)
+
+wildcard_constraints:
+    estimate="[a-z]+",
+    photons="[0-9]+",
+    nn="[0-9]+",
+    seed="[0-9]+",
+
+rule pair:
+    output:
+        "{root}/conventional-{estimate}-p{photons}-n{nn}/seed{seed}.run.json",
+        "{root}/precomputed-{estimate}-p{photons}-n{nn}/seed{seed}.run.json",
+    wildcard_constraints:
+        root=PAIRED,
+    resources:
+        timed=STUDY.timed,
+    group: "renders"
+    params:
+        cmd=lambda wc: STUDY.launch_command(wc.root, ["conventional", "precomputed"], wc.estimate, wc.photons, wc.nn, wc.seed),
+    shell:
+        "{params.cmd}"
+
+rule render:
+    output:
+        "{root}/{method}-{estimate}-p{photons}-n{nn}/seed{seed}.run.json",
+    wildcard_constraints:
+        root=SINGLE,
+        method="conventional|precomputed",
+    resources:
+        timed=STUDY.timed,
+    group: "renders"
+    params:
+        cmd=lambda wc: STUDY.launch_command(wc.root, [wc.method], wc.estimate, wc.photons, wc.nn, wc.seed),
+    shell:
+        "{params.cmd}"
+
+# only the renders of the study (make estimator-bias-runs)
+localrules: runs
+
+rule runs:
+    input:
+        STUDY.run_files,

@@ -1,0 +1,100 @@
+"""Unit tests of experiments/analysis/equal_error.py: the speed-up at equal
+error, its curve and its tightest target.
+
+Run by pytest from the repository root (tests/pytest.test.sh, part of
+`make test` and `make check`: `python3 -m pytest tests/`); pytest rewrites
+the asserts, so they check under `python3 -O` too. Every check compares
+against a value computed another way (a closed form, a simulation with a
+known answer, the definition computed directly), so each can fail. Random
+numbers come from fixed seeds: the outcome is deterministic.
+"""
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from experiments.analysis import equal_error
+from helpers import close
+
+
+# ---- equal error
+
+def synthetic_runs(speedup, seeds=5, noise=0.02):
+    """runs.csv rows of a grid where both methods follow error = 1/n and the
+    precomputed method takes 1/SPEEDUP of the conventional time at every
+    cell, with a little multiplicative noise per seed."""
+    rng = np.random.default_rng(9)
+    rows = []
+    for method, scale in (("conventional", 1.0), ("precomputed", 1.0 / speedup)):
+        for n in (10, 20, 50, 100):
+            for s in range(1, seeds + 1):
+                rows.append({"role": "grid", "status": "ok", "estimate": "paper", "method": method,
+                             "photons": 1000, "nn": n, "seed": s,
+                             "cpu_s": scale * n * math.exp(noise * rng.standard_normal()),
+                             "relmse_ref": (1.0 / n) * math.exp(noise * rng.standard_normal())})
+    return pd.DataFrame(rows)
+
+
+def test_equal_error_recovers_speedup():
+    """With precomputed exactly 3x faster at every error, the speed-up at
+    each automatic target is 3 within 5%, its interval contains 3, and the
+    targets lie inside both fronts' error range."""
+    res = equal_error.analyse(synthetic_runs(3.0), "paper", "cpu_s", "auto", np.random.default_rng(2), 400)
+    assert len(res["rows"]) == 5, res["targets"]
+    for r in res["rows"]:
+        assert 0.01 < r["target"] < 0.1, r["target"]
+        close(r["speedup"], 3.0, 0.15, f"speed-up at {r['target']}")
+        assert r["lo"] <= 3.0 <= r["hi"], r
+
+
+def test_equal_error_curve_and_tightest_target():
+    """The curve spans the whole common range of the fronts (errors 1/n,
+    n = 10 ... 100, so about 0.01 to 0.1) with CURVE_POINTS targets; the
+    speed-up is 3 all along it, inside its band wherever the band is
+    defined in every resample; the tightest target is the larger of the
+    fronts' smallest errors, computed directly."""
+    runs = synthetic_runs(3.0)
+    res = equal_error.analyse(runs, "paper", "cpu_s", "auto", np.random.default_rng(2), 400)
+    c = res["curve"]
+    assert len(c) == equal_error.CURVE_POINTS
+    xs = [r["target"] for r in c]
+    assert xs == sorted(xs)
+    mins = [runs[runs.method == m].groupby("nn").relmse_ref.mean().min() for m in ("conventional", "precomputed")]
+    maxs = [runs[runs.method == m].groupby("nn").relmse_ref.mean().max() for m in ("conventional", "precomputed")]
+    close(res["tightest"]["target"], max(mins), 1e-12, "tightest target")
+    close(xs[0], max(mins), 1e-12, "curve start")
+    close(xs[-1], min(maxs), 1e-12, "curve end")
+    assert res["tightest"]["kind"] == "tightest" and all(r["kind"] == "curve" for r in c)
+    for r in c:
+        close(r["speedup"], 3.0, 0.2, f"speed-up at {r['target']}")
+        if r["defined_fraction"] == 1:
+            assert r["lo"] <= 3.0 <= r["hi"], r
+
+
+def test_equal_error_curve_shows_a_changing_speedup():
+    """A speed-up that grows with the error (precomputed's time scale 1 at
+    n = 100 up to 1/4 at n = 10): the curve rises from about 1 at the
+    tightest target to about 4 at the loosest, so no single point stands for
+    it; negative control: the constant case above stays flat."""
+    runs = synthetic_runs(1.0, noise=0.01)
+    sel = runs.method == "precomputed"
+    runs.loc[sel, "cpu_s"] = runs.loc[sel, "cpu_s"] / (1 + 3 * (100 - runs.loc[sel, "nn"]) / 90)
+    res = equal_error.analyse(runs, "paper", "cpu_s", "auto", np.random.default_rng(2), 200)
+    sp = [r["speedup"] for r in res["curve"]]
+    close(sp[0], 1.0, 0.1, "at the tightest target")
+    close(sp[-1], 4.0, 0.3, "at the loosest target")
+    flat = [r["speedup"] for r in equal_error.analyse(synthetic_runs(3.0, noise=0.01), "paper", "cpu_s", "auto",
+                                                      np.random.default_rng(2), 200)["curve"]]
+    assert max(flat) / min(flat) < 1.05 and sp[-1] / sp[0] > 3
+
+
+def test_equal_error_no_common_range():
+    """Fronts that reach no common error give no target; explicit targets
+    outside a front give undefined times."""
+    runs = synthetic_runs(2.0)
+    runs.loc[runs["method"] == "precomputed", "relmse_ref"] *= 100
+    res = equal_error.analyse(runs, "paper", "cpu_s", "auto", np.random.default_rng(2), 50)
+    assert res["targets"] == [] and res["rows"] == []
+    res = equal_error.analyse(runs, "paper", "cpu_s", "0.05", np.random.default_rng(2), 50)
+    assert math.isnan(res["rows"][0]["precomputed_s"]) and math.isnan(res["rows"][0]["speedup"])

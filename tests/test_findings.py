@@ -1,0 +1,232 @@
+"""Unit tests of experiments/analysis/findings.py: README's summary and
+results/FINDINGS.md backed by the results files.
+
+Run by pytest from the repository root (tests/pytest.test.sh, part of
+`make test` and `make check`: `python3 -m pytest tests/`); pytest rewrites
+the asserts, so they check under `python3 -O` too. Every check compares
+against a value computed another way (a closed form, a simulation with a
+known answer, the definition computed directly), so each can fail. Random
+numbers come from fixed seeds: the outcome is deterministic.
+"""
+
+import os
+import subprocess
+import tempfile
+
+import pandas as pd
+
+from experiments.analysis import findings
+from helpers import table1_frame
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def test_readme_numbers_backed():
+    """Every number of README's findings section is a number token of some
+    results file (the committed README against the committed results/)."""
+    with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as f:
+        section = findings.findings_section(f.read())
+    assert section.strip(), "README.md has no findings section"
+    assert findings.unbacked_numbers(section, findings.results_text(os.path.join(ROOT, "results"))) == []
+
+
+def test_readme_numbers_negative_control():
+    """A made-up number fails the check, a digit run inside a longer number
+    does not count as present, and a thousands separator is looked through."""
+    with tempfile.TemporaryDirectory() as d:
+        with open(os.path.join(d, "a.md"), "w", encoding="utf-8") as f:
+            f.write("ratio 85.6% at n = 10; 1800 shapes; 2.4117\n")
+        readme = "# x\n\n## What it found, in short\n\n- 85.6% at n = 10, 1,800 shapes\n\n## Next\n\n- 99.9\n"
+        sec = findings.findings_section(readme)
+        assert "99.9" not in sec
+        hay = findings.results_text(d)
+        assert findings.unbacked_numbers(sec, hay) == []
+        bad = readme.replace("85.6%", "85.7%")
+        assert findings.unbacked_numbers(findings.findings_section(bad), hay) == ["85.7"]
+        inner = readme.replace("85.6%", "2.41x")  # 2.41 is only a prefix of 2.4117
+        assert findings.unbacked_numbers(findings.findings_section(inner), hay) == ["2.41"]
+        # the command line exits 1 on the bad README (markers and an empty
+        # block given, so that the number check is what fails)
+        path = os.path.join(d, "README.md")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(bad.replace("## Next", findings.SUMMARY_BEGIN + "\n" + findings.SUMMARY_END + "\n\n## Next"))
+        rc = subprocess.run(["/usr/bin/python3", "-m", "experiments.analysis.findings", "--results", d,
+                             "--check-readme", path], cwd=ROOT, capture_output=True, check=False).returncode
+        assert rc == 1
+
+
+def test_readme_summary_current(monkeypatch):
+    """README's summary block is the one findings.summary writes from the
+    committed results/ now (as `make findings` runs it, from the top
+    directory): a number left behind by a rerun fails here."""
+    monkeypatch.chdir(ROOT)
+    with open("README.md", encoding="utf-8") as f:
+        text = f.read()
+    at = findings.readme_block(text)
+    assert at is not None, "README.md has no findings summary block"
+    assert text[at[0]:at[1]] == findings.summary(findings.paths("results"))
+
+
+def test_readme_summary_negative_control():
+    """--write-readme fills the block from the files, --check-readme then
+    passes; a number changed by hand in the block, a results file changed
+    under it, and a README without the markers each fail it (exit 1)."""
+    with tempfile.TemporaryDirectory() as d:
+        os.makedirs(os.path.join(d, "table1"))
+        table1_frame([(80, 75, 85), (40, 38, 42), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(
+            os.path.join(d, "table1", "table1.csv"), index=False)
+        path = os.path.join(d, "README.md")
+        base = ("# x\n\n## What it found, in short\n\nIn short:\n\n" + findings.SUMMARY_BEGIN + "\n"
+                + findings.SUMMARY_END + "\n\n## Next\n")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(base)
+
+        def run(*args):
+            return subprocess.run(["/usr/bin/python3", "-m", "experiments.analysis.findings", "--results", d, *args],
+                                  cwd=ROOT, capture_output=True, text=True, check=False)
+        assert run("--check-readme", path).returncode == 1  # the empty block is stale
+        assert run("--write-readme", path).returncode == 0
+        with open(path, encoding="utf-8") as f:
+            good = f.read()
+        assert "falls from 80.0% [75.0, 85.0] at n = 10 to 40.0% [38.0, 42.0] at n = 100" in good
+        assert "Not answered here" in good  # the files this directory lacks say so
+        r = run("--check-readme", path)
+        assert r.returncode == 0, r.stderr
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(good.replace("40.0% [38.0, 42.0]", "41.0% [38.0, 42.0]"))
+        r = run("--check-readme", path)
+        assert r.returncode == 1 and "README.md:8: the findings summary is not the one" in r.stderr, r.stderr
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(good)
+        table1_frame([(80, 75, 85), (45, 43, 47), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(
+            os.path.join(d, "table1", "table1.csv"), index=False)
+        assert run("--check-readme", path).returncode == 1  # the files moved on
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(good.replace(findings.SUMMARY_END, ""))
+        r = run("--check-readme", path)
+        assert r.returncode == 1 and "no summary block" in r.stderr
+
+
+def test_summary_wording_from_tests():
+    """The summary's words follow its tests: the ratio 'falls' over n only
+    when the two intervals are disjoint, and the shape 'reproduces' only when
+    it falls at every photon count."""
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "table1.csv")
+        table1_frame([(80, 75, 85), (40, 38, 42), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(path, index=False)
+        line = findings.summary_table({"table": path})
+        assert "P_e = 50k falls from" in line and "holds at 1 of 2 photon counts" in line
+        table1_frame([(80, 75, 85), (78, 70, 82), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(path, index=False)
+        line = findings.summary_table({"table": path})
+        assert "P_e = 50k goes from" in line and "holds at 0 of 2 photon counts" in line
+
+
+def test_findings_wording_from_tests():
+    """Finding 1 ranks only disjoint intervals: n = 100 below n = 10 at 50k
+    (disjoint), P_e undetermined at n = 10 (overlapping); the paper's value
+    inside our interval is counted."""
+    t = table1_frame([(80, 75, 85), (40, 38, 42), (82, 70, 95)], [(0.01, 0.0, 0.02)] * 3)
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "table1.csv")
+        t.to_csv(path, index=False)
+        _, lines = findings.finding1({"table": path})
+        text = "\n".join(lines)
+        assert "at P_e = 50000: the ratio at n = 100 is ranked below the one at n = 10" in text
+        assert "Over P_e at n = 10: the ratio at P_e = 500000 against the one at P_e = 50000: undetermined" in text
+        assert "1 of 1 cells at P_e = 500000" in text and "0 of 2 cells at P_e = 50000" in text
+        # a table without the paired columns: the finding says so, no number
+        t.drop(columns=["paired_ratio_percent"]).to_csv(path, index=False)
+        try:
+            findings.finding1({"table": path})
+            assert False, "finding1 answered without its column"
+        except findings.Missing as e:
+            assert "paired_ratio_percent" in str(e)
+
+
+def test_findings_resolution_per_size():
+    """Finding 7 gives one block per output size, in size order, from each
+    equal-error-WxH.csv; a CSV without the curve's columns is named, not
+    read (negative control)."""
+    rows = lambda s: pd.DataFrame([  # noqa: E731
+        {"estimate": "paper", "kind": "tightest", "target": 0.02, "speedup": s, "lo": s - 0.1, "hi": s + 0.1,
+         "defined_fraction": 1.0},
+        {"estimate": "paper", "kind": "curve", "target": 0.03, "speedup": s + 0.2, "lo": s + 0.1, "hi": s + 0.3,
+         "defined_fraction": 1.0}])
+    with tempfile.TemporaryDirectory() as d:
+        rows(0.75).to_csv(os.path.join(d, "equal-error-1024x768.csv"), index=False)
+        rows(1.25).to_csv(os.path.join(d, "equal-error-256x192.csv"), index=False)
+        _, lines = findings.finding7({"root": d, "resolution": d})
+        text = "\n".join(lines)
+        assert text.index("- 256x192:") < text.index("- 1024x768:")
+        assert "1.25 [1.15, 1.35]x" in text and "0.75 [0.65, 0.85]x" in text
+        rows(1.0).drop(columns=["kind"]).to_csv(os.path.join(d, "equal-error-512x384.csv"), index=False)
+        try:
+            findings.finding7({"root": d, "resolution": d})
+            assert False, "finding7 read a CSV without its columns"
+        except findings.Missing as e:
+            assert "kind" in str(e)
+
+
+def test_findings_beyond():
+    """Finding B quotes each case's paper rule and best variant with their
+    intervals and counts the cases where the goal holds; a case with fewer
+    than MIN_SEEDS_QUOTED seeds is named without its intervals (negative
+    control), and a table without the seeds column names the target."""
+    def row(case, variant, sp, lo, hi, best, above, vs, met, seeds):
+        return {"case": case, "variant": variant, "estimate": "paper", "target": 0.02, "speedup": sp, "lo": lo,
+                "hi": hi, "fallback_rate": 0.125, "evaluated_share": 0.5, "seeds": seeds, "best": best,
+                "above_one": above, "vs_paper": vs, "goal_met": met}
+    rows = [row("a-64x48", "paper", 0.9, 0.8, 1.0, False, False, "", False, 5),
+            row("a-64x48", "lazy", 1.3, 1.2, 1.4, True, True, "higher", True, 5),
+            row("b-64x48", "paper", 1.1, 1.05, 1.2, False, True, "", False, 5),
+            row("b-64x48", "gated0.1", 0.97, 0.9, 1.02, True, False, "lower", False, 5),
+            row("c-64x48", "paper", 2.0, 1.9, 2.1, False, True, "", False, 3),
+            row("c-64x48", "lazy", 2.5, 2.4, 2.6, True, True, "higher", True, 3),
+            row("d-64x48", "paper", 1.0, 0.9, 1.1, False, False, "", False, 5),
+            row("d-64x48", "lazy", 1.2, 1.004, 1.5, True, True, "overlap", True, 5)]
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "beyond.csv")
+        pd.DataFrame(rows).to_csv(path, index=False)
+        _, lines = findings.finding_beyond({"beyond": path})
+        text = "\n".join(lines)
+        assert "a-64x48 (relMSE 0.02, 5 seeds): the paper's rule 0.900 [0.800, 1.000]x; the best variant, lazy, 1.300 [1.200, 1.400]x" in text
+        assert "12.5% of its eye samples fell back, 50.0% of the representatives" in text
+        assert "against the paper's rule's interval: above it" in text
+        assert "b-64x48" in text and "interval: below it" in text and "the goal does not hold" in text
+        assert "c-64x48: 3 seeds" in text and "[2.4, 2.6]" not in text
+        assert "1.200 [1.004, 1.500]x, its interval above 1.0 only by less than the 2% margin" in text
+        assert "holds as worded, by a margin too thin to rely on" in text
+        assert "holds in 2 of 3 cases, 1 of them with the interval's lower end within the margin" in text
+        pd.DataFrame(rows).drop(columns=["seeds"]).to_csv(path, index=False)
+        try:
+            findings.finding_beyond({"beyond": path})
+            assert False, "finding_beyond answered without the seeds column"
+        except findings.Missing as e:
+            assert "make beyond" in str(e)
+
+
+def test_findings_scale():
+    """Finding P quotes the largest map's row of each method and the median
+    paired two-thread speed-up (t1 / t2 per pair); without threads.csv it
+    names the target instead of a number (negative control)."""
+    sc = pd.DataFrame([{"method": "conventional", "photons_emitted": p, "photons_stored": 4 * p, "threads": 2,
+                        "trace_s": p / 1e6, "build_s": 0.5, "precompute_s": 0.0, "eye_s": 0.25,
+                        "total_s": p / 1e6 + 0.75, "bytes_per_stored": b} for p, b in ((1000, 90.0), (8000, 44.5))])
+    th = pd.DataFrame([{"photons_emitted": 8000, "pair": k, "threads": t, "trace_s": 4.0 / t ** e,
+                        "build_s": 2.0 / t, "total_s": 6.0 / t} for k, e in ((1, 1.0), (2, 0.5), (3, 0.0))
+                       for t in (1, 2)])
+    with tempfile.TemporaryDirectory() as d:
+        sp, tp = os.path.join(d, "scaling.csv"), os.path.join(d, "threads.csv")
+        sc.to_csv(sp, index=False)
+        th.to_csv(tp, index=False)
+        _, lines = findings.finding_scale({"scaling": sp, "threads": tp})
+        text = "\n".join(lines)
+        assert "8,000 emitted photons (32,000 stored): 0.758 s in total" in text and "44.5 bytes" in text
+        assert "90" not in text.split("8,000 emitted")[0]
+        assert "photon pass 1.41x [1, 2]" in text and "kd-tree build 2x [2, 2]" in text
+        os.remove(tp)
+        try:
+            findings.finding_scale({"scaling": sp, "threads": tp})
+            assert False, "finding_scale answered without threads.csv"
+        except findings.Missing as e:
+            assert "make bench-threads" in str(e)
