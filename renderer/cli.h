@@ -1,8 +1,8 @@
-/* cli: the command line's option tables and the one parser they drive.
- * Each subcommand describes its options in a table (name, kind, range,
- * where the value goes in the subcommand's argument struct, help); the same
- * table parses argv, reports range errors and prints the usage text with
- * every default and range. Results are pm_status codes (status.h). */
+/* cli: the option table of each subcommand (render, export-pov,
+ * export-pbrt) and the one parser they drive. A table row names an option,
+ * its kind and range, the field of the subcommand's argument struct it
+ * fills, and its help line; the same table parses argv, reports range
+ * errors and prints the usage text with every default and range. */
 #ifndef PM_CLI_H
 #define PM_CLI_H
 
@@ -10,6 +10,9 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "config.h"
+#include "pbrt.h"
+#include "povray.h"
 #include "status.h"
 
 typedef enum {
@@ -44,17 +47,66 @@ typedef struct {
     size_t noptions;
 } cli_command;
 
-/* Parses argv[first..argc) into *args, which holds the defaults on entry.
- * Returns PM_OK when the command should run; PM_DONE after printing the
- * usage on stdout for --help/-h; PM_ERR_INPUT after printing
- * "photonmap: <what is wrong>" on stderr (unknown option, missing or
- * malformed value, value out of range, missing or second positional). */
-pm_status cli_parse(const cli_command *cmd, int argc, char **argv, int first, void *args);
+/* The most options a command may have. */
+#define CLI_MAX_OPTIONS 64
+
+/* Which of a command's options the command line gave, by table row. */
+typedef struct {
+    unsigned char given[CLI_MAX_OPTIONS];
+} cli_given;
+
+/* Parses argv[first..argc) into *args, which holds the defaults on entry,
+ * and records in *given (NULL: nowhere) which options appeared. Returns
+ * PM_OK when the command should run; PM_DONE after printing the usage on
+ * stdout for --help/-h; PM_ERR_INPUT after printing "photonmap: <what is
+ * wrong>" on stderr (unknown option, missing or malformed value, value out
+ * of range, missing or second positional). */
+pm_status cli_parse(const cli_command *cmd, int argc, char **argv, int first, void *args, cli_given *given);
+/* 1 when option `name` of cmd was given, else 0; name must be in the table. */
+int cli_was_given(const cli_command *cmd, const cli_given *given, const char *name);
 /* Prints cmd's usage with every option's range and default (read from
  * `defaults`, an args struct holding the defaults) to f. */
 void cli_usage(FILE *f, const cli_command *cmd, const void *defaults);
 /* Prints "photonmap: <message>" and the hint to run --help on stderr;
  * returns PM_ERR_INPUT. */
 pm_status cli_error(const cli_command *cmd, const char *fmt, ...);
+
+/* `photonmap render`'s arguments. */
+typedef struct {
+    config_render cfg;
+    const char *scene;
+    const char *exr, *png, *stats;
+    double exposure;
+    int quiet;
+    int no_output; /* --no-output: a render for its times only, no file */
+    const char *repeats; /* --repeats: "auto" or a count (repeat_parse); NULL: the default */
+    cli_given given;
+} cli_render_args;
+
+/* `photonmap export-pov`'s and `export-pbrt`'s arguments. */
+typedef struct {
+    povray_options pov;
+    const char *scene, *out;
+} cli_pov_args;
+
+typedef struct {
+    pbrt_options pbrt;
+    const char *scene, *out;
+} cli_pbrt_args;
+
+/* The subcommands' tables. */
+extern const cli_command cli_render;
+extern const cli_command cli_export_pov;
+extern const cli_command cli_export_pbrt;
+
+/* Each subcommand's arguments holding the defaults; never fail. */
+cli_render_args cli_render_defaults(void);
+cli_pov_args cli_pov_defaults(void);
+cli_pbrt_args cli_pbrt_defaults(void);
+
+/* Refuses render arguments that do not go together: options given together
+ * that exclude each other, config_check's refusals, an image too large.
+ * Returns PM_OK, or PM_ERR_INPUT after printing why (cli_error). */
+pm_status cli_render_check(const cli_render_args *a);
 
 #endif

@@ -1,6 +1,7 @@
 /* config: the default render configuration and the names of its enums. */
 #include "config.h"
 
+#include <assert.h>
 #include <stddef.h>
 
 
@@ -41,8 +42,6 @@ const char *config_check(const config_render *c)
         return "--nn 1: the estimate has no finite mean (1/r^2 of the nearest photon diverges); use --nn 2 or more";
     if (c->dump_reps && c->method != CONFIG_METHOD_PRECOMPUTED)
         return "--dump-reps writes the representatives of the precomputed method: use it with --method precomputed";
-    if (c->rep_count > 0 && c->rep_every != CONFIG_DEFAULT_REP_EVERY)
-        return "--rep-count and --rep-every are two rules for choosing the representatives: give one";
     /* the variants beyond the paper */
     if (c->rep_eval != CONFIG_REP_EVAL_EAGER && c->method != CONFIG_METHOD_PRECOMPUTED)
         return "--rep-eval lazy evaluates the representatives of the precomputed method on first use; the "
@@ -50,8 +49,6 @@ const char *config_check(const config_render *c)
     if (c->rep_gate != CONFIG_REP_GATE_NONE && c->method != CONFIG_METHOD_PRECOMPUTED)
         return "--rep-gate plane (and plane-lookup) chooses among the representatives of the precomputed method; the conventional "
                "method has none: use it with --method precomputed";
-    if (c->rep_gate_tau != CONFIG_DEFAULT_REP_GATE_TAU && c->rep_gate == CONFIG_REP_GATE_NONE)
-        return "--rep-gate-tau is the plane gate's tolerance: use it with --rep-gate plane or plane-lookup";
     if (c->rep_gate != CONFIG_REP_GATE_NONE && c->rep_tree == CONFIG_REP_TREE_SHARED)
         return "--rep-gate plane (and plane-lookup) tries the nearest representatives in their own kd-tree; --rep-tree shared has "
                "none: use --rep-tree separate";
@@ -73,12 +70,45 @@ const char *config_check(const config_render *c)
     return NULL;
 }
 
+const char *const config_method_names[] = {"conventional", "precomputed", NULL};
+const char *const config_direct_names[] = {"photons", "shadow-rays", NULL};
+const char *const config_rep_tree_names[] = {"separate", "shared", NULL};
+const char *const config_rep_eval_names[] = {"eager", "lazy", NULL};
+const char *const config_rep_gate_names[] = {"none", "plane", "plane-lookup", NULL};
+const char *const config_accel_names[] = {"auto", "bvh", "linear", NULL};
+
 const char *config_method_name(config_method m)
 {
-    return m == CONFIG_METHOD_PRECOMPUTED ? "precomputed" : "conventional";
+    assert(m >= CONFIG_METHOD_CONVENTIONAL && m <= CONFIG_METHOD_PRECOMPUTED);
+    return config_method_names[m];
 }
 
 const char *config_direct_name(config_direct d)
 {
-    return d == CONFIG_DIRECT_SHADOW_RAYS ? "shadow-rays" : "photons";
+    assert(d >= CONFIG_DIRECT_PHOTONS && d <= CONFIG_DIRECT_SHADOW_RAYS);
+    return config_direct_names[d];
+}
+
+const char *config_rep_tree_name(config_rep_tree t)
+{
+    assert(t >= CONFIG_REP_TREE_SEPARATE && t <= CONFIG_REP_TREE_SHARED);
+    return config_rep_tree_names[t];
+}
+
+const char *config_rep_eval_name(config_rep_eval e)
+{
+    assert(e >= CONFIG_REP_EVAL_EAGER && e <= CONFIG_REP_EVAL_LAZY);
+    return config_rep_eval_names[e];
+}
+
+const char *config_rep_gate_name(config_rep_gate g)
+{
+    assert(g >= CONFIG_REP_GATE_NONE && g <= CONFIG_REP_GATE_PLANE_LOOKUP);
+    return config_rep_gate_names[g];
+}
+
+const char *config_accel_name(scene_accel a)
+{
+    assert(a >= SCENE_ACCEL_AUTO && a <= SCENE_ACCEL_LINEAR);
+    return config_accel_names[a];
 }

@@ -94,6 +94,8 @@ typedef struct {
 /* Eye paths through glass split into reflected and refracted branches; a
  * branch whose throughput falls below this is dropped (bias < this). */
 #define CONFIG_EYE_MIN_THROUGHPUT 1e-4
+/* The PNG preview's scale (--exposure). */
+#define CONFIG_DEFAULT_EXPOSURE 1.0
 
 /* Warnings on stderr (main.c), for renders that run but are likely not
  * what was meant: more than this share of the emitted photons left the
@@ -121,8 +123,20 @@ config_render config_defaults(void);
 /* NULL when the settings of c go together, else why they do not (a user
  * error: degenerate estimates are refused rather than computed). */
 const char *config_check(const config_render *c);
-/* "conventional"/"precomputed", "photons"/"shadow-rays". */
+/* Each enum's spellings, in the enum's order and NULL-terminated: the
+ * option tables' choices, the usage text and the stats use these alone. */
+extern const char *const config_method_names[];
+extern const char *const config_direct_names[];
+extern const char *const config_rep_tree_names[];
+extern const char *const config_rep_eval_names[];
+extern const char *const config_rep_gate_names[];
+extern const char *const config_accel_names[];
+/* The spelling of one value ("precomputed"); never fails. */
 const char *config_method_name(config_method m);
 const char *config_direct_name(config_direct d);
+const char *config_rep_tree_name(config_rep_tree t);
+const char *config_rep_eval_name(config_rep_eval e);
+const char *config_rep_gate_name(config_rep_gate g);
+const char *config_accel_name(scene_accel a);
 
 #endif

@@ -29,12 +29,12 @@
 #include "numfmt.h"
 #include "vec.h"
 
-static const char *const integrator_names[] = {"bdpt", "path", "directlighting"};
+const char *const pbrt_integrator_names[] = {"bdpt", "path", "directlighting", NULL};
 
 const char *pbrt_integrator_name(pbrt_integrator i)
 {
     assert(i >= PBRT_INTEGRATOR_BDPT && i <= PBRT_INTEGRATOR_DIRECTLIGHTING);
-    return integrator_names[i];
+    return pbrt_integrator_names[i];
 }
 
 pbrt_options pbrt_defaults(void)

@@ -38,6 +38,9 @@ typedef struct {
 pbrt_options pbrt_defaults(void);
 /* "bdpt", "path" or "directlighting". */
 const char *pbrt_integrator_name(pbrt_integrator i);
+/* The integrators' names in the order of pbrt_integrator, NULL-terminated
+ * (the option table's choices). */
+extern const char *const pbrt_integrator_names[];
 
 /* Checks that sc and o can be written as a pbrt scene with the same
  * radiance. Returns PM_OK, or PM_ERR_INPUT with the cause in err (a glass

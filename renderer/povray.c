@@ -36,7 +36,13 @@
 #define POV_PROXY_SHRINK 1e-4
 
 /* Returns "fast" or "reference". */
-const char *povray_quality_name(povray_quality q) { return q == POVRAY_QUALITY_REFERENCE ? "reference" : "fast"; }
+const char *const povray_quality_names[] = {"fast", "reference", NULL};
+
+const char *povray_quality_name(povray_quality q)
+{
+    assert(q == POVRAY_QUALITY_FAST || q == POVRAY_QUALITY_REFERENCE);
+    return povray_quality_names[q];
+}
 
 povray_options povray_defaults(void)
 {

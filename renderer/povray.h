@@ -40,6 +40,9 @@ typedef struct {
 povray_options povray_defaults(void);
 /* "fast" or "reference". */
 const char *povray_quality_name(povray_quality q);
+/* The qualities' names in the order of povray_quality, NULL-terminated
+ * (the option table's choices). */
+extern const char *const povray_quality_names[];
 
 /* Writes sc as POV-Ray 3.7 SDL to f; scene_name goes into a comment.
  * Returns PM_OK, or PM_ERR_IO if the stream reports a write error. */

@@ -136,10 +136,9 @@ pm_status stats_write_json(FILE *f, const char *scene_path, const config_render 
     fprintf(f, "  \"rep_every\": %u,\n", cfg->rep_every);
     fprintf(f, "  \"rep_count\": %llu,\n", (unsigned long long)cfg->rep_count);
     fprintf(f, "  \"normal_cos\": %.17g,\n", cfg->normal_cos);
-    fprintf(f, "  \"rep_eval\": \"%s\",\n", cfg->rep_eval == CONFIG_REP_EVAL_LAZY ? "lazy" : "eager");
-    fprintf(f, "  \"rep_gate\": \"%s\",\n", cfg->rep_gate == CONFIG_REP_GATE_PLANE          ? "plane"
-                                     : cfg->rep_gate == CONFIG_REP_GATE_PLANE_LOOKUP ? "plane-lookup"
-                                                                                     : "none");
+    fprintf(f, "  \"rep_tree\": \"%s\",\n", config_rep_tree_name(cfg->rep_tree));
+    fprintf(f, "  \"rep_eval\": \"%s\",\n", config_rep_eval_name(cfg->rep_eval));
+    fprintf(f, "  \"rep_gate\": \"%s\",\n", config_rep_gate_name(cfg->rep_gate));
     fprintf(f, "  \"rep_gate_tau\": %.17g,\n", cfg->rep_gate_tau);
     fprintf(f, "  \"reps_evaluated\": %llu,\n", (unsigned long long)st->reps_evaluated);
     fprintf(f, "  \"rep_fallbacks\": %llu,\n", (unsigned long long)st->rep_fallbacks);
@@ -148,7 +147,10 @@ pm_status stats_write_json(FILE *f, const char *scene_path, const config_render 
     fprintf(f, "  \"width\": %u,\n  \"height\": %u,\n", cfg->width, cfg->height);
     fprintf(f, "  \"samples_per_pixel\": %u,\n", cfg->subpixels * cfg->subpixels);
     fprintf(f, "  \"threads\": %u,\n", threads);
+    fprintf(f, "  \"accel\": \"%s\",\n", config_accel_name(cfg->accel));
     fprintf(f, "  \"seed\": %llu,\n", (unsigned long long)cfg->seed);
+    fprintf(f, "  \"photon_depth\": %u,\n", cfg->photon_depth);
+    fprintf(f, "  \"eye_depth\": %u,\n", cfg->eye_depth);
     fprintf(f, "  \"time_s\": {\"trace\": %.6f, \"build\": %.6f, \"precompute\": %.6f, \"render\": %.6f, "
                "\"total\": %.6f},\n",
             st->trace, st->build, st->precompute, st->render, st->total);

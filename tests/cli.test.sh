@@ -71,6 +71,8 @@ rep_count_ok() {
 check "--rep-count N: N representatives" rep_count_ok
 check "--rep-count with --rep-every: exit 2" expect_exit 2 "--rep-count and --rep-every are two rules" \
   $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed --rep-count 100 --rep-every 2
+check "--rep-count with --rep-every at its default value: exit 2, naming both" expect_exit 2 "--rep-count and --rep-every are two rules" \
+  $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed --rep-count 10 --rep-every 4
 check "--rep-count at or above the stored photons with --bias-correction: exit 2 naming both" \
   expect_exit 2 "--rep-count 10000000 flags every one of the [0-9]+ stored photons" \
   $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed --rep-count 10000000 --bias-correction --no-output

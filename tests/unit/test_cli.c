@@ -67,7 +67,7 @@ static pm_status parse(cli_test_args *a, const char *const *words)
         argv[argc++] = (char *)*words++;
     argv[argc] = NULL;
     *a = defaults();
-    return cli_parse(&test_command, argc, argv, 2, a);
+    return cli_parse(&test_command, argc, argv, 2, a, NULL);
 }
 
 void test_cli_parses_every_kind(void)
@@ -143,4 +143,23 @@ void test_cli_usage_lists_defaults_and_ranges(void)
     CHECK(strstr(buf, "a string (default: nothing)") != NULL);
     /* negative control: a default the table does not hold is not shown */
     CHECK(strstr(buf, "default: 6;") == NULL);
+}
+
+/* render's arguments: which options were given, not their values, decide
+ * the refusals of options that exclude each other. */
+void test_cli_render_given(void)
+{
+    char *ok[] = {"photonmap", "render", "s.scene", "--rep-count", "10", "--rep-every", "4", NULL};
+    cli_render_args a = cli_render_defaults();
+    CHECK(cli_parse(&cli_render, 7, ok, 2, &a, &a.given) == PM_OK);
+    CHECK(cli_was_given(&cli_render, &a.given, "--rep-count") && cli_was_given(&cli_render, &a.given, "--rep-every"));
+    CHECK(!cli_was_given(&cli_render, &a.given, "--nn"));
+    /* --rep-every 4 is the default: given all the same, so refused */
+    CHECK(a.cfg.rep_every == CONFIG_DEFAULT_REP_EVERY && cli_render_check(&a) == PM_ERR_INPUT);
+    char *one[] = {"photonmap", "render", "s.scene", "--rep-count", "10", "--method", "precomputed", NULL};
+    a = cli_render_defaults();
+    CHECK(cli_parse(&cli_render, 7, one, 2, &a, &a.given) == PM_OK && cli_render_check(&a) == PM_OK);
+    char *tau[] = {"photonmap", "render", "s.scene", "--rep-gate-tau", "0.1", NULL};
+    a = cli_render_defaults();
+    CHECK(cli_parse(&cli_render, 5, tau, 2, &a, &a.given) == PM_OK && cli_render_check(&a) == PM_ERR_INPUT);
 }

@@ -72,6 +72,7 @@
     X(precomputed_converges_on_cornell) \
     X(precomputed_extremes) \
     /* test_cli.c */ \
+    X(cli_render_given) \
     X(cli_parses_every_kind) \
     X(cli_usage_lists_defaults_and_ranges) \
     /* test_config.c */ \
