@@ -266,6 +266,7 @@ static pm_status cmd_render(int argc, char **argv)
     char err[1024];
     if (a.repeats && (rc = repeat_parse(a.repeats, &a.cfg.repeats, err, sizeof err)) != PM_OK)
         return cli_error(&cli_render, "%s", err);
+    cli_render_resolve(&a);
     if ((rc = cli_render_check(&a)) != PM_OK)
         return rc;
     scene *sc = NULL;
