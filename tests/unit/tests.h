@@ -96,7 +96,13 @@
     X(work_one_photon_by_hand) \
     X(work_same_for_any_thread_count) \
     X(repeat_same_bits) \
-    X(repeat_rule)
+    X(repeat_rule) \
+    /* test_gather.c */ \
+    X(gather_strata) \
+    X(gather_directions) \
+    X(gather_furnace) \
+    X(gather_threads_and_shared_rays) \
+    X(gather_maps)
 
 #define TEST_DECLARE(name) void test_##name(void);
 TEST_LIST(TEST_DECLARE)
