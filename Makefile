@@ -40,8 +40,12 @@ SAN_OBJ := $(LIB_SRC:renderer/%.c=$(BUILD)/san/%.o)
 TEST_SRC := $(wildcard tests/unit/*.c)
 TEST_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/dbg/test_%.o)
 TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
+# every unit test is a `void test_NAME(void)` in tests/unit/test_*.c; this
+# generated list (one X(NAME) per test) is all the runner knows of them
+TEST_LIST := $(BUILD)/unit/tests.list.h
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
+.PHONY: calibrate
 .PHONY: all deps test help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm evaluate beyond reproducibility findings bench-threads
 all: $(BUILD)/photonmap ## build build/photonmap
 deps: $(DEPS_STAMP) $(DEPS_TEST) $(DEPS_CLUSTER) ## install the missing Debian packages of every tier (scripts/install-deps.sh)
@@ -74,7 +78,10 @@ sweep-slurm: ## a Slurm job array of make targets: TASKS=FILE or SWEEP=TARGET ->
 help: ## this list
 	@awk -F':.*## ' '/^[a-z][a-z-]*:.*## / { printf "  make %-17s %s\n", $$1, $$2 }' $(firstword $(MAKEFILE_LIST))
 clean: ## remove the build (not results/ or reference/)
-	rm -rf $(BUILD)/obj $(BUILD)/dbg $(BUILD)/san $(BUILD)/photonmap $(BUILD)/unit-tests $(BUILD)/unit-tests-san
+	rm -rf $(BUILD)/obj $(BUILD)/dbg $(BUILD)/san $(BUILD)/unit $(BUILD)/photonmap $(BUILD)/unit-tests $(BUILD)/unit-tests-san
+
+calibrate: $(BUILD)/photonmap | $(DEPS_TEST) ## this machine's cost model: each phase's time per unit of its work counters, checked on held-out renders -> results/calibrate/
+	$(PYTHON) -m experiments.calibrate --pm $(BUILD)/photonmap --out $(RESULTS)/calibrate
 
 stability: $(BUILD)/photonmap | $(DEPS_TEST)
 	@mkdir -p $(STABILITY_DIR)
@@ -112,13 +119,18 @@ $(BUILD)/san/%.o: renderer/%.c renderer/*.h renderer/*.inc | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_COMMON) $(SAN_FLAGS) -c $< -o $@
 
-$(BUILD)/dbg/test_%.o: tests/unit/%.c tests/unit/*.h renderer/*.h | $(DEPS_STAMP)
+$(TEST_LIST): $(wildcard tests/unit/test_*.c)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_COMMON) $(CFLAGS) -Itests/unit -c $< -o $@
+	sed -n 's/^void test_\([a-z0-9_]*\)(void)$$/X(\1)/p' $(sort $^) > $@.tmp
+	mv $@.tmp $@
 
-$(BUILD)/san/test_%.o: tests/unit/%.c tests/unit/*.h renderer/*.h | $(DEPS_STAMP)
+$(BUILD)/dbg/test_%.o: tests/unit/%.c tests/unit/*.h renderer/*.h $(TEST_LIST) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_COMMON) $(SAN_FLAGS) -Itests/unit -c $< -o $@
+	$(CC) $(CFLAGS_COMMON) $(CFLAGS) -Itests/unit -I$(BUILD)/unit -c $< -o $@
+
+$(BUILD)/san/test_%.o: tests/unit/%.c tests/unit/*.h renderer/*.h $(TEST_LIST) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_COMMON) $(SAN_FLAGS) -Itests/unit -I$(BUILD)/unit -c $< -o $@
 
 $(BUILD)/photonmap: $(LIB_OBJ) $(BUILD)/obj/main.o
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)

@@ -294,8 +294,8 @@ static const cli_option render_options[] = {
     {.name = "--quiet", .kind = CLI_FLAG, .offset = RO(quiet), .flag_value = 1,
      .help = "no progress bar and no summary line"},
     {.name = "--repeats", .kind = CLI_STRING, .metavar = "R|auto", .offset = RO(repeats),
-     .help = "run the timed pipeline R times (same seed, same image): each phase's minimum, median and every "
-             "repeat's time in the stats; auto: " CONFIG_REPEATS_AUTO_TEXT,
+     .help = "run the timed pipeline R times, the same image each time; the stats give minima, medians, the "
+             "cold time and every repeat's (auto: " CONFIG_REPEATS_AUTO_TEXT ")",
      .default_text = CONFIG_DEFAULT_REPEATS_TEXT},
     {.name = "--no-output", .kind = CLI_FLAG, .offset = RO(no_output), .flag_value = 1,
      .help = "write no file, only the summary line's times (a render otherwise needs an output)"},

@@ -61,14 +61,14 @@ void est_scratch_work(const est_scratch *s, unsigned threads, work_counts *w)
     }
 }
 
-est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius, int corrected)
+est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius, int bias_correction)
 {
     double r = max_radius / m->scale;
     /* the floor's reference: the cap, or the photons' extent when smaller
      * (the same product as the cap's square, so a cap within the extent
      * gives the floor bit for bit as it always did) */
     double f = (m->extent > 0.0 && m->extent < max_radius ? m->extent : max_radius) / m->scale;
-    est_gather g = {nn, r * r, f * f * (EST_MIN_RADIUS_FRAC * EST_MIN_RADIUS_FRAC), corrected,
+    est_gather g = {nn, r * r, f * f * (EST_MIN_RADIUS_FRAC * EST_MIN_RADIUS_FRAC), bias_correction,
                     m->count > 0 ? (double)m->stored / (double)m->count : 1.0};
     return g;
 }
@@ -84,7 +84,7 @@ double est_surface_height(vec3 d, vec3 n, vec3 nj)
 
 /* The gather of est_irradiance_at and est_irradiance_plane_at; inlined
  * into both, so the plain estimate keeps no test in its loop. */
-static inline vec3 irradiance_core(const photons_map *m, const float q[3], vec3 n, const est_gather *g, double tau,
+static inline vec3 irradiance_core(const photons_map *m, const float q[3], vec3 n, const est_gather *g, double rep_gate_tau,
                                    est_scratch *s, uint32_t *found, double *r2_out)
 {
     assert(g->nn <= s->cap);
@@ -97,15 +97,15 @@ static inline vec3 irradiance_core(const photons_map *m, const float q[3], vec3 
     *r2_out = r2;
     if (k == 0)
         return vec_make(0, 0, 0);
-    /* the paper counts all k; the corrected estimate only those strictly
+    /* the paper counts all k; --bias-correction only those strictly
      * inside the radius r that the n-th photon (or the cap) defines */
-    float inside = g->corrected ? (k < g->nn ? (float)g->max_r2 : r2f) : INFINITY;
-    double plane = tau > 0.0 ? tau * sqrt(r2) : 0.0;
+    float inside = g->bias_correction ? (k < g->nn ? (float)g->max_r2 : r2f) : INFINITY;
+    double plane = rep_gate_tau > 0.0 ? rep_gate_tau * sqrt(r2) : 0.0;
     double sum[3] = {0, 0, 0};
     for (uint32_t j = 0; j < k; j++) {
         const photons_record *p = &m->ph[s->idx[j]];
         if (p->dir[0] * n.x + p->dir[1] * n.y + p->dir[2] * n.z < 0.0 && s->d2[j] < inside) {
-            if (tau > 0.0) {
+            if (rep_gate_tau > 0.0) {
                 float pt[3];
                 kd_point(&m->tree, s->idx[j], pt);
                 vec3 d = vec_make((double)pt[0] - q[0], (double)pt[1] - q[1], (double)pt[2] - q[2]);
@@ -128,10 +128,10 @@ vec3 est_irradiance_at(const photons_map *m, const float q[3], vec3 n, const est
     return irradiance_core(m, q, n, g, 0.0, s, found, &r2);
 }
 
-vec3 est_irradiance_plane_at(const photons_map *m, const float q[3], vec3 n, const est_gather *g, double tau,
+vec3 est_irradiance_plane_at(const photons_map *m, const float q[3], vec3 n, const est_gather *g, double rep_gate_tau,
                              est_scratch *s, uint32_t *found, double *r2)
 {
-    return irradiance_core(m, q, n, g, tau, s, found, r2);
+    return irradiance_core(m, q, n, g, rep_gate_tau, s, found, r2);
 }
 
 vec3 est_world_factor(const photons_map *m)

@@ -31,7 +31,7 @@
 /* A gather: how many photons, the squared radius cap in the map's frame
  * (est_gather_make converts from scene units), and which estimate: the
  * paper's (all n photons over pi r^2, r the n-th one's distance) or the
- * corrected one (only the photons strictly inside r, which is unbiased for a
+ * bias-corrected one (--bias-correction: only the photons strictly inside r, unbiased for a
  * uniform density: the paper's follows n/(n-1)), times `boost` = photons
  * stored / photons in the tree, which restores the density when the map
  * leaves the representatives out. */
@@ -39,12 +39,12 @@ typedef struct {
     uint32_t nn;
     double max_r2;
     double min_r2; /* the floor of r^2, map frame */
-    int corrected;
+    int bias_correction;
     double boost;
 } est_gather;
 
 /* The gather of nn photons within max_radius scene units on map m. */
-est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius, int corrected);
+est_gather est_gather_make(const photons_map *m, uint32_t nn, double max_radius, int bias_correction);
 
 /* One thread's buffers for kNN queries of up to nn photons, and its query
  * state (the last query's radius starts the next search: cheaper, never a
@@ -97,10 +97,10 @@ double est_surface_height(vec3 d, vec3 n, vec3 nj);
 /* est_irradiance_at with the plane gate's test (the representatives' gated
  * precompute, reps.h): a gathered photon counts only when its height
  * (est_surface_height, with the normal of the surface it landed on) is at
- * most tau times the disc's radius r (tau <= 0: no test, the same result as
+ * most rep_gate_tau times the disc's radius r (rep_gate_tau <= 0: no test, the same result as
  * est_irradiance_at). *r2 receives the squared radius the estimate divides
  * by (map frame). */
-vec3 est_irradiance_plane_at(const photons_map *m, const float q[3], vec3 n, const est_gather *g, double tau,
+vec3 est_irradiance_plane_at(const photons_map *m, const float q[3], vec3 n, const est_gather *g, double rep_gate_tau,
                              est_scratch *s, uint32_t *found, double *r2);
 /* The factor from irradiance in map units to W per scene unit^2. */
 vec3 est_world_factor(const photons_map *m);

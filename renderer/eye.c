@@ -98,7 +98,7 @@ static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t de
         vec3 e;
         if (c->cfg->method == CONFIG_METHOD_PRECOMPUTED) {
             int found;
-            e = reps_lookup(c->reps, c->map, h.p, h.n, c->cfg->normal_cos, &c->gather, &c->scratch[thread], &found);
+            e = reps_lookup(c->reps, c->map, h.p, h.n, &c->gather, &c->scratch[thread], &found);
             c->counts[thread].empty += !(found & REPS_FOUND);
             c->counts[thread].fallbacks += (found & REPS_FALLBACK) != 0;
         } else {

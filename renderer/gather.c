@@ -40,7 +40,6 @@ gather_params gather_params_make(const scene *sc, const config_render *cfg, cons
     g.caustic = caustic;
     g.global_gather = est_gather_make(global, cfg->nn, max_radius, cfg->bias_correction);
     g.caustic_gather = caustic ? est_gather_make(caustic, cfg->nn, max_radius, cfg->bias_correction) : g.global_gather;
-    g.normal_cos = cfg->normal_cos;
     g.rays = cfg->gather;
     gather_strata(cfg->gather, &g.strata_u, &g.strata_v);
     g.depth = cfg->eye_depth;
@@ -73,7 +72,7 @@ static vec3 estimate_at(const gather_params *g, vec3 y, vec3 n, est_scratch *s, 
     c->lookups++;
     if (g->reps) {
         int found;
-        vec3 e = reps_lookup(g->reps, g->global, y, n, g->normal_cos, &g->global_gather, s, &found);
+        vec3 e = reps_lookup(g->reps, g->global, y, n, &g->global_gather, s, &found);
         c->empty += !(found & REPS_FOUND);
         c->fallbacks += (found & REPS_FALLBACK) != 0;
         return e;

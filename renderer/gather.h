@@ -64,7 +64,6 @@ typedef struct {
     const photons_map *caustic; /* the L S+ D photons; NULL: no caustic map (no caustic photon was stored) */
     est_gather global_gather;   /* nn, the cap, the estimate (--bias-correction), on the global map */
     est_gather caustic_gather;  /* the same on the caustic map */
-    double normal_cos;          /* the representatives' normal test */
     uint32_t rays;              /* N: gather rays per eye hit */
     uint32_t strata_u, strata_v; /* the first strata_u x strata_v rays are stratified, any rest uniform */
     uint32_t depth;             /* specular bounces a gather path may make (--eye-depth) */

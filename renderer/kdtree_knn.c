@@ -11,19 +11,17 @@
  * the pass keeps the k nearest sorted instead and shrinks the radius as
  * soon as it holds k. */
 #include "kdtree_impl.h"
-#include "kdtree_test.h"
 
 #include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define KD_LOCAL_K 128u /* kd_knn: k up to this gathers in a stack buffer; above, a heap in the output */
 #define KD_MAX_BUF_K (1u << 24) /* kd_query: larger k (16M) takes the heap in the output, no buffer */
 
 /* ---- k nearest: without a buffer ----
- * When no candidate buffer is at hand (k beyond kd_knn's stack buffer, or
- * no memory for a state's), a max-heap of keys lives in idx/d2 themselves.
+ * When no candidate buffer is at hand (k beyond KD_MAX_BUF_K, or no memory
+ * for a state's), a max-heap of keys lives in idx/d2 themselves.
  * Slower, same result. */
 static inline uint64_t heap_key(const uint32_t *hi, const float *hd, uint32_t j)
 {
@@ -222,22 +220,4 @@ uint32_t kd_query_knn(const kd_tree *t, kd_query *s, const float q[3], uint32_t 
         s->cap = buf_entries(k);
     }
     return knn_run(t, s, q, k, max_d2, idx, d2, r2);
-}
-
-uint32_t kd_knn(const kd_tree *t, const float q[3], uint32_t k, float max_d2, uint32_t *idx, float *d2, float *r2)
-{
-    *r2 = 0.0f;
-    if (k == 0 || t->n == 0 || !(max_d2 >= 0.0f))
-        return 0;
-    k = k < t->n ? k : t->n;
-    kd_work unused = {0, 0};
-    if (k > KD_LOCAL_K)
-        return knn_heap(t, q, k, max_d2, idx, d2, r2, &unused);
-    uint64_t local[3 * (2 * KD_LOCAL_K + 5 * KD_CHUNK)];
-    kd_query s;
-    memset(&s, 0, sizeof s);
-    s.simd = kd_simd_best();
-    s.buf = local;
-    s.cap = buf_entries(k);
-    return knn_run(t, &s, q, k, max_d2, idx, d2, r2);
 }

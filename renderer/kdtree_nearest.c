@@ -67,11 +67,15 @@ static int descend_to(const kd_tree *t, uint32_t leaf, const float q[3], float *
 
 /* Scans leaf `leaf` for a qualifying point nearer than *best_d2 (of points
  * at the same distance, the lowest index), updating *best, *best_d2 and
- * qv's radius. */
-static inline void scan_leaf(const kd_tree *t, uint32_t leaf, kd_pred pred, const void *ctx, kd_qbase *qv,
-                             uint32_t *best, float *best_d2)
+ * qv's radius, and adds the leaf and its points to *nodes and *points
+ * (inlined always: they stay in registers). */
+static inline __attribute__((always_inline)) void scan_leaf(const kd_tree *t, uint32_t leaf, kd_pred pred,
+                                                            const void *ctx, kd_qbase *qv, uint32_t *best,
+                                                            float *best_d2, uint64_t *nodes, uint64_t *points)
 {
     uint32_t beg = t->leaf_start[leaf], end = t->leaf_start[leaf + 1];
+    *nodes += 1;
+    *points += end - beg;
     for (uint32_t c = beg; c < end; c += KD_CHUNK) {
         /* only the lanes within the best distance so far */
         uint32_t bits[KD_CHUNK];
@@ -117,25 +121,19 @@ uint32_t kd_nearest_if_counted(const kd_tree *t, const float q[3], float max_d2,
             kd_qbase qv;
             KD_QBASE_INIT(qv, q, best_d2);
             /* the first leaf: the hint's, reached along its known path, or q's by descent */
-            uint32_t leaf = KD_NONE;
             if (best != KD_NONE) {
-                uint32_t hl = leaf_of(t, best);
-                if (descend_to(t, hl, q, &rd, off, prune_bound(best_d2), stack, &sp, &nodes))
-                    leaf = hl;
+                uint32_t leaf = leaf_of(t, best);
+                if (descend_to(t, leaf, q, &rd, off, prune_bound(best_d2), stack, &sp, &nodes))
+                    scan_leaf(t, leaf, pred, ctx, &qv, &best, &best_d2, &nodes, &points);
             } else {
                 nodes += descent_length(t, node);
-                leaf = descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp);
+                scan_leaf(t, descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp), pred, ctx, &qv, &best,
+                          &best_d2, &nodes, &points);
             }
-            for (;;) {
-                if (leaf != KD_NONE) {
-                    nodes++;
-                    points += t->leaf_start[leaf + 1] - t->leaf_start[leaf];
-                    scan_leaf(t, leaf, pred, ctx, &qv, &best, &best_d2);
-                }
-                if (!pop(stack, &sp, prune_bound(best_d2), &node, &rd, off))
-                    break;
+            while (pop(stack, &sp, prune_bound(best_d2), &node, &rd, off)) {
                 nodes += descent_length(t, node);
-                leaf = descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp);
+                scan_leaf(t, descend(t, node, q, rd, off, prune_bound(best_d2), stack, &sp), pred, ctx, &qv, &best,
+                          &best_d2, &nodes, &points);
             }
         }
     }

@@ -258,15 +258,15 @@ static pm_status cmd_render(int argc, char **argv)
     pm_status rc = cli_parse(&cli_render, argc, argv, 2, &a, &a.given);
     if (rc != PM_OK)
         return rc;
+    char err[1024];
+    if (a.repeats && repeat_parse(a.repeats, &a.cfg.repeats, err, sizeof err) != PM_OK)
+        return cli_error(&cli_render, "%s", err);
+    cli_render_resolve(&a);
     const config_render *cfg = &a.cfg;
     const char *paths[4] = {a.exr, a.png, a.stats, cfg->dump_reps};
     const char *names[4] = {"-o", "--png", "--stats", "--dump-reps"};
     const char *exts[4] = {".exr", ".png", ".json", ".csv"};
     const char *formats[4] = {"OpenEXR", "PNG", "JSON", "CSV"};
-    char err[1024];
-    if (a.repeats && (rc = repeat_parse(a.repeats, &a.cfg.repeats, err, sizeof err)) != PM_OK)
-        return cli_error(&cli_render, "%s", err);
-    cli_render_resolve(&a);
     if ((rc = cli_render_check(&a)) != PM_OK)
         return rc;
     scene *sc = NULL;

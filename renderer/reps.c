@@ -16,13 +16,14 @@ reps_params reps_params_of(const config_render *cfg)
 {
     int pre = cfg->method == CONFIG_METHOD_PRECOMPUTED;
     reps_params p;
-    p.every = pre ? cfg->rep_every : 0;
-    p.count = pre ? cfg->rep_count : 0;
-    p.tree = cfg->rep_tree;
-    p.leave_out = pre && cfg->bias_correction;
-    p.eval = cfg->rep_eval;
-    p.gate = cfg->rep_gate;
-    p.tau = cfg->rep_gate_tau;
+    p.rep_every = pre ? cfg->rep_every : 0;
+    p.rep_count = pre ? cfg->rep_count : 0;
+    p.rep_tree = cfg->rep_tree;
+    p.bias_correction = pre && cfg->bias_correction;
+    p.rep_eval = cfg->rep_eval;
+    p.rep_gate = cfg->rep_gate;
+    p.rep_gate_tau = cfg->rep_gate_tau;
+    p.normal_cos = cfg->normal_cos;
     return p;
 }
 
@@ -43,32 +44,33 @@ pm_status reps_check_stored(const config_render *cfg, uint64_t stored, char *err
 void reps_choose(const reps_params *p, photons_list *l)
 {
     uint64_t total = l->count;
-    if (p->count > 0 && total > 0) {
+    if (p->rep_count > 0 && total > 0) {
         /* a fixed count, spread evenly over the trace order: photon
          * floor(j * total / count) = j * q + floor(j * r / count), which
          * cannot overflow (j * r < count^2 and count < 2^32) */
-        uint64_t count = p->count < total ? p->count : total;
+        uint64_t count = p->rep_count < total ? p->rep_count : total;
         uint64_t q = total / count, r = total % count;
         for (uint64_t j = 0; j < count; j++)
             l->ph[j * q + j * r / count].flags |= PHOTONS_FLAG_REP;
-    } else if (p->count == 0 && p->every > 0) {
-        for (uint64_t i = 0; i < total; i += p->every)
+    } else if (p->rep_count == 0 && p->rep_every > 0) {
+        for (uint64_t i = 0; i < total; i += p->rep_every)
             l->ph[i].flags |= PHOTONS_FLAG_REP;
     }
 }
 
 uint8_t reps_leave_out_mask(const reps_params *p)
 {
-    return p->leave_out ? PHOTONS_FLAG_REP : 0;
+    return p->bias_correction ? PHOTONS_FLAG_REP : 0;
 }
 
 pm_status reps_collect(const reps_params *p, const photons_map *m, const photons_list *left, reps_set *out)
 {
     memset(out, 0, sizeof *out);
-    out->tree = p->tree;
-    out->eval = p->eval;
-    out->gate = p->gate;
-    out->tau = p->tau;
+    out->rep_tree = p->rep_tree;
+    out->rep_eval = p->rep_eval;
+    out->rep_gate = p->rep_gate;
+    out->rep_gate_tau = p->rep_gate_tau;
+    out->normal_cos = p->normal_cos;
     uint32_t nin = 0, nleft = left ? (uint32_t)left->count : 0;
     for (uint32_t i = 0; i < m->count; i++)
         nin += (m->ph[i].flags & PHOTONS_FLAG_REP) != 0;
@@ -116,7 +118,7 @@ static void evaluate_value(const reps_set *r, const photons_map *m, const reps_s
     vec3 n = vec_norm(photons_unpack_dir(rp->normal));
     uint32_t found;
     double r2;
-    double tau = r->gate == CONFIG_REP_GATE_PLANE ? r->tau : 0.0;
+    double tau = r->rep_gate == CONFIG_REP_GATE_PLANE ? r->rep_gate_tau : 0.0;
     vec3 e = est_irradiance_plane_at(m, rp->pos, n, &r->gather, tau, s, &found, &r2);
     v->irradiance[0] = (float)e.x;
     v->irradiance[1] = (float)e.y;
@@ -148,7 +150,7 @@ static void evaluate_chunk(uint64_t chunk, unsigned thread, void *arg)
         v->normal[0] = (float)n.x;
         v->normal[1] = (float)n.y;
         v->normal[2] = (float)n.z;
-        if (r->eval == CONFIG_REP_EVAL_EAGER) {
+        if (r->rep_eval == CONFIG_REP_EVAL_EAGER) {
             evaluate_value(r, c->m, rp, v, &c->scratch[thread]);
             c->scratch[thread].rep_evaluations++;
         } else {
@@ -181,11 +183,11 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
     uint32_t *order = NULL;
     r->gather = *g;
     r->value = malloc(sizeof(reps_value) * (count ? count : 1));
-    if (r->eval == CONFIG_REP_EVAL_LAZY)
+    if (r->rep_eval == CONFIG_REP_EVAL_LAZY)
         r->state = malloc(sizeof(atomic_uchar) * (count ? count : 1));
     est_scratch *scratch = est_scratch_new(nt, g->nn);
-    pm_status rc = (!r->value || !scratch || (r->eval == CONFIG_REP_EVAL_LAZY && !r->state)) ? PM_ERR_NOMEM : PM_OK;
-    if (rc == PM_OK && r->tree == CONFIG_REP_TREE_SEPARATE) {
+    pm_status rc = (!r->value || !scratch || (r->rep_eval == CONFIG_REP_EVAL_LAZY && !r->state)) ? PM_ERR_NOMEM : PM_OK;
+    if (rc == PM_OK && r->rep_tree == CONFIG_REP_TREE_SEPARATE) {
         /* the representatives' own tree first: the precompute then runs in
          * its leaf order (nearby queries in a row) and stores in that order */
         float *pos = malloc(sizeof(float) * 3 * (count ? count : 1));
@@ -217,10 +219,10 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
     }
     if (rc == PM_OK) {
         memset(&r->work, 0, sizeof r->work);
-        r->work.tree_points = r->tree == CONFIG_REP_TREE_SEPARATE ? count : 0;
+        r->work.tree_points = r->rep_tree == CONFIG_REP_TREE_SEPARATE ? count : 0;
         est_scratch_work(scratch, nt, &r->work);
     }
-    if (rc == PM_OK && r->eval == CONFIG_REP_EVAL_LAZY) {
+    if (rc == PM_OK && r->rep_eval == CONFIG_REP_EVAL_LAZY) {
         r->site_of = order; /* the lookup finds a value's site by it */
         order = NULL;
     }
@@ -234,12 +236,11 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
 typedef struct {
     const reps_set *r;
     vec3 n;
-    double cos_min;
 } lookup_ctx;
 
 static int agrees(const reps_value *v, const lookup_ctx *c)
 {
-    return v->normal[0] * c->n.x + v->normal[1] * c->n.y + v->normal[2] * c->n.z > c->cos_min;
+    return v->normal[0] * c->n.x + v->normal[1] * c->n.y + v->normal[2] * c->n.z > c->r->normal_cos;
 }
 
 static int pred_separate(uint32_t i, const void *arg)
@@ -296,7 +297,7 @@ static const reps_value *ready_value(const reps_set *r, const photons_map *m, ui
  * q's tangent plane where both normals agree exactly) is at most tau r, r
  * its kNN radius. Returns it, or NULL. */
 static const reps_value *gate_accept(const reps_set *r, const photons_map *m, const float q[3], vec3 n,
-                                     double cos_min, float max_r2, est_scratch *s)
+                                     float max_r2, est_scratch *s)
 {
     uint32_t idx[REPS_GATE_CANDIDATES];
     float d2[REPS_GATE_CANDIDATES], top;
@@ -319,7 +320,7 @@ static const reps_value *gate_accept(const reps_set *r, const photons_map *m, co
             idx[b - 1] = ti;
         }
     }
-    lookup_ctx c = {r, n, cos_min};
+    lookup_ctx c = {r, n};
     for (uint32_t j = 0; j < k; j++) {
         uint32_t i = idx[j];
         if (!agrees(&r->value[i], &c))
@@ -333,31 +334,31 @@ static const reps_value *gate_accept(const reps_set *r, const photons_map *m, co
         kd_point(&r->own, i, p);
         vec3 d = vec_make((double)p[0] - q[0], (double)p[1] - q[1], (double)p[2] - q[2]);
         vec3 nr = vec_make(v->normal[0], v->normal[1], v->normal[2]);
-        if (est_surface_height(d, n, nr) <= r->tau * sqrt((double)v->radius2))
+        if (est_surface_height(d, n, nr) <= r->rep_gate_tau * sqrt((double)v->radius2))
             return v;
     }
     return NULL;
 }
 
-vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, double cos_min, const est_gather *g,
+vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, const est_gather *g,
                  est_scratch *s, int *found)
 {
     float max_r2 = (float)g->max_r2;
     float q[3], d2;
     photons_map_point(m, x, q);
-    lookup_ctx c = {r, n, cos_min};
+    lookup_ctx c = {r, n};
     const reps_value *v = NULL;
     s->rep_lookups++;
-    if (r->gate != CONFIG_REP_GATE_NONE) {
-        assert(r->tree == CONFIG_REP_TREE_SEPARATE); /* config_check */
-        v = gate_accept(r, m, q, n, cos_min, max_r2, s);
+    if (r->rep_gate != CONFIG_REP_GATE_NONE) {
+        assert(r->rep_tree == CONFIG_REP_TREE_SEPARATE); /* config_check */
+        v = gate_accept(r, m, q, n, max_r2, s);
         if (!v) {
             uint32_t k;
             vec3 e = est_irradiance(m, x, n, g, s, &k);
             *found = REPS_FALLBACK | (k > 0 ? REPS_FOUND : 0);
             return e;
         }
-    } else if (r->tree == CONFIG_REP_TREE_SEPARATE) {
+    } else if (r->rep_tree == CONFIG_REP_TREE_SEPARATE) {
         /* the paper's: the nearest representative whose normal agrees */
         uint32_t i = kd_nearest_if_counted(&r->own, q, max_r2, pred_separate, &c, s->last_rep, &d2, &s->rep_work);
         if (i != KD_NONE)
@@ -393,7 +394,7 @@ pm_status reps_write_csv(const reps_set *r, const photons_map *m, FILE *f)
         /* where representative i sits in the map frame: its own tree's leaf
          * i (separate layout) or site i (shared) */
         float q[3];
-        if (r->tree == CONFIG_REP_TREE_SEPARATE) {
+        if (r->rep_tree == CONFIG_REP_TREE_SEPARATE) {
             q[0] = r->own.x[i];
             q[1] = r->own.y[i];
             q[2] = r->own.z[i];
@@ -415,7 +416,7 @@ size_t reps_bytes(const reps_set *r, const photons_map *m)
         b += (size_t)r->count * sizeof(atomic_uchar);
     if (r->site_of)
         b += (size_t)r->count * sizeof(uint32_t);
-    if (r->tree == CONFIG_REP_TREE_SEPARATE)
+    if (r->rep_tree == CONFIG_REP_TREE_SEPARATE)
         b += kd_bytes(&r->own);
     else
         b += (size_t)m->count * sizeof(uint32_t);

@@ -40,14 +40,15 @@
 /* Which photons are representatives and where they live, as the pipeline
  * needs it (reps_params_of derives it from a config_render). */
 typedef struct {
-    uint32_t every;       /* every K-th stored photon (trace order); 0 (and count 0): none */
-    uint64_t count;       /* the fixed-count rule instead, when > 0: stored photon floor(j * stored /
-                             count) for j = 0 .. count-1 (every stored photon when fewer) */
-    config_rep_tree tree; /* the lookup's layout */
-    int leave_out;        /* 1: the photon tree holds only the photons that are not representatives */
-    config_rep_eval eval; /* eager (0) or on first use */
-    config_rep_gate gate; /* none (0): the nearest agreeing; plane: the gate (and its gather); plane-lookup */
-    double tau;           /* the plane gate's tolerance, in kNN radii */
+    uint32_t rep_every;       /* every K-th stored photon (trace order); 0 (and rep_count 0): none */
+    uint64_t rep_count;       /* the fixed-count rule instead, when > 0: stored photon floor(j * stored /
+                                 rep_count) for j = 0 .. rep_count-1 (every stored photon when fewer) */
+    config_rep_tree rep_tree; /* the lookup's layout */
+    int bias_correction;      /* 1: the photon tree holds only the photons that are not representatives */
+    config_rep_eval rep_eval; /* eager (0) or on first use */
+    config_rep_gate rep_gate; /* none (0): the nearest agreeing; plane: the gate (and its gather); plane-lookup */
+    double rep_gate_tau;      /* the plane gate's tolerance, in kNN radii */
+    double normal_cos;        /* a representative's normal must agree with x's above this cosine */
 } reps_params;
 
 /* How many of the nearest representatives the plane gate tries before it
@@ -91,16 +92,17 @@ typedef struct {
 } reps_value;
 
 typedef struct {
-    config_rep_tree tree;
+    config_rep_tree rep_tree;
     uint32_t count;
     reps_site *site;    /* the map's representatives in the photon tree, in its leaf order, then those
                            left out, in trace order */
     kd_tree own;        /* separate: the representatives' own tree */
     reps_value *value;  /* separate: in that tree's leaf order; shared: by site (see rep_of) */
     uint32_t *rep_of;   /* shared: photon tree index -> site index or KD_NONE */
-    config_rep_eval eval;
-    config_rep_gate gate;
-    double tau;
+    config_rep_eval rep_eval;
+    config_rep_gate rep_gate;
+    double rep_gate_tau;
+    double normal_cos;
     est_gather gather;  /* the precompute's (reps_evaluate's g) */
     /* lazy: per value, REPS_PENDING, REPS_CLAIMED (a thread computes it) or
      * REPS_READY (published with release order); NULL when eager */
@@ -135,8 +137,8 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
 #define REPS_FALLBACK 2 /* the plane gate accepted none: the conventional estimate at x */
 
 /* Irradiance (W per unit^2) of the nearest representative within the
- * gather's radius cap of world point x whose normal has cosine > cos_min
- * with n (of equally near ones, the first in tree order, so the answer does
+ * gather's radius cap of world point x whose normal has cosine >
+ * r->normal_cos with n (of equally near ones, the first in tree order, so the answer does
  * not depend on s, whose last answer only starts the search); with the
  * plane gate, of the REPS_GATE_CANDIDATES nearest (by distance, then tree
  * order) the first that passes it, else the conventional estimate at x with
@@ -144,7 +146,7 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
  * it reads that no thread has yet (with s's buffers), thread-safely, once.
  * Returns 0 and sets *found = 0 when none qualifies (ungated) or the
  * fallback found no photon. */
-vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, double cos_min, const est_gather *g,
+vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, const est_gather *g,
                  est_scratch *s, int *found);
 
 /* How many representatives have their irradiance computed: all (eager),

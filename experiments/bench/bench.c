@@ -192,7 +192,7 @@ static uint64_t ours_knn_batch(const kd_tree *t, const float *q, uint32_t nq, ui
     return total;
 }
 
-static uint64_t lookup_batch(const reps_set *r, const photons_map *m, const qset *q, uint32_t nq, double cos_min,
+static uint64_t lookup_batch(const reps_set *r, const photons_map *m, const qset *q, uint32_t nq,
                              const est_gather *g, double *esum)
 {
     uint64_t found = 0;
@@ -203,7 +203,7 @@ static uint64_t lookup_batch(const reps_set *r, const photons_map *m, const qset
     for (uint32_t i = 0; i < nq; i++) {
         const float *p = q->p + 3 * (size_t)i, *n = q->nr + 3 * (size_t)i;
         int f;
-        vec3 e = reps_lookup(r, m, vec_make(p[0], p[1], p[2]), vec_make(n[0], n[1], n[2]), cos_min, g, scratch, &f);
+        vec3 e = reps_lookup(r, m, vec_make(p[0], p[1], p[2]), vec_make(n[0], n[1], n[2]), g, scratch, &f);
         found += (uint64_t)f;
         s += e.x;
     }
@@ -704,7 +704,8 @@ int main(int argc, char **argv)
     }
     for (int si = 0; si < nsizes; si++) {
         photons_params pp = {sizes[si], cfg.seed, cfg.photon_depth, 1};
-        reps_params rps = {.every = cfg.rep_every, .count = 0, .tree = CONFIG_REP_TREE_SEPARATE, .leave_out = 0};
+        reps_params rps = {.rep_every = cfg.rep_every, .rep_count = 0, .rep_tree = CONFIG_REP_TREE_SEPARATE,
+                           .bias_correction = 0, .normal_cos = cfg.normal_cos};
         photons_list list;
         photons_map map;
         if (photons_trace(sc, &pp, 1, NULL, &list)) {
@@ -827,7 +828,7 @@ int main(int argc, char **argv)
                 uint64_t f = 0;
                 for (int r = 0; r < reps && r < 64; r++) {
                     double t0 = now_s();
-                    f = lookup_batch(&rp, &map, orders[o], nq, cfg.normal_cos, &gather, &es);
+                    f = lookup_batch(&rp, &map, orders[o], nq, &gather, &es);
                     t[r] = now_s() - t0;
                 }
                 printf("| %u | %u | %s | %.3f | %.3f | %.2f | %.2f |\n", sizes[si], rp.count, order_name[o],

@@ -1,6 +1,6 @@
-/* main: runs every unit test of tests.h (or those named on the command
- * line), prints each result and "N passed, N failed, N skipped"; exit 1 on
- * failure. */
+/* main: runs every unit test of tests.list.h (or those named on the
+ * command line), prints each result and "N passed, N failed, N skipped";
+ * exit 1 on failure. */
 #include <stdio.h>
 #include <string.h>
 
@@ -19,8 +19,11 @@ typedef struct {
     void (*fn)(void);
 } test_entry;
 
-#define TEST_ENTRY(name) {#name, test_##name},
-static const test_entry all_tests[] = {TEST_LIST(TEST_ENTRY)};
+static const test_entry all_tests[] = {
+#define X(name) {#name, test_##name},
+#include "tests.list.h"
+#undef X
+};
 
 int main(int argc, char **argv)
 {

@@ -72,7 +72,7 @@ void test_precomputed_equals_conventional_on_uniform_plane(void)
         uint32_t found;
         int ok;
         vec3 ec = est_irradiance(&m, x, vec_make(0, 1, 0), &g, s, &found);
-        vec3 ep = reps_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &ok);
+        vec3 ep = reps_lookup(&reps, &m, x, vec_make(0, 1, 0), &g, s, &ok);
         CHECK(found == nn && ok);
         sum_c += ec.y;
         sum_p += ep.y;
@@ -90,8 +90,8 @@ void test_precomputed_equals_conventional_on_uniform_plane(void)
     for (int i = 0; i < 50; i++) {
         vec3 x = vec_make(rng_next_double(&q) - 0.5, 0, rng_next_double(&q) - 0.5);
         int a, b;
-        vec3 e1 = reps_lookup(&reps, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &a);
-        vec3 e2 = reps_lookup(&shared, &m, x, vec_make(0, 1, 0), 0.9, &g, s2, &b);
+        vec3 e1 = reps_lookup(&reps, &m, x, vec_make(0, 1, 0), &g, s, &a);
+        vec3 e2 = reps_lookup(&shared, &m, x, vec_make(0, 1, 0), &g, s2, &b);
         CHECK(a && b && e1.y == e2.y);
     }
     reps_free(&shared);
@@ -122,8 +122,8 @@ void test_precomputed_normal_test_at_corner(void)
     for (int i = 0; i < 500; i++) {
         double t = rng_next_double(&q) * 0.01, u = rng_next_double(&q) - 0.5;
         int f1, f2;
-        vec3 on_floor = reps_lookup(&reps, &m, vec_make(u, 0, t), vec_make(0, 1, 0), 0.9, &g, s, &f1);
-        vec3 on_wall = reps_lookup(&reps, &m, vec_make(u, t, 0), vec_make(0, 0, 1), 0.9, &g, s, &f2);
+        vec3 on_floor = reps_lookup(&reps, &m, vec_make(u, 0, t), vec_make(0, 1, 0), &g, s, &f1);
+        vec3 on_wall = reps_lookup(&reps, &m, vec_make(u, t, 0), vec_make(0, 0, 1), &g, s, &f2);
         floor_ok &= f1 && on_floor.y < 1.0;
         wall_ok &= f2 && on_wall.y > 1.0;
     }
@@ -131,7 +131,7 @@ void test_precomputed_normal_test_at_corner(void)
     CHECK(wall_ok);
     /* a tilted normal that agrees with neither (cos 0.707 < 0.9): defined zero */
     int f;
-    vec3 e = reps_lookup(&reps, &m, vec_make(0, 0.001, 0.001), vec_norm(vec_make(0, 1, 1)), 0.9, &g, s, &f);
+    vec3 e = reps_lookup(&reps, &m, vec_make(0, 0.001, 0.001), vec_norm(vec_make(0, 1, 1)), &g, s, &f);
     CHECK(!f && e.x == 0.0 && e.y == 0.0 && e.z == 0.0);
     reps_free(&reps);
     est_scratch_delete(s, 1);
@@ -151,7 +151,8 @@ void test_precomputed_rep_count(void)
     const uint64_t counts[4] = {1, 777, 5000, 1000000};
     for (int c = 0; c < 4; c++) {
         photons_params pp = {20000, 3, 64, 1};
-        reps_params rp = {.every = 4, .count = counts[c], .tree = CONFIG_REP_TREE_SEPARATE, .leave_out = 0};
+        reps_params rp = {.rep_every = 4, .rep_count = counts[c], .rep_tree = CONFIG_REP_TREE_SEPARATE,
+                          .bias_correction = 0, .normal_cos = CONFIG_DEFAULT_NORMAL_COS};
         photons_list l;
         CHECK(photons_trace(sc, &pp, 2, NULL, &l) == 0);
         reps_choose(&rp, &l);
@@ -214,7 +215,7 @@ void test_precomputed_dump_reps(void)
             if (rows % 97 == 0) {
                 int found;
                 est_scratch *ls = est_scratch_new(1, 1);
-                vec3 e = reps_lookup(&reps, &m, vec_make(v[0], v[1], v[2]), vec_make(0, 1, 0), 0.9, &g, ls, &found);
+                vec3 e = reps_lookup(&reps, &m, vec_make(v[0], v[1], v[2]), vec_make(0, 1, 0), &g, ls, &found);
                 est_scratch_delete(ls, 1);
                 lookups_equal += found && fabs(e.y - v[7]) <= 1e-6 * v[7];
             }
@@ -248,15 +249,15 @@ void test_stability_no_agreeing_representative(void)
         CHECK(helper_reps(&m, &g, layout ? CONFIG_REP_TREE_SHARED : CONFIG_REP_TREE_SEPARATE, 2, &r) == 0);
         CHECK(r.count == 16);
         int found = -1;
-        vec3 e = reps_lookup(&r, &m, vec_make(0.01, 0, 0.01), down, 0.9, &g, ls, &found);
+        vec3 e = reps_lookup(&r, &m, vec_make(0.01, 0, 0.01), down, &g, ls, &found);
         CHECK(found == 0 && e.x == 0.0 && e.y == 0.0 && e.z == 0.0);
-        e = reps_lookup(&r, &m, vec_make(0.01, 0, 0.01), vec_make(1, 0, 0), 0.9, &g, ls, &found);
+        e = reps_lookup(&r, &m, vec_make(0.01, 0, 0.01), vec_make(1, 0, 0), &g, ls, &found);
         CHECK(found == 0 && e.x == 0.0);
         /* the agreeing side finds one, finite and positive */
-        e = reps_lookup(&r, &m, vec_make(0.01, 0, 0.01), up_n, 0.9, &g, ls, &found);
+        e = reps_lookup(&r, &m, vec_make(0.01, 0, 0.01), up_n, &g, ls, &found);
         CHECK(found == 1 && isfinite(e.x) && e.x > 0.0);
         /* none in range */
-        e = reps_lookup(&r, &m, vec_make(5, 0, 5), up_n, 0.9, &g, ls, &found);
+        e = reps_lookup(&r, &m, vec_make(5, 0, 5), up_n, &g, ls, &found);
         CHECK(found == 0 && e.x == 0.0);
         reps_free(&r);
         est_scratch_delete(ls, 1);
@@ -269,7 +270,8 @@ void test_stability_no_agreeing_representative(void)
 static void variant_reps(const photons_map *m, const est_gather *g, config_rep_tree tree, config_rep_eval eval,
                          config_rep_gate gate, double tau, unsigned threads, reps_set *out)
 {
-    reps_params p = {.every = 0, .count = 0, .tree = tree, .leave_out = 0, .eval = eval, .gate = gate, .tau = tau};
+    reps_params p = {.rep_every = 0, .rep_count = 0, .rep_tree = tree, .bias_correction = 0, .rep_eval = eval,
+                     .rep_gate = gate, .rep_gate_tau = tau, .normal_cos = CONFIG_DEFAULT_NORMAL_COS};
     CHECK(reps_collect(&p, m, NULL, out) == PM_OK);
     CHECK(reps_evaluate(out, m, g, threads, NULL) == PM_OK);
 }
@@ -309,7 +311,7 @@ static void *lazy_worker(void *arg)
     CHECK(s != NULL);
     for (int k = 0; k < LAZY_POINTS; k++) {
         int i = j->reverse ? LAZY_POINTS - 1 - k : k;
-        j->out[i] = reps_lookup(j->r, j->m, j->pts[i], j->nrm[i], 0.9, j->g, s, &j->found[i]);
+        j->out[i] = reps_lookup(j->r, j->m, j->pts[i], j->nrm[i], j->g, s, &j->found[i]);
     }
     est_scratch_delete(s, 1);
     return NULL;
@@ -359,15 +361,15 @@ void test_reps_lazy_equals_eager(void)
         variant_reps(&m, &g, tree, CONFIG_REP_EVAL_LAZY, gate, 0.1, 1, &lazy2);
         CHECK(reps_evaluated(&eager) == eager.count && reps_evaluated(&lazy) == 0);
         for (int i = 0; i < LAZY_POINTS; i++) {
-            want[i] = reps_lookup(&eager, &m, pts[i], nrm[i], 0.9, &g, s, &want_found[i]);
-            got[i] = reps_lookup(&lazy, &m, pts[i], nrm[i], 0.9, &g, s, &got_found[i]);
+            want[i] = reps_lookup(&eager, &m, pts[i], nrm[i], &g, s, &want_found[i]);
+            got[i] = reps_lookup(&lazy, &m, pts[i], nrm[i], &g, s, &got_found[i]);
         }
         CHECK(memcmp(want, got, sizeof want) == 0 && memcmp(want_found, got_found, sizeof want_found) == 0);
         uint64_t evaluated = reps_evaluated(&lazy);
         CHECK(evaluated > 0 && evaluated < lazy.count);
         /* a second pass computes nothing more and answers the same */
         for (int i = 0; i < LAZY_POINTS; i++)
-            got[i] = reps_lookup(&lazy, &m, pts[i], nrm[i], 0.9, &g, s, &got_found[i]);
+            got[i] = reps_lookup(&lazy, &m, pts[i], nrm[i], &g, s, &got_found[i]);
         CHECK(memcmp(want, got, sizeof want) == 0 && reps_evaluated(&lazy) == evaluated);
         check_two_threads(&lazy2, &m, &g, pts, nrm, want, want_found);
         CHECK(reps_evaluated(&lazy2) == evaluated);
@@ -377,7 +379,7 @@ void test_reps_lazy_equals_eager(void)
             reps_set other;
             variant_reps(&m, &g2, tree, CONFIG_REP_EVAL_LAZY, gate, 0.1, 1, &other);
             for (int i = 0; i < LAZY_POINTS; i++)
-                got[i] = reps_lookup(&other, &m, pts[i], nrm[i], 0.9, &g, s, &got_found[i]);
+                got[i] = reps_lookup(&other, &m, pts[i], nrm[i], &g, s, &got_found[i]);
             CHECK(memcmp(want, got, sizeof want) != 0);
             reps_free(&other);
         }
@@ -425,8 +427,8 @@ void test_reps_plane_gate(void)
         for (int i = 0; i < 2000; i++) {
             vec3 x = vec_make(rng_next_double(&q) * 1.9 - 0.95, 0, rng_next_double(&q) * 1.9 - 0.95);
             int f1, f2;
-            vec3 a = reps_lookup(&plain, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f1);
-            vec3 b = reps_lookup(&gated, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f2);
+            vec3 a = reps_lookup(&plain, &m, x, vec_make(0, 1, 0), &g, s, &f1);
+            vec3 b = reps_lookup(&gated, &m, x, vec_make(0, 1, 0), &g, s, &f2);
             same &= memcmp(&a, &b, sizeof a) == 0 && f1 == f2;
             fallbacks += (f2 & REPS_FALLBACK) != 0;
         }
@@ -437,11 +439,11 @@ void test_reps_plane_gate(void)
         vec3 x = vec_make(0.1, 0.02, 0.1);
         int f;
         uint32_t k;
-        vec3 e = reps_lookup(&gated, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f);
+        vec3 e = reps_lookup(&gated, &m, x, vec_make(0, 1, 0), &g, s, &f);
         vec3 c = est_irradiance(&m, x, vec_make(0, 1, 0), &g, s, &k);
         CHECK(f == (REPS_FALLBACK | REPS_FOUND) && memcmp(&e, &c, sizeof e) == 0);
         /* negative control: ungated, a representative of the plane answers */
-        e = reps_lookup(&plain, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f);
+        e = reps_lookup(&plain, &m, x, vec_make(0, 1, 0), &g, s, &f);
         CHECK(f == REPS_FOUND && memcmp(&e, &c, sizeof e) != 0);
         reps_free(&plain);
         reps_free(&gated);
@@ -470,8 +472,8 @@ void test_reps_plane_gate(void)
         for (int i = 0; i < N; i++) {
             vec3 x = vec_make(rng_next_double(&q) - 0.5, i % 2 ? 0.0 : 0.01, rng_next_double(&q) - 0.5);
             int f1, f2;
-            sum_p += reps_lookup(&plain, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f1).y;
-            sum_g += reps_lookup(&gated, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f2).y;
+            sum_p += reps_lookup(&plain, &m, x, vec_make(0, 1, 0), &g, s, &f1).y;
+            sum_g += reps_lookup(&gated, &m, x, vec_make(0, 1, 0), &g, s, &f2).y;
             CHECK((f1 & REPS_FOUND) && (f2 & REPS_FOUND));
             fallbacks += (f2 & REPS_FALLBACK) != 0;
         }
@@ -487,7 +489,7 @@ void test_reps_plane_gate(void)
         for (int i = 0; i < N; i++) {
             vec3 x = vec_make(rng_next_double(&q) - 0.5, i % 2 ? 0.0 : 0.01, rng_next_double(&q) - 0.5);
             int f;
-            sum_l += reps_lookup(&lookup_only, &m, x, vec_make(0, 1, 0), 0.9, &g, s, &f).y;
+            sum_l += reps_lookup(&lookup_only, &m, x, vec_make(0, 1, 0), &g, s, &f).y;
         }
         CHECK(sum_l / N > 0.25 * 1.6);
         reps_free(&lookup_only);

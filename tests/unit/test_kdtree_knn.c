@@ -1,10 +1,12 @@
-/* test_kdtree: the photon map's kd-tree against brute force. */
+/* test_kdtree_knn: the k-nearest search (kd_query_knn) against brute
+ * force: single queries, walks with the state carried along, its hints
+ * and history, and the eye pass's own query stream. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
-#include "kdtree_test.h"
+#include "helpers.h"
 #include "rng.h"
 #include "tests.h"
 
@@ -20,7 +22,7 @@ static float dist2(const float *p, const float q[3])
     return dx * dx + dy * dy + dz * dz;
 }
 
-/* Checks kd_knn against brute force for one query; returns failures. */
+/* Checks helper_knn against brute force for one query; returns failures. */
 static void check_query(const kd_tree *t, const float *pts, const uint32_t *perm, uint32_t n, const float q[3],
                         uint32_t k, float max_d2)
 {
@@ -28,7 +30,7 @@ static void check_query(const kd_tree *t, const float *pts, const uint32_t *perm
     float *d2 = malloc(sizeof(float) * (k + 1));
     float *all = malloc(sizeof(float) * (n + 1));
     float r2;
-    uint32_t got = kd_knn(t, q, k, max_d2, idx, d2, &r2);
+    uint32_t got = helper_knn(t, q, k, max_d2, idx, d2, &r2);
     uint32_t in_range = 0;
     for (uint32_t i = 0; i < n; i++) {
         float d = dist2(pts + 3 * i, q);
@@ -109,16 +111,16 @@ void test_kdtree_edge_cases(void)
     float d2[8], r2 = -1.0f;
     /* N = 0 */
     CHECK(kd_build(&t, NULL, 0, KD_DEFAULT_LEAF, NULL, 1) == PM_OK);
-    CHECK(kd_knn(&t, q, 5, INFINITY, idx, d2, &r2) == 0);
+    CHECK(helper_knn(&t, q, 5, INFINITY, idx, d2, &r2) == 0);
     CHECK(r2 == 0.0f);
     kd_free(&t);
     /* N = 1, k > N */
     float one[3] = {1, 2, 3};
     uint32_t perm1[1];
     CHECK(kd_build(&t, one, 1, KD_DEFAULT_LEAF, perm1, 1) == PM_OK);
-    CHECK(kd_knn(&t, q, 5, INFINITY, idx, d2, &r2) == 1);
+    CHECK(helper_knn(&t, q, 5, INFINITY, idx, d2, &r2) == 1);
     CHECK(d2[0] == 14.0f && r2 == 14.0f && perm1[idx[0]] == 0);
-    CHECK(kd_knn(&t, q, 5, 13.9f, idx, d2, &r2) == 0); /* radius cap excludes it */
+    CHECK(helper_knn(&t, q, 5, 13.9f, idx, d2, &r2) == 0); /* radius cap excludes it */
     kd_free(&t);
     /* all points identical (r = 0 for the query on them), k > N */
     enum { NDUP = 300 };
@@ -131,7 +133,7 @@ void test_kdtree_edge_cases(void)
     check_query(&t, dup, perm, NDUP, on, 100, INFINITY);
     check_query(&t, dup, perm, NDUP, on, NDUP + 10, INFINITY);
     check_query(&t, dup, perm, NDUP, q, 7, INFINITY);
-    CHECK(kd_knn(&t, on, 7, INFINITY, idx, d2, &r2) == 7 && r2 == 0.0f);
+    CHECK(helper_knn(&t, on, 7, INFINITY, idx, d2, &r2) == 7 && r2 == 0.0f);
     kd_free(&t);
     free(dup);
     free(perm);
@@ -147,108 +149,6 @@ void test_kdtree_edge_cases(void)
     }
     free(pts);
     free(p2);
-}
-
-static int pred_even_orig(uint32_t i, const void *ctx)
-{
-    const uint32_t *perm = ctx;
-    return perm[i] % 2 == 0;
-}
-
-void test_kdtree_nearest_if(void)
-{
-    uint32_t n = 2000;
-    float *pts = random_points(n, 11, 0);
-    uint32_t *perm = malloc(sizeof(uint32_t) * n);
-    kd_tree t;
-    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == PM_OK);
-    rng_stream s = rng_make(5, 5);
-    for (int qi = 0; qi < 200; qi++) {
-        float q[3];
-        for (int a = 0; a < 3; a++)
-            q[a] = (float)(rng_next_double(&s) * 2.4 - 1.2);
-        float cap = qi % 2 ? INFINITY : 0.01f;
-        float best = INFINITY;
-        uint32_t best_i = KD_NONE;
-        for (uint32_t i = 0; i < n; i += 2) {
-            float d = dist2(pts + 3 * i, q);
-            if (d <= cap && d < best) {
-                best = d;
-                best_i = i;
-            }
-        }
-        float d2;
-        uint32_t got = kd_nearest_if(&t, q, cap, pred_even_orig, perm, KD_NONE, &d2);
-        CHECK(got == KD_NONE ? best_i == KD_NONE : (perm[got] % 2 == 0 && d2 == best));
-        /* without predicate: the plain nearest */
-        uint32_t idx;
-        float dd, r2;
-        uint32_t k = kd_knn(&t, q, 1, cap, &idx, &dd, &r2);
-        uint32_t g2 = kd_nearest_if(&t, q, cap, NULL, NULL, KD_NONE, &d2);
-        CHECK(k == (g2 != KD_NONE) && (k == 0 || d2 == dd));
-    }
-    kd_free(&t);
-    free(perm);
-    free(pts);
-}
-
-/* kd_nearest_if's answer does not depend on its hint: the answer itself,
- * a point that qualifies elsewhere, one that does not qualify, one beyond
- * the cap, and the previous query's answer on a coherent walk (queries a
- * fraction of a leaf apart, and jumps) all give the hintless answer, over
- * trees of one leaf, odd counts and uneven leaves. */
-void test_kdtree_nearest_if_hints(void)
-{
-    uint32_t sizes[] = {1, 7, 13, 100, 2001, 4096};
-    for (size_t si = 0; si < sizeof sizes / sizeof sizes[0]; si++) {
-        uint32_t n = sizes[si];
-        float *pts = random_points(n, 17 + (uint64_t)si, 0);
-        uint32_t *perm = malloc(sizeof(uint32_t) * n);
-        kd_tree t;
-        CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == PM_OK);
-        rng_stream s = rng_make(9, si);
-        float q[3] = {0.0f, 0.0f, 0.0f};
-        uint32_t prev = KD_NONE;
-        int differ = 0;
-        for (int qi = 0; qi < 400; qi++) {
-            float step = qi % 50 == 0 ? 1.0f : 0.02f; /* mostly small steps, now and then a jump */
-            for (int a = 0; a < 3; a++) {
-                q[a] += (float)((rng_next_double(&s) * 2.0 - 1.0) * step);
-                q[a] = q[a] > 1.3f ? 1.3f : (q[a] < -1.3f ? -1.3f : q[a]);
-            }
-            float cap = qi % 3 == 0 ? 0.05f : INFINITY;
-            float want_d2;
-            uint32_t want = kd_nearest_if(&t, q, cap, pred_even_orig, perm, KD_NONE, &want_d2);
-            uint32_t hints[5] = {want, (uint32_t)(rng_next_u64(&s) % n), KD_NONE, KD_NONE, prev};
-            for (uint32_t i = 0; i < n; i++) { /* a point that does not qualify */
-                if (perm[i] % 2) {
-                    hints[2] = i;
-                    break;
-                }
-            }
-            float far = -1.0f; /* the point farthest from q: beyond a small cap */
-            for (uint32_t i = 0; i < n; i++) {
-                float p[3], d;
-                kd_point(&t, i, p);
-                d = dist2(p, q);
-                if (d > far) {
-                    far = d;
-                    hints[3] = i;
-                }
-            }
-            for (int h = 0; h < 5; h++) {
-                float d2;
-                uint32_t got = kd_nearest_if(&t, q, cap, pred_even_orig, perm, hints[h], &d2);
-                differ += got != want || (got != KD_NONE && d2 != want_d2);
-            }
-            float d2;
-            prev = kd_nearest_if(&t, q, cap, NULL, NULL, prev, &d2);
-        }
-        CHECK_MSG(differ == 0, "n = %u: %d answers depend on the hint", n, differ);
-        kd_free(&t);
-        free(perm);
-        free(pts);
-    }
 }
 
 /* ---- kd_query_knn: every path against brute force ----
@@ -365,7 +265,7 @@ static void query_walk(const float *pts, uint32_t n, int kind, uint32_t nq, uint
 enum { KQ_NQ = 24 };
 
 /* Runs the walk for every k and cap on one tree and one instruction set:
- * a state carried along the walk, a fresh state per query, and kd_knn
+ * a state carried along the walk, a fresh state per query, and helper_knn
  * must all give the brute-force answer. */
 static void check_walk(const kd_tree *t, uint32_t n, const float *q, kd_pair **all, kd_simd simd)
 {
@@ -391,8 +291,8 @@ static void check_walk(const kd_tree *t, uint32_t n, const float *q, kd_pair **a
                 got = kd_query_knn(t, &fresh, qi, k, cap, idx, d2, &r2);
                 bad += !check_answer(all[i], n, k, cap, got, idx, d2, r2, "fresh state");
                 kd_query_free(&fresh);
-                got = kd_knn(t, qi, k, cap, idx, d2, &r2);
-                bad += !check_answer(all[i], n, k, cap, got, idx, d2, r2, "kd_knn");
+                got = helper_knn(t, qi, k, cap, idx, d2, &r2);
+                bad += !check_answer(all[i], n, k, cap, got, idx, d2, r2, "helper_knn");
             }
     CHECK_MSG(bad == 0, "%d answers differ from brute force", bad);
     kd_query_free(&carried);
@@ -506,7 +406,7 @@ static void query_history_independent(kd_simd simd)
         uint32_t k = ks[ki];
         uint32_t ref_idx[100], idx[100];
         float ref_d2[100], d2[100], ref_r2, r2;
-        uint32_t ref = kd_knn(&t, target, k, INFINITY, ref_idx, ref_d2, &ref_r2);
+        uint32_t ref = helper_knn(&t, target, k, INFINITY, ref_idx, ref_d2, &ref_r2);
         bad += !check_answer(all, n, k, INFINITY, ref, ref_idx, ref_d2, ref_r2, "grid");
         const float *before[] = {other, far, target, pts};
         for (size_t b = 0; b < 4; b++)
@@ -577,7 +477,7 @@ void test_kdtree_query_state(void)
     CHECK(kd_query_knn(&t, &s, nanq, 5, INFINITY, idx, d2, &r2) == 0 && r2 == 0.0f);
     CHECK(kd_query_knn(&t, &s, q, 5, -1.0f, idx, d2, &r2) == 0 && r2 == 0.0f);
     CHECK(kd_query_knn(&t, &s, q, 5, NAN, idx, d2, &r2) == 0 && r2 == 0.0f);
-    CHECK(kd_knn(&t, nanq, 5, INFINITY, idx, d2, &r2) == 0 && r2 == 0.0f);
+    CHECK(helper_knn(&t, nanq, 5, INFINITY, idx, d2, &r2) == 0 && r2 == 0.0f);
     kd_query_free(&s);
     CHECK(s.buf == NULL && s.cap == 0);
     /* a state with no buffer (as kd_query_init leaves it on failure) grows one and answers */
@@ -598,101 +498,175 @@ void test_kdtree_query_state(void)
     free(pts);
 }
 
-/* kd_build_peak_bytes is what the build holds at its peak: the tree's
- * arrays (kd_bytes once built) and its working copy of 16 bytes a point;
- * kd_point reads back the points in leaf order. */
-void test_kdtree_build_memory(void)
+/* kd_query_knn on the eye pass's own query stream against brute force. The eye pass asks, pixel after pixel, for the k
+ * nearest photons of each of a pixel's four subpixel hits, which lie a
+ * fraction of a photon spacing apart; the query state is carried from each
+ * to the next, so its starting radius is always a neighbour's. Every
+ * answer must be exactly brute force's k smallest (squared distance,
+ * leaf-order index) pairs and its radius the k-th; the checker itself is
+ * shown to reject a wrong set and a wrong radius (negative controls). */
+typedef struct {
+    float d;
+    uint32_t i;
+} st_pair;
+
+static int st_cmp(const void *a, const void *b)
 {
-    const uint32_t sizes[] = {0, 1, 12, 13, 1000, 4099};
-    const uint32_t leaves[] = {0, 1, 3, KD_DEFAULT_LEAF, 1000};
-    for (size_t si = 0; si < sizeof sizes / sizeof sizes[0]; si++)
-        for (size_t li = 0; li < sizeof leaves / sizeof leaves[0]; li++) {
-            uint32_t n = sizes[si];
-            float *pts = random_points(n, 31 + n, 0);
-            uint32_t *perm = malloc(sizeof(uint32_t) * (n + 1));
-            kd_tree t;
-            CHECK(kd_build(&t, pts, n, leaves[li], perm, 1) == PM_OK);
-            double want = (double)kd_bytes(&t) + 16.0 * (n > 0 ? n : 1);
-            CHECK(kd_tree_bytes(n, leaves[li]) == (double)kd_bytes(&t));
-            CHECK_MSG(kd_build_peak_bytes(n, leaves[li]) == want, "n=%u leaf=%u: %.0f bytes, want %.0f", n,
-                      leaves[li], kd_build_peak_bytes(n, leaves[li]), want);
-            int same = 1;
-            for (uint32_t i = 0; i < n; i++) {
-                float p[3];
-                kd_point(&t, i, p);
-                same &= memcmp(p, pts + 3 * (size_t)perm[i], sizeof p) == 0;
-            }
-            CHECK_MSG(same, "n=%u: kd_point differs from the input point", n);
-            kd_free(&t);
-            free(perm);
-            free(pts);
-        }
-    /* beyond what a tree holds: still a number, growing with n */
-    CHECK(kd_build_peak_bytes(1e12, KD_DEFAULT_LEAF) > 16e12);
+    const st_pair *x = a, *y = b;
+    if (x->d != y->d)
+        return (x->d > y->d) - (x->d < y->d);
+    return (x->i > y->i) - (x->i < y->i);
 }
 
-/* 1 when a and b are the same tree to the bit (every array, the points'
- * padding included) and their permutations agree; else 0. */
-static int same_tree(const kd_tree *a, const uint32_t *pa, const kd_tree *b, const uint32_t *pb)
+/* Every point's (squared distance, leaf index) pair for q, sorted, with the
+ * tree's arithmetic ((dx dx + dy dy) + dz dz in float). */
+static st_pair *st_brute(const kd_tree *t, const float q[3])
 {
-    if (a->n != b->n || a->nleaves != b->nleaves || a->scan_h != b->scan_h)
-        return 0;
-    if (memcmp(a->lo, b->lo, sizeof a->lo) || memcmp(a->hi, b->hi, sizeof a->hi))
-        return 0;
-    size_t inner = a->nleaves - 1, pts = (size_t)a->n + 8; /* KD_CHUNK floats of padding */
-    return !memcmp(a->split, b->split, inner * sizeof(float)) && !memcmp(a->axis, b->axis, inner) &&
-           !memcmp(a->leaf_start, b->leaf_start, (a->nleaves + 1) * sizeof(uint32_t)) &&
-           !memcmp(a->x, b->x, pts * sizeof(float)) && !memcmp(a->y, b->y, pts * sizeof(float)) &&
-           !memcmp(a->z, b->z, pts * sizeof(float)) && !memcmp(pa, pb, a->n * sizeof(uint32_t));
+    st_pair *all = malloc(sizeof(st_pair) * (t->n + 1));
+    for (uint32_t i = 0; i < t->n; i++) {
+        float p[3];
+        kd_point(t, i, p);
+        float dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+        all[i].d = dx * dx + dy * dy + dz * dz;
+        all[i].i = i;
+    }
+    qsort(all, t->n, sizeof(st_pair), st_cmp);
+    return all;
 }
 
-/* The build on 2 and 3 threads gives the 1-thread tree to the bit, over
- * points with many equal coordinates (ties in every selection) and sizes
- * spanning several copy blocks; as negative controls, the same points with
- * two of them swapped in the input, or one split value changed, do not
- * compare equal. */
-void test_kdtree_build_threads(void)
+/* 1 when (got, idx, d2, r2) is exactly the k smallest pairs of `all`
+ * within cap, with r2 the largest of them (0 when none). */
+static int st_same(const st_pair *all, uint32_t n, uint32_t k, float cap, uint32_t got, const uint32_t *idx,
+                   const float *d2, float r2)
 {
-    const uint32_t sizes[] = {0, 5, 1000, 70001, 200003};
-    const uint32_t leaves[] = {KD_DEFAULT_LEAF, 1};
-    for (size_t si = 0; si < sizeof sizes / sizeof sizes[0]; si++)
-        for (size_t li = 0; li < sizeof leaves / sizeof leaves[0]; li++) {
-            uint32_t n = sizes[si];
-            float *pts = malloc(sizeof(float) * 3 * (n ? n : 1));
-            rng_stream s = rng_make(77, n);
-            for (uint32_t i = 0; i < 3 * n; i++) {
-                double u = rng_next_double(&s);
-                /* a third of the coordinates on a coarse grid of 9 values */
-                pts[i] = i % 3 == 1 ? (float)(floor(u * 9.0) / 8.0 - 0.5) : (float)(u - 0.5);
+    uint32_t want = 0;
+    while (want < n && want < k && all[want].d <= cap)
+        want++;
+    if (got != want || r2 != (want ? all[want - 1].d : 0.0f))
+        return 0;
+    st_pair *mine = malloc(sizeof(st_pair) * (got + 1));
+    for (uint32_t j = 0; j < got; j++) {
+        mine[j].d = d2[j];
+        mine[j].i = idx[j];
+    }
+    qsort(mine, got, sizeof(st_pair), st_cmp);
+    int ok = 1;
+    for (uint32_t j = 0; j < got && ok; j++)
+        ok = mine[j].d == all[j].d && mine[j].i == all[j].i;
+    free(mine);
+    return ok;
+}
+
+/* Photon-like points: on the five walls of a unit box, n of them. */
+static float *st_walls(uint32_t n, uint64_t seed)
+{
+    float *p = malloc(sizeof(float) * 3 * (n + 1));
+    rng_stream s = rng_make(seed, 5);
+    for (uint32_t i = 0; i < n; i++) {
+        float a = (float)rng_next_double(&s), b = (float)rng_next_double(&s);
+        int wall = (int)(rng_next_double(&s) * 5);
+        float *o = p + 3 * (size_t)i;
+        o[0] = wall == 0 ? 0.0f : (wall == 1 ? 1.0f : a);
+        o[1] = wall == 2 ? 0.0f : (wall == 3 ? 1.0f : (wall < 2 ? a : b));
+        o[2] = wall == 4 ? 0.0f : b;
+    }
+    return p;
+}
+
+/* The eye pass's stream on the back wall (z = 0): 8 rows of a 16-pixel-wide
+ * tile, pixel by pixel, each pixel's four subpixel points a quarter pixel from its
+ * centre; `pix` is the pixel's size (a fraction of the photon spacing). */
+static uint32_t st_stream(float pix, float x0, float y0, float *q)
+{
+    uint32_t m = 0;
+    for (uint32_t y = 0; y < 8; y++)
+        for (uint32_t x = 0; x < 16; x++)
+            for (uint32_t sub = 0; sub < 4; sub++) {
+                float *o = q + 3 * (size_t)m++;
+                o[0] = x0 + ((float)x + 0.25f + 0.5f * (float)(sub % 2)) * pix;
+                o[1] = y0 + ((float)y + 0.25f + 0.5f * (float)(sub / 2)) * pix;
+                o[2] = 0.0f;
             }
-            uint32_t *p1 = malloc(sizeof(uint32_t) * (n + 1)), *pn = malloc(sizeof(uint32_t) * (n + 1));
-            kd_tree t1, tn;
-            CHECK(kd_build(&t1, pts, n, leaves[li], p1, 1) == PM_OK);
-            for (unsigned th = 2; th <= 3; th++) {
-                CHECK(kd_build(&tn, pts, n, leaves[li], pn, th) == PM_OK);
-                CHECK_MSG(same_tree(&t1, p1, &tn, pn), "n=%u leaf=%u: %u threads build another tree", n,
-                          leaves[li], th);
-                kd_free(&tn);
+    return m;
+}
+
+static void stream_matches_brute_force(kd_simd simd)
+{
+    const uint32_t n = 10000, nq = 8 * 16 * 4;
+    const uint32_t ks[] = {1, 2, 10, 50, 100};
+    const float caps[] = {INFINITY, 4e-4f};
+    float *pts = st_walls(n, 11), *q = malloc(sizeof(float) * 3 * nq);
+    kd_tree t;
+    CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, NULL, 1) == PM_OK);
+    /* a photon spacing on a wall is about sqrt(5 / n) = 0.022: pixels of
+     * a tenth and of twice that */
+    const float pixs[] = {0.0022f, 0.044f};
+    uint32_t idx[100];
+    float d2[100];
+    int bad = 0, checked = 0;
+    for (size_t pi = 0; pi < sizeof pixs / sizeof pixs[0]; pi++) {
+        st_stream(pixs[pi], 0.2f, 0.3f, q);
+        st_pair **all = malloc(sizeof(st_pair *) * nq);
+        for (uint32_t i = 0; i < nq; i++)
+            all[i] = st_brute(&t, q + 3 * (size_t)i);
+        for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ki++)
+            for (size_t ci = 0; ci < sizeof caps / sizeof caps[0]; ci++) {
+                kd_query s;
+                CHECK(kd_query_init(&s, ks[ki]) == PM_OK);
+                CHECK(kd_query_simd(&s, simd) == simd);
+                for (uint32_t i = 0; i < nq; i++) {
+                    float r2 = -1.0f;
+                    uint32_t got = kd_query_knn(&t, &s, q + 3 * (size_t)i, ks[ki], caps[ci], idx, d2, &r2);
+                    int ok = st_same(all[i], n, ks[ki], caps[ci], got, idx, d2, r2);
+                    if (!ok && bad < 5)
+                        fprintf(stderr, "  stream: pix=%g k=%u cap=%g query %u differs from brute force\n",
+                                (double)pixs[pi], ks[ki], (double)caps[ci], i);
+                    bad += !ok;
+                    checked++;
+                    /* negative controls, on the first query of each run: the checker rejects the
+                     * answer with its farthest neighbour swapped for the next one out (when
+                     * that is farther), and with its radius nudged up */
+                    if (i == 0 && ok && got == ks[ki] && got < n && all[i][got].d > all[i][got - 1].d) {
+                        uint32_t far = 0;
+                        for (uint32_t j = 1; j < got; j++)
+                            far = d2[j] > d2[far] ? j : far;
+                        uint32_t keep_i = idx[far];
+                        float keep_d = d2[far];
+                        idx[far] = all[i][got].i;
+                        d2[far] = all[i][got].d;
+                        CHECK(!st_same(all[i], n, ks[ki], caps[ci], got, idx, d2, all[i][got].d));
+                        idx[far] = keep_i;
+                        d2[far] = keep_d;
+                        CHECK(st_same(all[i], n, ks[ki], caps[ci], got, idx, d2, r2));
+                        CHECK(!st_same(all[i], n, ks[ki], caps[ci], got, idx, d2, nextafterf(r2, INFINITY)));
+                    }
+                }
+                CHECK(s.queries == nq && s.passes >= s.queries);
+                kd_query_free(&s);
             }
-            if (n >= 1000) {
-                /* negative controls */
-                float keep[3];
-                memcpy(keep, pts, sizeof keep);
-                memcpy(pts, pts + 3 * (n / 2), sizeof keep);
-                memcpy(pts + 3 * (n / 2), keep, sizeof keep);
-                CHECK(kd_build(&tn, pts, n, leaves[li], pn, 2) == PM_OK);
-                CHECK_MSG(!same_tree(&t1, p1, &tn, pn), "n=%u: swapped input compares equal", n);
-                kd_free(&tn);
-                t1.split[t1.nleaves / 2] = nextafterf(t1.split[t1.nleaves / 2], INFINITY);
-                memcpy(pts + 3 * (n / 2), pts, sizeof keep);
-                memcpy(pts, keep, sizeof keep);
-                CHECK(kd_build(&tn, pts, n, leaves[li], pn, 2) == PM_OK);
-                CHECK_MSG(!same_tree(&t1, p1, &tn, pn), "n=%u: a changed split compares equal", n);
-                kd_free(&tn);
-            }
-            kd_free(&t1);
-            free(p1);
-            free(pn);
-            free(pts);
-        }
+        for (uint32_t i = 0; i < nq; i++)
+            free(all[i]);
+        free(all);
+    }
+    CHECK_MSG(bad == 0, "%d of %d stream answers differ from brute force", bad, checked);
+    kd_free(&t);
+    free(pts);
+    free(q);
+}
+
+void test_kdtree_stream_base(void)
+{
+    stream_matches_brute_force(KD_SIMD_BASE);
+}
+
+void test_kdtree_stream_avx2(void)
+{
+    kd_query s;
+    if (kd_query_init(&s, 1) != 0 || kd_query_simd(&s, KD_SIMD_AVX2) != KD_SIMD_AVX2) {
+        kd_query_free(&s);
+        CHECK_SKIP("the CPU has no AVX2");
+        return;
+    }
+    kd_query_free(&s);
+    stream_matches_brute_force(KD_SIMD_AVX2);
 }

@@ -1,0 +1,176 @@
+"""Cost model per machine: each phase's time as a non-negative linear
+function of the work counters the renderer reports (stats' "work"), fitted
+by non-negative least squares on renders timed with --repeats auto (the
+minima), and validated on renders it did not fit.
+
+    python3 -m experiments.calibrate --pm build/photonmap --out results/calibrate
+
+writes coefficients.csv (seconds per unit of each counter, per phase),
+renders.csv (every render: counters, measured and predicted times, whether
+it was fitted or held out) and calibrate.md (the model and its validation:
+the median and the largest relative error of the predicted total on the
+held-out renders; the goal is a median of at most 5%).
+
+The fitted and held-out renders differ in their settings (scene, size,
+photons, n), so the validation asks what the model is for: the time of a
+render it has not seen."""
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+from scipy.optimize import nnls
+
+PHASES = ("trace", "build", "precompute", "render")
+# the fitted parts of a render's total: its phases, and the rest of the total
+# (allocating and freeing the photon list and map, the image, threads)
+PARTS = PHASES + ("other",)
+# the counters each part's time is a function of, besides a constant; the
+# rest's are the trace's stored photons and the eye pass's rays
+FEATURES = {
+    "trace": ("traced_photons", "stored_photons", "rays", "shape_tests"),
+    "build": ("tree_points",),
+    "precompute": ("tree_points", "knn_queries", "map_nodes", "map_points", "rep_evaluations"),
+    "render": ("rays", "shape_tests", "knn_queries", "map_nodes", "map_points", "rep_lookups", "rep_nodes",
+               "rep_points", "rep_evaluations"),
+    "other": ("stored_photons", "rays"),
+}
+OTHER_FROM = {"stored_photons": "trace", "rays": "render"}
+
+
+def counter(row, part, name):
+    """Counter `name` of `part` in row (the rest's from their phases)."""
+    return row["work"][OTHER_FROM[name] if part == "other" else part][name]
+
+
+def part_time(row, part):
+    """The measured seconds of a part: a phase's, or the total less them."""
+    if part == "other":
+        return max(0.0, row["time"]["total"] - sum(row["time"][p] for p in PHASES))
+    return row["time"][part]
+GOAL_MEDIAN = 0.05  # the held-out renders' median relative error of the total
+
+# (scene, method, photons, nn, width, height): the fitted renders, then the held-out ones
+FIT = [(sc, m, p, n, w, h)
+       for sc in ("cornell", "caustic")
+       for m in ("conventional", "precomputed")
+       for p, n, w, h in ((20000, 20, 128, 96), (50000, 50, 256, 192), (100000, 100, 128, 96),
+                          (100000, 20, 256, 192))]
+HELD_OUT = [(sc, m, p, n, w, h)
+            for sc in ("cornell", "caustic")
+            for m in ("conventional", "precomputed")
+            for p, n, w, h in ((40000, 30, 192, 144), (80000, 70, 160, 120))]
+
+
+def design(rows, phase):
+    """The phase's design matrix: a constant, then its counters, each column
+    scaled to a maximum of 1 (returned, to unscale the coefficients)."""
+    cols = [np.ones(len(rows))] + [np.array([counter(r, phase, f) for r in rows], float)
+                                    for f in FEATURES[phase]]
+    x = np.column_stack(cols)
+    scale = np.where(x.max(axis=0) > 0, x.max(axis=0), 1.0)
+    return x / scale, scale
+
+
+def fit(rows):
+    """Per phase, non-negative coefficients (seconds; seconds per unit) of
+    the constant and each counter, least squares on relative errors (each
+    row weighted by 1 / its time), so a short render counts as much as a
+    long one."""
+    model = {}
+    for phase in PARTS:
+        x, scale = design(rows, phase)
+        t = np.array([part_time(r, phase) for r in rows], float)
+        wgt = 1.0 / np.maximum(t, 1e-4)
+        coef, _ = nnls(x * wgt[:, None], t * wgt)
+        model[phase] = coef / scale
+    return model
+
+
+def predict(model, row):
+    """Predicted seconds per phase and their total for one render."""
+    out = {}
+    for phase in PARTS:
+        v = np.array([1.0] + [counter(row, phase, f) for f in FEATURES[phase]], float)
+        out[phase] = float(v @ model[phase])
+    out["total"] = sum(out[p] for p in PARTS)
+    return out
+
+
+def validate(model, rows):
+    """Relative errors of the predicted totals on rows: (median, largest)."""
+    errs = [abs(predict(model, r)["total"] - r["time"]["total"]) / r["time"]["total"] for r in rows]
+    return float(np.median(errs)), float(np.max(errs))
+
+
+def render(pm, scene, method, photons, nn, width, height, tmp):
+    """One render with --repeats auto: its counters and its times' minima."""
+    stats = os.path.join(tmp, "s.json")
+    subprocess.run([pm, "render", os.path.join("scenes", scene + ".scene"), "--method", method, "--photons",
+                    str(photons), "--nn", str(nn), "--width", str(width), "--height", str(height), "--threads", "1",
+                    "--repeats", "auto", "--quiet", "--stats", stats], check=True)
+    with open(stats) as f:
+        s = json.load(f)
+    return {"scene": scene, "method": method, "photons": photons, "nn": nn, "width": width, "height": height,
+            "work": s["work"], "time": s["time_s"], "repeats": s["repeats"], "provenance": s["provenance"]}
+
+
+def write(out, model, fitted, held, median, largest):
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "coefficients.csv"), "w") as f:
+        f.write("phase,counter,seconds_per_unit\n")
+        for phase in PARTS:
+            for name, c in zip(("constant",) + FEATURES[phase], model[phase]):
+                f.write("%s,%s,%.6g\n" % (phase, name, c))
+    with open(os.path.join(out, "renders.csv"), "w") as f:
+        f.write("set,scene,method,photons,nn,width,height,repeats,measured_total,predicted_total,rel_error,"
+                + ",".join("measured_%s,predicted_%s" % (p, p) for p in PHASES) + "\n")
+        for name, rows in (("fit", fitted), ("held_out", held)):
+            for r in rows:
+                p = predict(model, r)
+                f.write("%s,%s,%s,%d,%d,%d,%d,%d,%.6f,%.6f,%.4f,%s\n" % (
+                    name, r["scene"], r["method"], r["photons"], r["nn"], r["width"], r["height"], r["repeats"],
+                    r["time"]["total"], p["total"], (p["total"] - r["time"]["total"]) / r["time"]["total"],
+                    ",".join("%.6f,%.6f" % (r["time"][ph], p[ph]) for ph in PHASES)))
+    prov = fitted[0]["provenance"]
+    with open(os.path.join(out, "calibrate.md"), "w") as f:
+        f.write("# Cost model of this machine\n\n")
+        f.write("Each phase's time (the minimum over `--repeats auto`, one thread) as a non-negative linear "
+                "function of its work counters (`other`: the total less the phases, on the stored photons and the eye "
+                "rays), fitted on %d renders, validated on %d renders of other "
+                "settings (`renders.csv`). Machine: %s; binary %s (%s), %s `%s`.\n\n" % (
+                    len(fitted), len(held), prov["cpu"], prov["commit"], prov["tree"], prov["compiler"],
+                    prov["flags"]))
+        f.write("**Held-out renders: median relative error of the total %.1f%%, largest %.1f%%** (goal: median "
+                "at most %.0f%%: %s).\n\n" % (100 * median, 100 * largest, 100 * GOAL_MEDIAN,
+                                               "met" if median <= GOAL_MEDIAN else "not met"))
+        f.write("| phase | counter | ns per unit |\n|---|---|---:|\n")
+        for phase in PARTS:
+            for name, c in zip(("constant",) + FEATURES[phase], model[phase]):
+                if c > 0:
+                    f.write("| %s | %s | %.4g |\n" % (phase, name, c * 1e9))
+        f.write("\nCounters with a zero coefficient explain nothing the others do not (`coefficients.csv` "
+                "lists them all).\n")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--pm", default="build/photonmap")
+    ap.add_argument("--out", default="results/calibrate")
+    a = ap.parse_args(argv)
+    with tempfile.TemporaryDirectory() as tmp:
+        fitted = [render(a.pm, *c, tmp) for c in FIT]
+        held = [render(a.pm, *c, tmp) for c in HELD_OUT]
+    model = fit(fitted)
+    median, largest = validate(model, held)
+    write(a.out, model, fitted, held, median, largest)
+    print("calibrate: held-out median error %.1f%%, largest %.1f%% -> %s" % (100 * median, 100 * largest, a.out))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
