@@ -131,7 +131,7 @@ static void build_node(builder *bd, size_t node, size_t begin, size_t end, size_
         double extent = cbounds.hi[k] - cbounds.lo[k];
         double scale = BVH_BINS / extent * (1.0 - 1e-9);
         /* no spread, or one so small (subnormal) that its reciprocal
-         * overflows: nothing to split along this axis (fuzz_scene finding) */
+         * overflows: nothing to split along this axis */
         if (!(extent > 0.0) || !isfinite(scale))
             continue;
         box bin_box[BVH_BINS];

@@ -10,13 +10,8 @@
 
 typedef enum { CONFIG_METHOD_CONVENTIONAL = 0, CONFIG_METHOD_PRECOMPUTED = 1 } config_method;
 typedef enum { CONFIG_DIRECT_PHOTONS = 0, CONFIG_DIRECT_SHADOW_RAYS = 1 } config_direct;
-/* --rep-tree: where the precomputed method finds its representatives (reps.h) */
+/* --rep-tree, --rep-eval, --rep-gate (renderer/README.md) */
 typedef enum { CONFIG_REP_TREE_SEPARATE = 0, CONFIG_REP_TREE_SHARED = 1 } config_rep_tree;
-/* --rep-eval: the representatives' irradiance all before the eye pass (the
- * paper), or each the first time a lookup selects it; --rep-gate: the
- * lookup's acceptance, the nearest with an agreeing normal (the paper), or
- * also near x's tangent plane and within its own kNN radius, with the same
- * test on the precompute's photons (plane) or without (plane-lookup) (reps.h) */
 typedef enum { CONFIG_REP_EVAL_EAGER = 0, CONFIG_REP_EVAL_LAZY = 1 } config_rep_eval;
 typedef enum { CONFIG_REP_GATE_NONE = 0, CONFIG_REP_GATE_PLANE = 1, CONFIG_REP_GATE_PLANE_LOOKUP = 2 } config_rep_gate;
 
@@ -71,11 +66,7 @@ typedef struct {
 #define CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT "0.05"
 #define CONFIG_DEFAULT_PHOTON_DEPTH 64u
 #define CONFIG_DEFAULT_EYE_DEPTH 16u
-/* The plane gate's default tolerance and its range (the 0.1 r of a
- * plane-distance test in other renderers' photon gathers). The gate's
- * height sees no curvature on a sphere (est_surface_height), so it is a
- * test against other surfaces: a parallel one closer than tau r passes.
- * A tau of 1 or more tests nothing the radius test does not. */
+/* The plane gate's default tolerance (--rep-gate-tau) and its range. */
 #define CONFIG_DEFAULT_REP_GATE_TAU 0.1
 #define CONFIG_MIN_REP_GATE_TAU 1e-3
 #define CONFIG_MAX_REP_GATE_TAU 1.0

@@ -67,8 +67,8 @@ static pm_status exr_fail(exr_result_t rc, const char *path, const char *what, c
 /* OpenEXRCore 3.1 stores a ZIP chunk compressed even when the compressed size
  * equals the raw size exactly, but every reader takes a chunk whose stored
  * size equals its raw size as uncompressed: that chunk reads back as garbage
- * (NaN, 1e38; found by the stability tests on a 64x48 Cornell render, rows
- * 16-31). This wraps the library's compressor and stores such a chunk raw. */
+ * (NaN, 1e38; a 64x48 Cornell render has such chunks in rows 16-31). This
+ * wraps the library's compressor and stores such a chunk raw. */
 typedef struct {
     exr_result_t (*compress)(exr_encode_pipeline_t *);
 } exr_compress_guard;

@@ -87,8 +87,8 @@ pm_status outfile_begin(outfile *o, const char *path, int stream, char *err, siz
         return PM_ERR_IO;
     }
     /* Renaming over a device, FIFO or directory would replace it: `-o
-     * /dev/full` run as root turned /dev/full into a regular file (found by
-     * tests/hostile.test.sh). Only regular files or new names are outputs. */
+     * /dev/full` run as root would turn /dev/full into a regular file
+     * (tests/hostile.test.sh). Only regular files or new names are outputs. */
     struct stat st;
     if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
         snprintf(err, errlen, "%s: not a regular file; outputs are written beside it and renamed over it", path);

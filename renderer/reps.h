@@ -1,25 +1,8 @@
-/* reps: the representatives of the precomputed method (eq. 2 of the paper,
- * after Christensen 2000), everything about them in one place:
- *  - the rule that chooses them among the stored photons (every K-th in
- *    trace order, or a fixed count spread evenly), and its checks;
- *  - the leave-out mask: the corrected estimate keeps them out of the photon
- *    tree, so that their irradiance comes from the other photons;
- *  - their sites (position in the map frame, normal, place in the tree);
- *  - both layouts of the lookup: their own kd-tree (separate) or the photon
- *    tree, found by flag (shared);
- *  - the precompute (equation 1 at every representative, estimate.h), all
- *    before the eye pass (eager, the paper's) or each representative the
- *    first time a lookup selects it (lazy: the same bits, computed once);
- *  - the lookup: the nearest representative whose normal agrees (the
- *    paper's), or the plane gate: of the REPS_GATE_CANDIDATES nearest, the
- *    first whose normal agrees, which lies within tau of its kNN radius r
- *    from x's tangent plane (within the radius cap, not r, of x: a test
- *    against r selects by the estimate's noise), else the conventional
- *    estimate at x (a fallback); with `plane` the precompute counts only
- *    the photons within tau r of the representative's tangent plane,
- *    with `plane-lookup` all (the paper's gather); heights are
- *    est_surface_height's, which sees no curvature on a sphere;
- *  - their CSV form (--dump-reps). */
+/* reps: the representatives of the precomputed method (eq. 2 of the
+ * paper): the rule that chooses them, the leave-out mask, their sites, both
+ * lookup layouts (their own kd-tree or the photon tree by flag), the
+ * precompute (eager or lazy), the lookup (nearest agreeing, or the plane
+ * gate) and their CSV form. renderer/README.md has the design. */
 #ifndef PM_REPS_H
 #define PM_REPS_H
 
@@ -37,8 +20,7 @@
 #include "vec.h"
 #include "work.h"
 
-/* Which photons are representatives and where they live, as the pipeline
- * needs it (reps_params_of derives it from a config_render). */
+/* The representatives' settings, named as their options (reps_params_of). */
 typedef struct {
     uint32_t rep_every;       /* every K-th stored photon (trace order); 0 (and rep_count 0): none */
     uint64_t rep_count;       /* the fixed-count rule instead, when > 0: stored photon floor(j * stored /
@@ -55,23 +37,20 @@ typedef struct {
  * falls back to the conventional estimate. */
 #define REPS_GATE_CANDIDATES 4u
 
-/* The rule and layout of cfg: none for the conventional method; the
- * representatives are left out of the photon tree for the corrected
- * precomputed estimate (--bias-correction), which gathers at them from the
- * other photons only. Never fails. */
+/* The representatives' settings of cfg: none for the conventional method.
+ * Never fails. */
 reps_params reps_params_of(const config_render *cfg);
 
-/* The check that needs the stored count (known after the photon pass): a
- * fixed count that takes every stored photon leaves the corrected estimate
- * none to gather from. Returns PM_OK, or PM_ERR_INPUT with the reason in
- * err. */
+/* Refuses a --rep-count that takes every one of `stored` photons under
+ * --bias-correction (none left to gather from). Returns PM_OK, or
+ * PM_ERR_INPUT with the reason in err. */
 pm_status reps_check_stored(const config_render *cfg, uint64_t stored, char *err, size_t errlen);
 
 /* Flags the representatives of list l by p's rule (PHOTONS_FLAG_REP).
  * Never fails. */
 void reps_choose(const reps_params *p, photons_list *l);
-/* The flags of the photons that photons_build_map must keep out of the
- * tree: PHOTONS_FLAG_REP when p->leave_out, else 0. */
+/* The flags photons_build_map keeps out of the tree: PHOTONS_FLAG_REP
+ * with p->bias_correction, else 0. */
 uint8_t reps_leave_out_mask(const reps_params *p);
 
 /* A representative's site: its position in the map frame, its surface
@@ -113,39 +92,30 @@ typedef struct {
 
 enum { REPS_PENDING = 0, REPS_CLAIMED = 1, REPS_READY = 2 };
 
-/* The sites of the representatives into out (no values yet, p's layout):
- * the flagged photons of m's tree, then those photons_build_map left out
- * into `left` (NULL: none). Returns PM_OK, or PM_ERR_NOMEM when memory
- * runs out (out is then empty). */
+/* The sites of the representatives into out: the flagged photons of m's
+ * tree, then those left out into `left` (NULL: none). Returns PM_OK, or
+ * PM_ERR_NOMEM (out is then empty). */
 pm_status reps_collect(const reps_params *p, const photons_map *m, const photons_list *left, reps_set *out);
 /* Bytes the sites hold. */
 size_t reps_sites_bytes(const reps_set *r);
 
-/* Builds r's lookup layout and computes the irradiance at every
- * representative from its g->nn nearest photons of m (equation 1,
- * est_irradiance_at; with the plane gate est_irradiance_plane_at), on
- * `threads` threads, deterministically; lazy: only their normals, the
- * irradiance then on first use by reps_lookup (m and g must outlive r's
- * lookups). The shared
- * layout needs the representatives in the photon tree (asserted). Returns
- * PM_OK, or PM_ERR_NOMEM when memory runs out (r's lookup and values are
- * then freed, its sites kept). */
+/* Builds r's lookup and computes every representative's irradiance from
+ * its g->nn nearest photons of m on `threads` threads (lazy: their normals
+ * only; m and g must outlive the lookups). Returns PM_OK, or PM_ERR_NOMEM
+ * (r's lookup and values are then freed, its sites kept). */
 pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, unsigned threads, progress *prog);
 
 /* What reps_lookup's *found holds: bits. */
 #define REPS_FOUND 1    /* an estimate from photons: a representative's, or the fallback's */
 #define REPS_FALLBACK 2 /* the plane gate accepted none: the conventional estimate at x */
 
-/* Irradiance (W per unit^2) of the nearest representative within the
- * gather's radius cap of world point x whose normal has cosine >
- * r->normal_cos with n (of equally near ones, the first in tree order, so the answer does
- * not depend on s, whose last answer only starts the search); with the
- * plane gate, of the REPS_GATE_CANDIDATES nearest (by distance, then tree
- * order) the first that passes it, else the conventional estimate at x with
- * g (REPS_FALLBACK). Lazy: computes the irradiance of the representatives
- * it reads that no thread has yet (with s's buffers), thread-safely, once.
- * Returns 0 and sets *found = 0 when none qualifies (ungated) or the
- * fallback found no photon. */
+/* Irradiance (W per unit^2) at world point x of normal n: the nearest
+ * representative within the radius cap whose normal agrees above
+ * r->normal_cos (ties: the first in tree order), or with the plane gate the
+ * first of the REPS_GATE_CANDIDATES nearest that passes it, else the
+ * conventional estimate with g (REPS_FALLBACK). Lazy: computes what it
+ * reads once, thread-safely. Returns 0 with *found = 0 when nothing
+ * qualifies. */
 vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, const est_gather *g,
                  est_scratch *s, int *found);
 
@@ -153,11 +123,8 @@ vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, const 
  * or those the lookups have read so far (lazy). */
 uint64_t reps_evaluated(const reps_set *r);
 
-/* Writes the representatives as CSV to f: the header
- * "x,y,z,nx,ny,nz,e_r,e_g,e_b", then one line per representative: its
- * position in scene units, its unit normal and its precomputed irradiance
- * in W per scene unit^2 (what reps_lookup returns for it). Returns PM_OK,
- * or PM_ERR_IO on a write error. */
+/* Writes the representatives as CSV to f (renderer/README.md has the
+ * columns). Returns PM_OK, or PM_ERR_IO on a write error. */
 pm_status reps_write_csv(const reps_set *r, const photons_map *m, FILE *f);
 /* Bytes the values and the lookup layout hold (not the sites). */
 size_t reps_bytes(const reps_set *r, const photons_map *m);

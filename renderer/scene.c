@@ -23,7 +23,7 @@
 #define SCENE_MAX_ITEMS 100000
 #define SCENE_MAX_FILE (64u << 20)
 /* Shortest radius, edge and scene size: below it squared lengths underflow
- * (a rect of edges 1e-160 got an infinite 1/|edge|^2; fuzz_scene finding). */
+ * (a rect of edges 1e-160 would get an infinite 1/|edge|^2). */
 #define SCENE_MIN_LENGTH 1e-50
 /* A spawned ray's offset from the surface, relative to the sum of the
  * magnitudes of the coordinates involved (ray origin, hit point, shape):
@@ -330,7 +330,7 @@ static pm_status parse_camera(parser *p)
     if (dir.x == 0.0 && dir.y == 0.0 && dir.z == 0.0)
         return perr(p, f[CAM_LOOK_AT].col, "camera look_at equals its position (after rounding to double precision)");
     /* so short that its squared length underflows: no direction to normalize
-     * (fuzz_scene finding: position z 2.41e-300, look_at z 0) */
+     * (position z 2.41e-300, look_at z 0) */
     if (!(vec_len(dir) > 0.0))
         return perr(p, f[CAM_LOOK_AT].col, "camera look_at is too close to its position (%g apart)",
                     vec_maxc(vec_make(fabs(dir.x), fabs(dir.y), fabs(dir.z))));
@@ -570,7 +570,7 @@ pm_status scene_parse_buffer(const char *name, const char *text, size_t len, sce
     }
     compute_bounds(p.sc);
     /* everything within rounding of one point: epsilons and radii would be 0
-     * (fuzz_scene finding: light and a 1e-320 sphere at x = 1) */
+     * (a light and a 1e-320 sphere at x = 1) */
     if (!(p.sc->scale >= SCENE_MIN_LENGTH)) {
         perr(&p, 1, "end of scene: the scene has no extent (bounding-box diagonal %g, at least %g needed)",
              p.sc->scale, SCENE_MIN_LENGTH);
