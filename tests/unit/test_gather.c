@@ -222,6 +222,16 @@ void test_gather_threads_and_shared_rays(void)
         CHECK(sa.caustic_photons > 0 && sa.caustic_photons < sa.photons_stored && sa.caustic_lookups > 0);
         CHECK(sa.gather_specular > 0);
         first[method] = sa;
+        if (method == 1) {
+            /* lazy evaluation at the gather hits: the eager image bit for bit */
+            cfg.rep_eval = CONFIG_REP_EVAL_LAZY;
+            image l;
+            stats_run sl;
+            CHECK(helper_render(sc, &cfg, 2, &l, &sl) == 0);
+            CHECK_MSG(memcmp(a.rgb, l.rgb, bytes) == 0, "lazy differs from eager under --gather");
+            CHECK(sl.reps_evaluated > 0 && sl.reps_evaluated <= sa.reps_evaluated);
+            image_free(&l);
+        }
         image_free(&a);
         image_free(&b);
     }
@@ -234,6 +244,19 @@ void test_gather_threads_and_shared_rays(void)
     CHECK(first[0].work.render.knn_queries == first[0].gather_lookups && first[0].work.render.rep_lookups == 0);
     CHECK(first[1].work.render.rep_lookups == first[1].gather_lookups && first[1].work.render.knn_queries == 0);
     scene_free(sc);
+}
+
+void test_gather_config(void)
+{
+    config_render cfg = config_defaults();
+    cfg.gather = 8;
+    const char *why = config_check(&cfg); /* --direct photons, the default without --gather */
+    CHECK(why && strstr(why, "--gather") && strstr(why, "--direct photons"));
+    cfg.direct = CONFIG_DIRECT_SHADOW_RAYS;
+    CHECK(config_check(&cfg) == NULL);
+    cfg.gather = 0;
+    cfg.direct = CONFIG_DIRECT_PHOTONS;
+    CHECK(config_check(&cfg) == NULL);
 }
 
 void test_gather_maps(void)
