@@ -65,9 +65,7 @@ vec3 gather_direction(const gather_params *g, uint32_t i, double xi1, double xi2
     return vec_norm(vec_add(vec_add(vec_scale(t, x), vec_scale(b, y)), vec_scale(n, z)));
 }
 
-/* The irradiance the global map gives at diffuse point y of normal n, per
- * --method; counts the lookup. */
-static vec3 estimate_at(const gather_params *g, vec3 y, vec3 n, est_scratch *s, gather_counts *c)
+vec3 gather_estimate(const gather_params *g, vec3 y, vec3 n, est_scratch *s, gather_counts *c)
 {
     c->lookups++;
     if (g->reps) {
@@ -96,7 +94,7 @@ static vec3 radiance(const gather_params *g, shape_ray r, uint32_t depth, double
     }
     const material *m = &g->sc->materials[g->sc->shapes[h.shape].material];
     if (m->kind == MATERIAL_LAMBERT)
-        return vec_mul(vec_scale(m->color, 1.0 / VEC_PI), estimate_at(g, h.p, h.n, s, c));
+        return vec_mul(vec_scale(m->color, 1.0 / VEC_PI), gather_estimate(g, h.p, h.n, s, c));
     if (depth >= g->depth) {
         c->depth_hits++;
         return vec_make(0, 0, 0);

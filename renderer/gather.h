@@ -91,6 +91,13 @@ rng_stream gather_stream(uint64_t seed, uint64_t sample);
  * over the hemisphere, in ray i's stratum. Never fails. */
 vec3 gather_direction(const gather_params *g, uint32_t i, double xi1, double xi2, vec3 n, vec3 t, vec3 b);
 
+/* The irradiance (W per unit^2) the global map gives at diffuse point y
+ * of unit normal n, per --method (g->reps: the nearest agreeing
+ * representative, else the n-nearest estimate), searching within the cap
+ * only; 0 when nothing qualifies there (counted in c->empty). s is the
+ * thread's search state. Never fails. */
+vec3 gather_estimate(const gather_params *g, vec3 y, vec3 n, est_scratch *s, gather_counts *c);
+
 /* The indirect irradiance at diffuse hit x (W per unit^2, the caller
  * multiplies by rho/pi) by g->rays gather rays drawing from rs: pi times the
  * mean radiance they bring back. s is the thread's search state on the

@@ -259,6 +259,56 @@ void test_gather_config(void)
     CHECK(config_check(&cfg) == NULL);
 }
 
+void test_gather_lookup_bounded(void)
+{
+    /* 64 x 64 representatives on the plane z = 0, normal +z; a gather hit
+     * on that plane whose normal is -z (the plane's other face) has no
+     * agreeing representative anywhere: within the cap the lookup visits a
+     * few nodes, without one it walks the whole tree */
+    enum { SIDE = 64 };
+    static float pos[SIDE * SIDE][3];
+    for (int i = 0; i < SIDE * SIDE; i++) {
+        pos[i][0] = (float)(i % SIDE) / SIDE;
+        pos[i][1] = (float)(i / SIDE) / SIDE;
+        pos[i][2] = 0.0f;
+    }
+    photons_map m;
+    helper_map(&m, (const float(*)[3])pos, SIDE * SIDE, vec_make(0, 0, -1), vec_make(0, 0, 1), 1.0f,
+               PHOTONS_FLAG_REP);
+    config_render cfg = config_defaults();
+    cfg.method = CONFIG_METHOD_PRECOMPUTED;
+    cfg.nn = 8;
+    cfg.gather = 4;
+    est_gather g0 = est_gather_make(&m, cfg.nn, 0.05, 0);
+    reps_set reps;
+    CHECK(helper_reps(&m, &g0, CONFIG_REP_TREE_SEPARATE, 1, &reps) == 0);
+    est_scratch *s = est_scratch_new(1, cfg.nn);
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    uint64_t nodes[2];
+    for (int capped = 0; capped < 2; capped++) {
+        gather_params gp = gather_params_make(NULL, &cfg, &m, &reps, NULL, capped ? 0.05 : 1e30);
+        gather_counts c = {0};
+        est_scratch_forget(s);
+        s->rep_work.nodes = 0;
+        vec3 e = gather_estimate(&gp, vec_make(0.5, 0.5, 0), vec_make(0, 0, -1), s, &c);
+        CHECK(e.x == 0.0 && c.lookups == 1 && c.empty == 1);
+        nodes[capped] = s->rep_work.nodes;
+        /* the front face: found */
+        c = (gather_counts){0};
+        e = gather_estimate(&gp, vec_make(0.5, 0.5, 0), vec_make(0, 0, 1), s, &c);
+        CHECK(e.x > 0.0 && c.empty == 0);
+    }
+    printf("  lookup with no agreeing representative: %llu nodes uncapped, %llu within the cap\n",
+           (unsigned long long)nodes[0], (unsigned long long)nodes[1]);
+    CHECK_MSG(nodes[1] < 64 && nodes[0] > 8 * nodes[1], "nodes: uncapped %llu, capped %llu",
+              (unsigned long long)nodes[0], (unsigned long long)nodes[1]);
+    est_scratch_delete(s, 1);
+    reps_free(&reps);
+    photons_map_free(&m);
+}
+
 void test_gather_maps(void)
 {
     char err[512];
