@@ -271,10 +271,9 @@ static const cli_option render_options[] = {
      .default_text = CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT " x the diagonal of the photons' bounding box"},
     {.name = "--direct", .kind = CLI_CHOICE, .offset = RC(direct), .choices = config_direct_names,
      .help = "direct light from the photon map (the paper) or by shadow rays",
-     .default_text = "photons; shadow-rays with --gather (which refuses photons)"},
+     .default_text = "photons; with --gather shadow-rays, its only choice"},
     {.name = "--gather", .kind = CLI_U32, .metavar = "N", .offset = RC(gather), .uhi = CONFIG_MAX_GATHER,
-     .help = "final gathering: N gather rays at each eye path's first diffuse hit, the global map's estimate where "
-             "they land, caustics from a caustic map (renderer/README.md); 0: the photon map seen directly"},
+     .help = "final gathering: N gather rays per first diffuse eye hit (renderer/README.md); 0: the map seen directly"},
     {.name = "--photon-depth", .kind = CLI_U32, .metavar = "D", .offset = RC(photon_depth), .ulo = 1,
      .uhi = CONFIG_MAX_DEPTH, .help = "maximum bounces of a photon path"},
     {.name = "--eye-depth", .kind = CLI_U32, .metavar = "D", .offset = RC(eye_depth), .uhi = CONFIG_MAX_DEPTH,
