@@ -107,6 +107,13 @@ def validate(model, rows):
     return float(np.median(errs)), float(np.max(errs))
 
 
+def part_error(model, rows, part):
+    """The median relative error of one phase's prediction on rows (those
+    where the phase took any time)."""
+    errs = [abs(predict(model, r)[part] - r["time"][part]) / r["time"][part] for r in rows if r["time"][part] > 0]
+    return float(np.median(errs)) if errs else float("nan")
+
+
 def render(pm, scene, method, photons, nn, width, height, tmp):
     """One render with --repeats auto: its counters and its times' minima."""
     stats = os.path.join(tmp, "s.json")
@@ -148,6 +155,14 @@ def write(out, model, fitted, held, median, largest):
         f.write("**Held-out renders: median relative error of the total %.1f%%, largest %.1f%%** (goal: median "
                 "at most %.0f%%: %s).\n\n" % (100 * median, 100 * largest, 100 * GOAL_MEDIAN,
                                                "met" if median <= GOAL_MEDIAN else "not met"))
+        loads = [r["provenance"]["loadavg"][0] for r in fitted + held if r["provenance"]["loadavg"][0] is not None]
+        if loads:
+            f.write("The 1-minute load average when the renders started: %.1f to %.1f on %s; the times are minima "
+                    "of repeats, and a machine shared more than its cores moves them nonetheless.\n\n" % (
+                        min(loads), max(loads), prov["cpu"]))
+        f.write("| held-out median relative error | %s |\n|---|%s\n| | %s |\n\n" % (
+            " | ".join(PHASES), "---:|" * len(PHASES),
+            " | ".join("%.1f%%" % (100 * part_error(model, held, p)) for p in PHASES)))
         f.write("| phase | counter | ns per unit |\n|---|---|---:|\n")
         for phase in PARTS:
             for name, c in zip(("constant",) + FEATURES[phase], model[phase]):

@@ -153,7 +153,7 @@ def run(r, quick):
     r.add("baseline: the Cornell room", "`" + " ".join(BASE) + "`", "exit 0, finite", f"mean L {base:.6g}",
           base_st["nonfinite_pixels"] == 0)
 
-    # ---- the three sweeps (issue 15) ----
+    # ---- the three sweeps ----
     scales = [1e-30, 1e14] if quick else [1e-30, 1e-25, 1e-20, 1e-15, 1e-10, 1e-5, 1e-3, 1e3, 1e5, 1e10, 1e14]
     for s in scales:
         power = min(s * s, 1e35 / P0)
@@ -183,7 +183,7 @@ def run(r, quick):
     if quick:
         return
 
-    # ---- the estimator's extremes (issue 10), exact in the analytic scene ----
+    # ---- the estimator's extremes, exact in the analytic scene ----
     fb = ["--photons", "50000", "--width", "48", "--height", "36", "--subpixels", "1", "--quiet"]
     seeds = list(range(1, 11))
     r.refused("n = 1", "`--nn 1`", CORNELL, BASE + ["--nn", "1"], r"expected an integer in \[2,")

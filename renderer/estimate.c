@@ -22,7 +22,7 @@ est_scratch *est_scratch_new(unsigned threads, uint32_t nn)
         s[t].last_rep = KD_NONE;
         s[t].idx = malloc(sizeof(uint32_t) * (s[t].cap + EST_SCRATCH_SLACK));
         s[t].d2 = malloc(sizeof(float) * (s[t].cap + EST_SCRATCH_SLACK));
-        if (!s[t].idx || !s[t].d2 || kd_query_init(&s[t].query, s[t].cap)) {
+        if (!s[t].idx || !s[t].d2 || kd_query_init(&s[t].query, s[t].cap) != PM_OK) {
             est_scratch_delete(s, threads);
             return NULL;
         }

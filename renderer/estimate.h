@@ -1,21 +1,9 @@
-/* estimate: equation 1 of the paper and the gather conventions that both
- * estimates share. It gives the irradiance E at a diffuse point; the caller
- * multiplies by rho/pi.
- *  - conventional (eq. 1): E = sum of front-side photon powers among the n
- *    nearest, over pi r^2;
- *  - precomputed (eq. 2): E computed the same way at the representatives
- *    before the eye pass (reps.h owns them, their precompute and lookup).
- *
- * Conventions (documented in README): r^2 is the squared distance to the
- * farthest of the n photons found; when fewer than n photons lie within the
- * maximum radius R, r = R (the disc's density); r is clamped below at
- * EST_MIN_RADIUS_FRAC of R, or of the photons' extent (photons_map.extent)
- * when R is larger (a cap beyond the extent finds the same photons; were
- * the floor 1e-3 of a cap of 1e30, every estimate would spread its photons
- * over r = 1e27 and the image would go black), so coincident photons give a
- * large finite value.
- * No photon in range, or no agreeing representative in range, gives E = 0.
- * Radii here are in the photon map's frame (photons.h). */
+/* estimate: equation 1 of the paper, E = the front-side photon powers
+ * among the n nearest over pi r^2 (the caller multiplies by rho/pi), and
+ * the gather conventions both methods share (renderer/README.md): r is at
+ * most the cap R (fewer than n photons: r = R), at least
+ * EST_MIN_RADIUS_FRAC of R or of the photons' extent when R is larger; no
+ * photon in range gives 0. Radii are in the photon map's frame. */
 #ifndef PM_ESTIMATE_H
 #define PM_ESTIMATE_H
 

@@ -290,8 +290,9 @@ static unsigned char srgb8(double v)
 pm_status image_write_png(const image *im, const char *path, double exposure, char *err, size_t errlen)
 {
     outfile o;
-    if (outfile_begin(&o, path, 1, err, errlen))
-        return PM_ERR_IO;
+    pm_status rc = outfile_begin(&o, path, 1, err, errlen);
+    if (rc != PM_OK)
+        return rc;
     unsigned char *row = malloc((size_t)im->width * 3 + 1);
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
     png_infop info = png ? png_create_info_struct(png) : NULL;

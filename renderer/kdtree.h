@@ -1,23 +1,10 @@
-/* kdtree: a static 3-d kd-tree over float points with exact k-nearest and
- * nearest-with-predicate queries. It knows points only, not photons: the
- * build returns the leaf-order permutation so the caller can lay its own
- * payload out in the same order (index i of the tree = index i of payload).
- *
- * Layout: a complete binary tree in implicit heap order (node i has children
- * 2i+1, 2i+2), pointer-free inner nodes (split value + axis), leaves of at
- * most `leaf_size` points stored contiguously as x[], y[], z[] arrays.
- *
- * k nearest: kd_query_knn with a per-thread kd_query is the entry point (it
- * starts each search from the radius the previous query needed). It returns
- * the k points with the smallest (squared distance, leaf-order index)
- * pairs, so ties at the k-th distance are broken by index and a result
- * never depends on earlier queries or on the instruction set used.
- *
- * The implementation is split by concept: kdtree_build.c (construction and
- * memory), kdtree_select.c (selecting the k nearest candidates),
- * kdtree_simd.c (the leaf scans and traversals per instruction set),
- * kdtree_knn.c (the k-nearest driver and kd_query), kdtree_nearest.c
- * (kd_nearest_if); kdtree_impl.h is what they share. */
+/* kdtree: a static 3-d kd-tree over float points (implicit heap order,
+ * leaves of x[], y[], z[] arrays) with exact k-nearest and
+ * nearest-with-predicate queries. It knows points only: the build returns
+ * the leaf-order permutation for the caller's payload. A k-nearest answer
+ * is the k smallest (squared distance, leaf-order index) pairs, so it never
+ * depends on earlier queries or on the instruction set. The files:
+ * renderer/README.md. */
 #ifndef PM_KDTREE_H
 #define PM_KDTREE_H
 

@@ -126,7 +126,7 @@ static pm_status trace_one(const trace_ctx *tc, uint64_t index, photons_chunk *c
     unsigned bounces = 0;
     int diffuse_before = 0; /* a diffuse bounce on the path so far: no longer a caustic path */
     for (uint32_t depth = 0;; depth++) {
-        if (depth >= pp->max_depth) {
+        if (depth >= pp->photon_depth) {
             c->truncated++;
             return PM_OK;
         }

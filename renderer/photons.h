@@ -1,15 +1,8 @@
-/* photons: the photon pass (emitting photons from the point light, tracing
- * them through mirror and glass, storing one at every diffuse hit) and the
- * built photon map: a kd-tree over the stored positions in the map's own
- * frame and the payload in the tree's leaf order. Photons a caller flags
- * (the representatives, reps.h) can be kept out of the tree.
- *
- * The map's frame: positions are stored as 32-bit floats relative to the
- * centre of the photons' bounding box and divided by a power of two near its
- * size, so the map's precision does not depend on where the scene sits or on
- * its scale (a room at x = 1e9, or one 1e-25 units wide, is stored exactly as
- * precisely as one at the origin). Powers are stored relative to the emitted
- * photon's power for the same reason. */
+/* photons: the photon pass (emit from the point light, trace through
+ * mirror and glass, store at every diffuse hit) and the photon map: a
+ * kd-tree over the positions in the map's frame (floats relative to the
+ * photons' box centre over a power of two near its size: renderer/README.md)
+ * and the payload in leaf order. Flagged photons can be kept out. */
 #ifndef PM_PHOTONS_H
 #define PM_PHOTONS_H
 
@@ -42,7 +35,7 @@ typedef struct {
 typedef struct {
     uint64_t photons;      /* P_e: photons emitted from the light */
     uint64_t seed;         /* photon i draws from random stream (seed, i) */
-    uint32_t max_depth;    /* bounces before a path is cut */
+    uint32_t photon_depth; /* bounces before a path is cut (--photon-depth) */
     int store_first_hits;  /* 0: direct light comes from shadow rays, store bounced light only */
 } photons_params;
 

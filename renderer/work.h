@@ -11,7 +11,7 @@
  * it, from that thread's starting radius, so the eye pass's map_nodes and
  * map_points may vary by scheduling (rep_evaluations does not).
  *
- * What each counter holds (README.md, "Work counters"):
+ * What each counter holds (README.md's stats table says the same):
  *  traced_photons   photon paths started at the light
  *  stored_photons   photons stored on diffuse surfaces
  *  rays             rays cast: photon path segments, eye rays and their

@@ -185,4 +185,33 @@ killed_keeps_old() {
 }
 check "a killed run leaves an existing output untouched" killed_keeps_old
 
+# --repeats: the same image as one render, every repeat's times, minima;
+# the work counters the same for 1 and 2 threads; provenance in the stats
+repeats_ok() {
+  $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed --threads 1 -o "$TMP/r1.exr" \
+      --stats "$TMP/r1.json" &&
+  $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed --threads 2 --repeats 3 -o "$TMP/r3.exr" \
+      --stats "$TMP/r3.json" &&
+  cmp "$TMP/r1.exr" "$TMP/r3.exr" &&
+  "${PYTHON:-/usr/bin/python3}" - "$TMP/r1.json" "$TMP/r3.json" <<'PY'
+import json, sys
+one, three = (json.load(open(f)) for f in sys.argv[1:])
+assert one["repeats"] == 1 and three["repeats"] == 3, (one["repeats"], three["repeats"])
+reps = three["time_s_repeats"]
+for k in ("trace", "build", "precompute", "render", "total"):
+    assert len(reps[k]) == 3 and three["time_s"][k] == min(reps[k]), k
+    assert three["time_s_cold"][k] == reps[k][0] and three["time_s_median"][k] == sorted(reps[k])[1], k
+assert one["work"] == three["work"], "work differs between 1 thread and 2 threads x 3 repeats"
+assert three["work"]["render"]["rep_lookups"] > 0 and three["work"]["precompute"]["knn_queries"] > 0
+p = three["provenance"]
+assert set(p) == {"commit", "tree", "compiler", "flags", "cpu", "threads", "loadavg"} and p["threads"] == 2, p
+PY
+}
+check "--repeats 3: the same image, each repeat's times, minima, median, cold; work as on 1 thread" repeats_ok
+check "--repeats 0: exit 2" expect_exit 2 "expected auto or a count from 1 to 100" \
+  $PM render scenes/cornell.scene "${SMALL[@]}" --repeats 0 --no-output
+check "--repeats auto: at least 3 repeats" bash -c \
+  "$PM render scenes/cornell.scene --photons 2000 --width 16 --height 12 --quiet --repeats auto --stats $TMP/ra.json &&
+   grep -qE '\"repeats\": ([3-9]|10),' $TMP/ra.json"
+
 finish

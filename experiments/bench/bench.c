@@ -176,7 +176,7 @@ static uint64_t ours_knn_batch(const kd_tree *t, const float *q, uint32_t nq, ui
                                uint32_t *idx, float *d2, double *r2sum)
 {
     kd_query st;
-    if (kd_query_init(&st, k)) {
+    if (kd_query_init(&st, k) != PM_OK) {
         fprintf(stderr, "bench: out of memory\n");
         exit(1);
     }
@@ -221,7 +221,7 @@ static uint64_t ours_collect(const kd_tree *t, const uint32_t *perm, const float
                              float max_d2, uint32_t *out)
 {
     kd_query st;
-    if (kd_query_init(&st, k)) {
+    if (kd_query_init(&st, k) != PM_OK) {
         fprintf(stderr, "bench: out of memory\n");
         exit(1);
     }
@@ -482,7 +482,7 @@ static int run_peers(const char *dir, const char *python, const char *order, uin
     double t0 = now_s();
     kd_tree ours;
     uint32_t *perm = malloc(sizeof(uint32_t) * (n ? n : 1));
-    if (!perm || kd_build(&ours, pos, n, KD_DEFAULT_LEAF, perm, 1)) {
+    if (!perm || kd_build(&ours, pos, n, KD_DEFAULT_LEAF, perm, 1) != PM_OK) {
         fprintf(stderr, "bench: out of memory\n");
         exit(1);
     }
@@ -630,7 +630,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench: %s\n", err);
         return 1;
     }
-    if (scene_set_accel(sc, SCENE_ACCEL_AUTO)) { /* as the render pipeline does first */
+    if (scene_set_accel(sc, SCENE_ACCEL_AUTO) != PM_OK) { /* as the render pipeline does first */
         fprintf(stderr, "bench: out of memory\n");
         return 1;
     }
@@ -650,7 +650,7 @@ int main(int argc, char **argv)
         photons_params pp = {pe, cfg.seed, cfg.photon_depth, 1};
         photons_list list;
         photons_map map;
-        if (photons_trace(sc, &pp, 1, NULL, &list) || photons_build_map(&list, 0, 1, &map, NULL)) {
+        if (photons_trace(sc, &pp, 1, NULL, &list) != PM_OK || photons_build_map(&list, 0, 1, &map, NULL) != PM_OK) {
             fprintf(stderr, "bench: out of memory\n");
             return 1;
         }
@@ -708,13 +708,13 @@ int main(int argc, char **argv)
                            .bias_correction = 0, .normal_cos = cfg.normal_cos};
         photons_list list;
         photons_map map;
-        if (photons_trace(sc, &pp, 1, NULL, &list)) {
+        if (photons_trace(sc, &pp, 1, NULL, &list) != PM_OK) {
             fprintf(stderr, "bench: out of memory\n");
             return 1;
         }
         reps_choose(&rps, &list);
         uint32_t stored = (uint32_t)list.count;
-        if (photons_build_map(&list, 0, 1, &map, NULL)) {
+        if (photons_build_map(&list, 0, 1, &map, NULL) != PM_OK) {
             fprintf(stderr, "bench: out of memory\n");
             return 1;
         }
@@ -790,7 +790,7 @@ int main(int argc, char **argv)
             for (int r = 0; r < reps && r < 64; r++) {
                 kd_tree bt;
                 double t0 = now_s();
-                if (kd_build(&bt, pos, stored, KD_DEFAULT_LEAF, NULL, 1)) {
+                if (kd_build(&bt, pos, stored, KD_DEFAULT_LEAF, NULL, 1) != PM_OK) {
                     fprintf(stderr, "bench: out of memory\n");
                     return 1;
                 }
@@ -814,7 +814,7 @@ int main(int argc, char **argv)
         if (!icount && !knn_only) {
             /* representatives: precompute with the defaults, then the lookup */
             reps_set rp;
-            if (reps_collect(&rps, &map, NULL, &rp) || reps_evaluate(&rp, &map, &gather, 1, NULL)) {
+            if (reps_collect(&rps, &map, NULL, &rp) != PM_OK || reps_evaluate(&rp, &map, &gather, 1, NULL) != PM_OK) {
                 fprintf(stderr, "bench: out of memory\n");
                 return 1;
             }
@@ -880,14 +880,14 @@ int main(int argc, char **argv)
                     render_result res;
                     stats_run st, st0;
                     double c0 = cpu_s();
-                    if (render_run(sc, &tiny, th, 0, &res, err, sizeof err)) {
+                    if (render_run(sc, &tiny, th, 0, &res, err, sizeof err) != PM_OK) {
                         fprintf(stderr, "bench: out of memory\n");
                         return 1;
                     }
                     st0 = res.st;
                     render_result_free(&res);
                     double c1 = cpu_s();
-                    if (render_run(sc, &c, th, 0, &res, err, sizeof err)) {
+                    if (render_run(sc, &c, th, 0, &res, err, sizeof err) != PM_OK) {
                         fprintf(stderr, "bench: out of memory\n");
                         return 1;
                     }

@@ -79,7 +79,7 @@ void helper_map(photons_map *m, const float (*pos)[3], uint32_t count, vec3 dir,
         l.ph[i].flags = (uint8_t)flags;
     }
     l.unit = vec_make(1, 1, 1);
-    if (photons_build_map(&l, 0, 1, m, NULL))
+    if (photons_build_map(&l, 0, 1, m, NULL) != PM_OK)
         abort();
 }
 

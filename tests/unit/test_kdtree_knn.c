@@ -662,7 +662,7 @@ void test_kdtree_stream_base(void)
 void test_kdtree_stream_avx2(void)
 {
     kd_query s;
-    if (kd_query_init(&s, 1) != 0 || kd_query_simd(&s, KD_SIMD_AVX2) != KD_SIMD_AVX2) {
+    if (kd_query_init(&s, 1) != PM_OK || kd_query_simd(&s, KD_SIMD_AVX2) != KD_SIMD_AVX2) {
         kd_query_free(&s);
         CHECK_SKIP("the CPU has no AVX2");
         return;

@@ -191,8 +191,7 @@ static int reset_peak(void)
  * (on two threads) is photons_peak_bytes of the count within 10%, and
  * below 48 bytes a stored photon (beyond the in-flight chunks' four huge
  * pages); as a negative control, the check would refuse an estimate 25%
- * too high or too low (the old layout's estimate,
- * twice this one, among them). Skipped where /proc cannot reset the peak
+ * too high or too low (an estimate twice this one among them). Skipped where /proc cannot reset the peak
  * and under the address sanitizer (its shadow memory counts). */
 void test_photons_peak_memory(void)
 {

@@ -24,7 +24,7 @@ static void line_tree(kd_tree *t)
         pts[3 * i + 1] = 0.0f;
         pts[3 * i + 2] = 0.0f;
     }
-    CHECK(kd_build(t, pts, 32, 4, NULL, 1) == 0);
+    CHECK(kd_build(t, pts, 32, 4, NULL, 1) == PM_OK);
     CHECK(t->nleaves == 8 && t->scan_h == 3 && t->leaf_start[4] == 16);
 }
 
@@ -37,7 +37,7 @@ void test_work_kdtree_by_hand(void)
     float d2[3], r2;
     for (int simd = KD_SIMD_BASE; simd <= KD_SIMD_AVX2; simd++) {
         kd_query s;
-        CHECK(kd_query_init(&s, 3) == 0);
+        CHECK(kd_query_init(&s, 3) == PM_OK);
         kd_query_simd(&s, (kd_simd)simd);
         /* no starting radius: the root (1 node), then both halves as one
          * range (1 node, 32 points) */
@@ -110,7 +110,7 @@ void test_work_one_photon_by_hand(void)
      * tree of 1 point; 4 eye rays (one 2x2 tile), 4 shape tests, 4 kNN
      * queries of 1 pass each, each the root's one range: 1 node, 1 point */
     config_render cfg = tiny_config(CONFIG_METHOD_CONVENTIONAL);
-    CHECK(helper_render(sc, &cfg, 1, &im, &st) == 0);
+    CHECK(helper_render(sc, &cfg, 1, &im, &st) == PM_OK);
     const work_phases *w = &st.work;
     CHECK(w->trace.traced_photons == 1 && w->trace.stored_photons == 1);
     CHECK(w->trace.rays == 1 && w->trace.shape_tests == 1);
@@ -126,7 +126,7 @@ void test_work_one_photon_by_hand(void)
      * (the leaf: 1 node, 1 point), the other 3 with the first's answer as
      * the hint (1 point) and its leaf (1 node, 1 point) */
     cfg = tiny_config(CONFIG_METHOD_PRECOMPUTED);
-    CHECK(helper_render(sc, &cfg, 1, &im, &st) == 0);
+    CHECK(helper_render(sc, &cfg, 1, &im, &st) == PM_OK);
     CHECK(w->precompute.tree_points == 1 && w->precompute.knn_queries == 1);
     CHECK(w->precompute.map_nodes == 1 && w->precompute.map_points == 1);
     CHECK(w->precompute.rep_evaluations == 1);
@@ -138,7 +138,7 @@ void test_work_one_photon_by_hand(void)
     cfg.photons = 0;
     image_free(&im);
     cfg.method = CONFIG_METHOD_CONVENTIONAL;
-    CHECK(helper_render(sc, &cfg, 1, &im, &st) == 0);
+    CHECK(helper_render(sc, &cfg, 1, &im, &st) == PM_OK);
     CHECK(w->trace.rays == 0 && w->render.rays == 8 && w->render.shape_tests == 8);
     image_free(&im);
     scene_free(sc);
@@ -164,8 +164,8 @@ void test_work_same_for_any_thread_count(void)
         cfg.direct = variant == 4 ? CONFIG_DIRECT_SHADOW_RAYS : CONFIG_DIRECT_PHOTONS;
         image a, b;
         stats_run sa, sb;
-        CHECK(helper_render(sc, &cfg, 1, &a, &sa) == 0);
-        CHECK(helper_render(sc, &cfg, 2, &b, &sb) == 0);
+        CHECK(helper_render(sc, &cfg, 1, &a, &sa) == PM_OK);
+        CHECK(helper_render(sc, &cfg, 2, &b, &sb) == PM_OK);
         CHECK_MSG(work_equal(&sa.work, &sb.work), "variant %d", variant);
         CHECK(sa.work.render.rays > 0 && sa.work.trace.shape_tests > 0);
         CHECK(variant == 0 ? sa.work.render.map_points > 0 : sa.work.render.rep_points > 0);
