@@ -1,30 +1,10 @@
 /* gather: final gathering (--gather N) at an eye path's first diffuse hit
- * x. The eye pass (eye.c) adds three parts of the irradiance at x:
- *  - direct light, by a shadow ray (eye.c);
- *  - caustics (light paths L S+ D: from the light by mirror and glass only
- *    to x) from the caustic map, by the conventional estimate (eq. 1);
- *  - the rest of the indirect light, by N gather rays: stratified,
- *    cosine-weighted over the hemisphere at x, each followed through mirror
- *    and glass as eye paths are (both glass branches, by Fresnel, up to
- *    --eye-depth) to its first diffuse hit y, where the global map (every
- *    stored photon, the first hits included) gives the radiance leaving y:
- *    the conventional estimate (eq. 1) or the nearest agreeing
- *    representative (eq. 2, reps_lookup, with --rep-eval and --rep-gate
- *    as at eye hits), per --method.
- * A gather ray that reaches a light path ending L S+ through x's
- * hemisphere cannot exist (the light is a point), so the caustic map and
- * the gather rays count no path twice.
- *
- * Randomness: the directions of eye sample j come from the counter-based
- * stream gather_stream(seed, j), drawn in the eye path's fixed order, so
- * the image does not depend on the thread count, and both methods cast the
- * same rays with the same numbers (only the estimate at y differs).
- *
- * Bounded lookups at y: y is always diffuse (mirror and glass are followed
- * past), and both estimates search only within the gather's radius cap
- * (est_gather.max_r2, --max-radius): a y with no photon, or no agreeing
- * representative, within the cap gets 0, as an eye hit does, and is counted
- * (gather_counts.empty). */
+ * x: N stratified cosine-weighted gather rays, followed through mirror and
+ * glass to their first diffuse hit y, where the global map's estimate
+ * (eq. 1, or eq. 2's representatives) gives the radiance leaving y; and
+ * the caustic map's estimate at x. Direct light is eye.c's shadow ray.
+ * Which photons each map holds, the strata, the streams and the bounded
+ * lookups: renderer/README.md, "Final gathering". */
 #ifndef PM_GATHER_H
 #define PM_GATHER_H
 

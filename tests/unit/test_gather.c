@@ -159,7 +159,7 @@ void test_gather_furnace(void)
             cfg.seed = 1000 + (uint64_t)seed;
             image im;
             stats_run st;
-            CHECK(helper_render(sc, &cfg, 2, &im, &st) == 0);
+            CHECK(helper_render(sc, &cfg, 2, &im, &st) == PM_OK);
             CHECK(st.caustic_photons == 0 && st.bytes_caustic_map == 0); /* no mirror or glass */
             CHECK(st.gather_rays == (uint64_t)cfg.width * cfg.height * cfg.gather);
             CHECK(st.gather_lookups == st.gather_rays && st.gather_empty == 0 && st.gather_missed == 0);
@@ -211,8 +211,8 @@ void test_gather_threads_and_shared_rays(void)
         cfg.height = 18;
         image a, b;
         stats_run sa, sb;
-        CHECK(helper_render(sc, &cfg, 1, &a, &sa) == 0);
-        CHECK(helper_render(sc, &cfg, 3, &b, &sb) == 0);
+        CHECK(helper_render(sc, &cfg, 1, &a, &sa) == PM_OK);
+        CHECK(helper_render(sc, &cfg, 3, &b, &sb) == PM_OK);
         size_t bytes = (size_t)cfg.width * cfg.height * 3 * sizeof(float);
         CHECK_MSG(memcmp(a.rgb, b.rgb, bytes) == 0, "method %d: 1 vs 3 threads differ", method);
         CHECK(sa.gather_rays == sb.gather_rays && sa.gather_lookups == sb.gather_lookups &&
@@ -227,7 +227,7 @@ void test_gather_threads_and_shared_rays(void)
             cfg.rep_eval = CONFIG_REP_EVAL_LAZY;
             image l;
             stats_run sl;
-            CHECK(helper_render(sc, &cfg, 2, &l, &sl) == 0);
+            CHECK(helper_render(sc, &cfg, 2, &l, &sl) == PM_OK);
             CHECK_MSG(memcmp(a.rgb, l.rgb, bytes) == 0, "lazy differs from eager under --gather");
             CHECK(sl.reps_evaluated > 0 && sl.reps_evaluated <= sa.reps_evaluated);
             image_free(&l);
@@ -281,7 +281,7 @@ void test_gather_lookup_bounded(void)
     cfg.gather = 4;
     est_gather g0 = est_gather_make(&m, cfg.nn, 0.05, 0);
     reps_set reps;
-    CHECK(helper_reps(&m, &g0, CONFIG_REP_TREE_SEPARATE, 1, &reps) == 0);
+    CHECK(helper_reps(&m, &g0, CONFIG_REP_TREE_SEPARATE, 1, &reps) == PM_OK);
     est_scratch *s = est_scratch_new(1, cfg.nn);
     CHECK(s != NULL);
     if (!s)
@@ -324,13 +324,13 @@ void test_gather_maps(void)
     cfg.height = 6;
     image im;
     stats_run direct, shadow, gathered;
-    CHECK(helper_render(sc, &cfg, 2, &im, &direct) == 0);
+    CHECK(helper_render(sc, &cfg, 2, &im, &direct) == PM_OK);
     image_free(&im);
     cfg.direct = CONFIG_DIRECT_SHADOW_RAYS;
-    CHECK(helper_render(sc, &cfg, 2, &im, &shadow) == 0);
+    CHECK(helper_render(sc, &cfg, 2, &im, &shadow) == PM_OK);
     image_free(&im);
     cfg.gather = 2;
-    CHECK(helper_render(sc, &cfg, 2, &im, &gathered) == 0);
+    CHECK(helper_render(sc, &cfg, 2, &im, &gathered) == PM_OK);
     image_free(&im);
     CHECK(gathered.photons_stored == direct.photons_stored && shadow.photons_stored < direct.photons_stored);
     CHECK(direct.caustic_photons == 0 && shadow.caustic_photons == 0); /* no caustic map without --gather */
