@@ -270,7 +270,10 @@ static const cli_option render_options[] = {
      .help = "search radius cap in scene units",
      .default_text = CONFIG_DEFAULT_MAX_RADIUS_FRAC_TEXT " x the diagonal of the photons' bounding box"},
     {.name = "--direct", .kind = CLI_CHOICE, .offset = RC(direct), .choices = config_direct_names,
-     .help = "direct light from the photon map (the paper) or by shadow rays"},
+     .help = "direct light from the photon map (the paper) or by shadow rays",
+     .default_text = "photons; with --gather shadow-rays, its only choice"},
+    {.name = "--gather", .kind = CLI_U32, .metavar = "N", .offset = RC(gather), .uhi = CONFIG_MAX_GATHER,
+     .help = "final gathering: N gather rays per first diffuse eye hit (renderer/README.md); 0: the map seen directly"},
     {.name = "--photon-depth", .kind = CLI_U32, .metavar = "D", .offset = RC(photon_depth), .ulo = 1,
      .uhi = CONFIG_MAX_DEPTH, .help = "maximum bounces of a photon path"},
     {.name = "--eye-depth", .kind = CLI_U32, .metavar = "D", .offset = RC(eye_depth), .uhi = CONFIG_MAX_DEPTH,
@@ -314,6 +317,12 @@ cli_render_args cli_render_defaults(void)
     a.cfg = config_defaults();
     a.exposure = CONFIG_DEFAULT_EXPOSURE;
     return a;
+}
+
+void cli_render_resolve(cli_render_args *a)
+{
+    if (a->cfg.gather > 0 && !cli_was_given(&cli_render, &a->given, "--direct"))
+        a->cfg.direct = CONFIG_DIRECT_SHADOW_RAYS;
 }
 
 pm_status cli_render_check(const cli_render_args *a)

@@ -104,6 +104,9 @@ cli_render_args cli_render_defaults(void);
 cli_pov_args cli_pov_defaults(void);
 cli_pbrt_args cli_pbrt_defaults(void);
 
+/* Settles the settings whose default depends on others: with --gather and
+ * no --direct, direct light comes by shadow rays. Never fails. */
+void cli_render_resolve(cli_render_args *a);
 /* Refuses render arguments that do not go together: options given together
  * that exclude each other, config_check's refusals, an image too large.
  * Returns PM_OK, or PM_ERR_INPUT after printing why (cli_error). */

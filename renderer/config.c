@@ -33,6 +33,7 @@ config_render config_defaults(void)
     c.rep_gate = CONFIG_REP_GATE_NONE;
     c.rep_gate_tau = CONFIG_DEFAULT_REP_GATE_TAU;
     c.repeats = CONFIG_DEFAULT_REPEATS;
+    c.gather = CONFIG_DEFAULT_GATHER;
     return c;
 }
 
@@ -42,6 +43,9 @@ const char *config_check(const config_render *c)
         return "--nn 1: the estimate has no finite mean (1/r^2 of the nearest photon diverges); use --nn 2 or more";
     if (c->dump_reps && c->method != CONFIG_METHOD_PRECOMPUTED)
         return "--dump-reps writes the representatives of the precomputed method: use it with --method precomputed";
+    if (c->gather > 0 && c->direct == CONFIG_DIRECT_PHOTONS)
+        return "--gather takes direct light at the eye hit from shadow rays and the rest from the photon maps; "
+               "--direct photons would count it twice: leave --direct out, or give --direct shadow-rays";
     /* the variants beyond the paper */
     if (c->rep_eval != CONFIG_REP_EVAL_EAGER && c->method != CONFIG_METHOD_PRECOMPUTED)
         return "--rep-eval lazy evaluates the representatives of the precomputed method on first use; the "

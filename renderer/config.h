@@ -47,6 +47,8 @@ typedef struct {
     double rep_gate_tau;      /* plane gate: the largest distance from the tangent plane, in kNN radii */
     uint32_t repeats;         /* times the timed pipeline runs, same seed, same bits (repeat.h);
                                  CONFIG_REPEATS_AUTO: adaptive */
+    uint32_t gather;          /* final gathering: gather rays per eye hit (gather.h); 0: the map seen
+                                 directly (the paper) */
 } config_render;
 
 #define CONFIG_DEFAULT_PHOTONS 100000u
@@ -82,6 +84,10 @@ typedef struct {
 /* The same as text, for the usage line (keep them equal to the above). */
 #define CONFIG_REPEATS_AUTO_TEXT "at least 3 times, then until the repeats' totals add up to 2 s, at most 10 times"
 #define CONFIG_DEFAULT_REPEATS_TEXT "1; auto or an integer in [1, 100]"
+/* --gather: 0 is the paper's direct visualisation; at most this many
+ * gather rays per first diffuse eye hit. */
+#define CONFIG_DEFAULT_GATHER 0u
+#define CONFIG_MAX_GATHER 65536u
 /* Eye paths through glass split into reflected and refracted branches; a
  * branch whose throughput falls below this is dropped (bias < this). */
 #define CONFIG_EYE_MIN_THROUGHPUT 1e-4

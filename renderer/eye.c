@@ -23,6 +23,13 @@ typedef struct {
     char pad[128 - 8 * sizeof(uint64_t) - sizeof(double)]; /* one per thread: no two threads' counters share a cache line */
 } eye_counts;
 
+/* One thread's gather counters and times, on cache lines of its own. */
+typedef struct {
+    gather_counts g;
+    int64_t gather_ns, tile_ns;
+    char pad[64];
+} eye_gather_counts;
+
 typedef struct {
     const scene *sc;
     const config_render *cfg;
@@ -35,6 +42,9 @@ typedef struct {
     uint32_t tiles_x;
     est_scratch *scratch; /* per thread */
     eye_counts *counts;   /* per thread */
+    gather_params gp;     /* --gather (gp.rays > 0) */
+    est_scratch *caustic_scratch; /* per thread, when there is a caustic map */
+    eye_gather_counts *gcounts;   /* per thread, with --gather */
     progress *prog;
 } eye_ctx;
 
@@ -57,7 +67,24 @@ static vec3 direct_light(const eye_ctx *c, unsigned thread, const scene_hit *h)
     return vec_scale(c->light_intensity, cosv / d2);
 }
 
-static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t depth, double weight)
+/* The irradiance at the first diffuse hit h by final gathering: direct
+ * light by a shadow ray, caustics from the caustic map, the rest by the
+ * gather rays drawing from rs. */
+static vec3 final_gather(const eye_ctx *c, unsigned thread, const scene_hit *h, rng_stream *rs)
+{
+    eye_gather_counts *gc = &c->gcounts[thread];
+    vec3 e = direct_light(c, thread, h);
+    if (c->gp.caustic)
+        e = vec_add(e, gather_caustic(&c->gp, h, &c->caustic_scratch[thread], &gc->g));
+    int64_t t0 = clock_now_ns();
+    e = vec_add(e, gather_indirect(&c->gp, h, rs, &c->scratch[thread], &gc->g));
+    gc->gather_ns += clock_now_ns() - t0;
+    return e;
+}
+
+/* The radiance along r; rs: the eye sample's gather stream (NULL without
+ * --gather). */
+static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t depth, double weight, rng_stream *rs)
 {
     const scene *sc = c->sc;
     scene_hit h;
@@ -66,6 +93,8 @@ static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t de
         return vec_make(0, 0, 0);
     const material *m = &sc->materials[sc->shapes[h.shape].material];
     if (m->kind == MATERIAL_LAMBERT) {
+        if (c->gp.rays > 0)
+            return vec_mul(vec_scale(m->color, 1.0 / VEC_PI), final_gather(c, thread, &h, rs));
         vec3 e;
         if (c->cfg->method == CONFIG_METHOD_PRECOMPUTED) {
             int found;
@@ -89,7 +118,7 @@ static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t de
         double w = weight * vec_maxc(m->color);
         if (w < CONFIG_EYE_MIN_THROUGHPUT)
             return vec_make(0, 0, 0);
-        return vec_mul(m->color, radiance(c, thread, scene_spawn(&h, material_reflect(r.dir, h.n), 1), depth + 1, w));
+        return vec_mul(m->color, radiance(c, thread, scene_spawn(&h, material_reflect(r.dir, h.n), 1), depth + 1, w, rs));
     }
     /* glass: both branches, weighted by Fresnel */
     double n1 = h.front ? 1.0 : m->ior, n2 = h.front ? m->ior : 1.0;
@@ -101,11 +130,11 @@ static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t de
     vec3 L = vec_make(0, 0, 0);
     if (weight * fr >= CONFIG_EYE_MIN_THROUGHPUT) {
         shape_ray rr = scene_spawn(&h, material_reflect(r.dir, h.n), 1);
-        L = vec_scale(radiance(c, thread, rr, depth + 1, weight * fr), fr);
+        L = vec_scale(radiance(c, thread, rr, depth + 1, weight * fr, rs), fr);
     }
     if (can_refract && weight * (1.0 - fr) >= CONFIG_EYE_MIN_THROUGHPUT) {
         shape_ray rt = scene_spawn(&h, refr, 0);
-        L = vec_madd(L, radiance(c, thread, rt, depth + 1, weight * (1.0 - fr)), 1.0 - fr);
+        L = vec_madd(L, radiance(c, thread, rt, depth + 1, weight * (1.0 - fr), rs), 1.0 - fr);
     }
     return L;
 }
@@ -120,8 +149,11 @@ static void eye_tile(uint64_t tile, unsigned thread, void *arg)
     uint32_t y1 = y0 + EYE_TILE < cfg->height ? y0 + EYE_TILE : cfg->height;
     uint32_t S = cfg->subpixels;
     double inv = 1.0 / ((double)S * S);
+    int64_t t0 = c->gcounts ? clock_now_ns() : 0;
     /* a tile's queries cost the same on any thread after any tile */
     est_scratch_forget(&c->scratch[thread]);
+    if (c->caustic_scratch)
+        est_scratch_forget(&c->caustic_scratch[thread]);
     for (uint32_t y = y0; y < y1; y++) {
         for (uint32_t x = x0; x < x1; x++) {
             vec3 sum = vec_make(0, 0, 0);
@@ -130,7 +162,14 @@ static void eye_tile(uint64_t tile, unsigned thread, void *arg)
                     double u = (x + (sx + 0.5) / S) / cfg->width;
                     double v = (y + (sy + 0.5) / S) / cfg->height;
                     shape_ray r = camera_at(&c->camera, u, v);
-                    sum = vec_add(sum, radiance(c, thread, r, 0, 1.0));
+                    if (c->gp.rays > 0) {
+                        /* the sample's index in (pixel, subpixel) order names its gather stream */
+                        uint64_t sample = ((uint64_t)y * cfg->width + x) * S * S + (uint64_t)sy * S + sx;
+                        rng_stream rs = gather_stream(cfg->seed, sample);
+                        sum = vec_add(sum, radiance(c, thread, r, 0, 1.0, &rs));
+                    } else {
+                        sum = vec_add(sum, radiance(c, thread, r, 0, 1.0, NULL));
+                    }
                 }
             }
             float *px = c->img->rgb + ((size_t)y * cfg->width + x) * 3;
@@ -148,7 +187,41 @@ static void eye_tile(uint64_t tile, unsigned thread, void *arg)
         }
     }
     c->counts[thread].samples += (uint64_t)(x1 - x0) * (y1 - y0) * S * S;
+    if (c->gcounts)
+        c->gcounts[thread].tile_ns += clock_now_ns() - t0;
     progress_add(c->prog, 1);
+}
+
+/* Adds the threads' gather counters and times to st: the gather rays and
+ * their continuations also count as the eye pass's rays. */
+static void add_gather_counts(const eye_ctx *c, unsigned threads, stats_run *st)
+{
+    gather_counts g = {0};
+    int64_t gather_ns = 0, tile_ns = 0;
+    for (unsigned t = 0; t < threads; t++) {
+        gather_counts_add(&g, &c->gcounts[t].g);
+        gather_ns += c->gcounts[t].gather_ns;
+        tile_ns += c->gcounts[t].tile_ns;
+    }
+    st->gather_rays = g.rays;
+    st->gather_specular = g.specular;
+    st->gather_lookups = g.lookups;
+    st->gather_empty = g.empty;
+    st->gather_fallbacks = g.fallbacks;
+    st->gather_missed = g.missed;
+    st->gather_depth_limit_hits = g.depth_hits;
+    st->caustic_lookups = g.caustic_lookups;
+    st->rep_fallbacks += g.fallbacks;
+    st->gather_thread_s = (double)gather_ns * 1e-9;
+    st->render_thread_s = (double)tile_ns * 1e-9;
+    st->work.render.rays += g.rays + g.specular;
+    st->work.render.shape_tests += g.shape_tests;
+    if (c->caustic_scratch) {
+        work_counts w = {0};
+        est_scratch_work(c->caustic_scratch, threads, &w);
+        st->caustic_nodes = w.map_nodes;
+        st->caustic_points = w.map_points;
+    }
 }
 
 pm_status eye_render(const eye_input *in, unsigned threads, int show_progress, image *out, stats_run *st)
@@ -169,7 +242,16 @@ pm_status eye_render(const eye_input *in, unsigned threads, int show_progress, i
     uint64_t tiles = (uint64_t)c.tiles_x * ((cfg->height + EYE_TILE - 1) / EYE_TILE);
     c.scratch = est_scratch_new(threads, cfg->nn);
     c.counts = calloc(threads, sizeof(eye_counts));
-    pm_status rc = (!c.scratch || !c.counts) ? PM_ERR_NOMEM : image_init(out, cfg->width, cfg->height);
+    pm_status rc = (!c.scratch || !c.counts) ? PM_ERR_NOMEM : PM_OK;
+    if (rc == PM_OK && cfg->gather > 0) {
+        c.gp = gather_params_make(in->sc, cfg, in->map, in->reps, in->caustic, in->max_radius);
+        c.gcounts = calloc(threads, sizeof(eye_gather_counts));
+        if (in->caustic)
+            c.caustic_scratch = est_scratch_new(threads, cfg->nn);
+        rc = (!c.gcounts || (in->caustic && !c.caustic_scratch)) ? PM_ERR_NOMEM : PM_OK;
+    }
+    if (rc == PM_OK)
+        rc = image_init(out, cfg->width, cfg->height);
     if (rc == PM_OK) {
         progress prog;
         progress_begin(&prog, "render", tiles, show_progress);
@@ -190,10 +272,14 @@ pm_status eye_render(const eye_input *in, unsigned threads, int show_progress, i
             st->work.render.shape_tests += c.counts[t].shape_tests;
         }
         est_scratch_work(c.scratch, threads, &st->work.render);
+        if (c.gcounts)
+            add_gather_counts(&c, threads, st);
         st->nonfinite_pixels = image_count_nonfinite(out);
         image_mean(out, st->mean_radiance);
     }
     est_scratch_delete(c.scratch, threads);
+    est_scratch_delete(c.caustic_scratch, threads);
     free(c.counts);
+    free(c.gcounts);
     return rc;
 }

@@ -261,6 +261,7 @@ static pm_status cmd_render(int argc, char **argv)
     char err[1024];
     if (a.repeats && repeat_parse(a.repeats, &a.cfg.repeats, err, sizeof err) != PM_OK)
         return cli_error(&cli_render, "%s", err);
+    cli_render_resolve(&a);
     const config_render *cfg = &a.cfg;
     const char *paths[4] = {a.exr, a.png, a.stats, cfg->dump_reps};
     const char *names[4] = {"-o", "--png", "--stats", "--dump-reps"};

@@ -124,6 +124,7 @@ static pm_status trace_one(const trace_ctx *tc, uint64_t index, photons_chunk *c
     shape_ray r = {sc->light.position, vec_make(s * cos(phi), s * sin(phi), z)};
     vec3 power = vec_make(1, 1, 1);
     unsigned bounces = 0;
+    int diffuse_before = 0; /* a diffuse bounce on the path so far: no longer a caustic path */
     for (uint32_t depth = 0;; depth++) {
         if (depth >= pp->photon_depth) {
             c->truncated++;
@@ -138,7 +139,10 @@ static pm_status trace_one(const trace_ctx *tc, uint64_t index, photons_chunk *c
         const material *m = &sc->materials[sc->shapes[h.shape].material];
         if (m->kind == MATERIAL_LAMBERT) {
             if (pp->store_first_hits || bounces > 0) {
-                pm_status rc = chunk_store(c, h.p, r.dir, power, h.n, bounces == 0 ? PHOTONS_FLAG_DIRECT : 0);
+                unsigned flags = bounces == 0       ? PHOTONS_FLAG_DIRECT
+                                 : !diffuse_before ? PHOTONS_FLAG_CAUSTIC
+                                                   : 0u;
+                pm_status rc = chunk_store(c, h.p, r.dir, power, h.n, flags);
                 if (rc != PM_OK)
                     return rc;
             }
@@ -148,6 +152,7 @@ static pm_status trace_one(const trace_ctx *tc, uint64_t index, photons_chunk *c
             power = vec_scale(vec_mul(power, m->color), 1.0 / pc);
             double v1 = rng_next_double(&rs), v2 = rng_next_double(&rs);
             r = scene_spawn(&h, material_sample_cosine(h.n, v1, v2), 1);
+            diffuse_before = 1;
         } else if (m->kind == MATERIAL_MIRROR) {
             power = vec_mul(power, m->color);
             if (vec_maxc(power) <= 0.0)
@@ -280,6 +285,30 @@ void photons_list_free(photons_list *l)
     mem_free(l->pos);
     mem_free(l->ph);
     memset(l, 0, sizeof *l);
+}
+
+pm_status photons_list_select(const photons_list *l, uint8_t mask, photons_list *out)
+{
+    memset(out, 0, sizeof *out);
+    uint64_t n = 0;
+    for (uint64_t i = 0; i < l->count; i++)
+        n += (l->ph[i].flags & mask) != 0;
+    out->pos = mem_alloc((n ? n : 1) * 3 * sizeof(double));
+    out->ph = mem_alloc((n ? n : 1) * sizeof(photons_record));
+    if (!out->pos || !out->ph) {
+        photons_list_free(out);
+        return PM_ERR_NOMEM;
+    }
+    uint64_t j = 0;
+    for (uint64_t i = 0; i < l->count; i++) {
+        if (l->ph[i].flags & mask) {
+            memcpy(out->pos + 3 * j, l->pos + 3 * i, 3 * sizeof(double));
+            out->ph[j++] = l->ph[i];
+        }
+    }
+    out->count = n;
+    out->unit = l->unit;
+    return PM_OK;
 }
 
 /* The map frame of a list whose bounding box is lo..hi (lo > hi in some

@@ -17,6 +17,7 @@
 
 #define PHOTONS_FLAG_REP 1u    /* a representative of the precomputed method (set by reps_choose) */
 #define PHOTONS_FLAG_DIRECT 2u /* arrived straight from the light, no bounce before */
+#define PHOTONS_FLAG_CAUSTIC 4u /* arrived by mirror and glass only, at least one (L S+ D: the caustic map's) */
 
 /* A stored photon's payload; its position lives in the kd-tree. 20 bytes:
  * power as floats relative to the emitted photon's power (photons_map.unit),
@@ -74,6 +75,10 @@ vec3 photons_unpack_dir(const int8_t d[3]);
 pm_status photons_trace(const scene *sc, const photons_params *p, unsigned threads, progress *prog, photons_list *out);
 /* Frees a list; a zeroed list is fine. */
 void photons_list_free(photons_list *l);
+/* Copies the photons of l whose flags meet `mask` into *out, in trace
+ * order, with l's unit (the caustic map's list: PHOTONS_FLAG_CAUSTIC); l
+ * is unchanged. Returns PM_OK, or PM_ERR_NOMEM (out is then empty). */
+pm_status photons_list_select(const photons_list *l, uint8_t mask, photons_list *out);
 /* Builds the map from a list, which it consumes and frees, on `threads`
  * threads (the map is the same for any count). The photons
  * whose flags meet the mask `leave_out` stay out of the tree (they still

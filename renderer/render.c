@@ -34,8 +34,19 @@ typedef struct {
     photons_list list;
     photons_map map;
     reps_set reps;
+    photons_map caustic; /* --gather: the L S+ D photons (caustic.stored 0: none, no map) */
     double max_radius; /* the radius cap, scene units */
 } render_state;
+
+/* The photon pass of cfg: the first diffuse hits are stored when the map
+ * gives direct light (--direct photons) or the radiance at gather hits
+ * (--gather), which must be complete. */
+static photons_params photon_params_of(const config_render *cfg)
+{
+    photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth,
+                         cfg->direct == CONFIG_DIRECT_PHOTONS || cfg->gather > 0};
+    return pp;
+}
 
 /* Seconds since t0 (clock_now_ns). */
 static double seconds_since(int64_t t0)
@@ -48,7 +59,7 @@ static double seconds_since(int64_t t0)
 static pm_status step_trace(render_state *rs)
 {
     const config_render *cfg = rs->cfg;
-    photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS};
+    photons_params pp = photon_params_of(cfg);
     progress prog;
     progress_begin(&prog, "photons", cfg->photons, rs->show_progress);
     int64_t t0 = clock_now_ns();
@@ -69,13 +80,37 @@ static pm_status step_trace(render_state *rs)
     return PM_OK;
 }
 
-/* Step 2: build the photon map (kd-tree) and find the representatives'
- * sites in it. Returns PM_OK, or PM_ERR_NOMEM. */
+/* --gather: the caustic map from the list's L S+ D photons, built only
+ * when there are any (a scene with a mirror or glass that photons reach).
+ * Returns PM_OK, or PM_ERR_NOMEM. */
+static pm_status build_caustic(render_state *rs)
+{
+    photons_list cl;
+    pm_status rc = photons_list_select(&rs->list, PHOTONS_FLAG_CAUSTIC, &cl);
+    if (rc != PM_OK)
+        return rc;
+    if (cl.count == 0) {
+        photons_list_free(&cl);
+        return PM_OK;
+    }
+    if ((rc = photons_build_map(&cl, 0, rs->threads, &rs->caustic, NULL)) != PM_OK)
+        return rc;
+    rs->st->caustic_photons = rs->caustic.count;
+    rs->st->bytes_caustic_map = photons_map_bytes(&rs->caustic);
+    rs->st->work.build.tree_points += rs->caustic.count;
+    return PM_OK;
+}
+
+/* Step 2: build the photon map (kd-tree), with --gather the caustic map
+ * too, and find the representatives' sites in it. Returns PM_OK, or
+ * PM_ERR_NOMEM. */
 static pm_status step_build(render_state *rs)
 {
     int64_t t0 = clock_now_ns();
     photons_list left;
     pm_status rc;
+    if (rs->cfg->gather > 0 && (rc = build_caustic(rs)) != PM_OK)
+        return rc;
     if ((rc = photons_build_map(&rs->list, reps_leave_out_mask(&rs->rp), rs->threads, &rs->map, &left)) != PM_OK)
         return rc;
     rc = reps_collect(&rs->rp, &rs->map, &left, &rs->reps);
@@ -83,7 +118,7 @@ static pm_status step_build(render_state *rs)
     if (rc != PM_OK)
         return rc;
     rs->st->build = seconds_since(t0);
-    rs->st->work.build.tree_points = rs->map.count;
+    rs->st->work.build.tree_points += rs->map.count;
     /* the representatives' sites count with the map, whose build finds them */
     rs->st->bytes_photon_map = photons_map_bytes(&rs->map) + reps_sites_bytes(&rs->reps);
     rs->max_radius = render_max_radius(rs->sc, rs->cfg, &rs->map);
@@ -152,7 +187,8 @@ static pm_status step_precompute(render_state *rs)
 /* Step 4: the eye pass into *out. Returns PM_OK, or PM_ERR_NOMEM. */
 static pm_status step_eye(render_state *rs, image *out)
 {
-    eye_input in = {rs->sc, rs->cfg, &rs->map, &rs->reps, rs->max_radius};
+    eye_input in = {rs->sc, rs->cfg, &rs->map, &rs->reps, rs->max_radius,
+                    rs->caustic.stored > 0 ? &rs->caustic : NULL};
     return eye_render(&in, rs->threads, rs->show_progress, out, rs->st);
 }
 
@@ -166,7 +202,7 @@ pm_status render_prepare(scene *sc, const config_render *cfg, char *err, size_t 
 
 pm_status render_check_memory(const scene *sc, const config_render *cfg, uint64_t mem, char *err, size_t errlen)
 {
-    photons_params pp = {cfg->photons, cfg->seed, cfg->photon_depth, cfg->direct == CONFIG_DIRECT_PHOTONS};
+    photons_params pp = photon_params_of(cfg);
     double per_emitted;
     pm_status rc = photons_stored_per_emitted(sc, &pp, &per_emitted);
     if (rc != PM_OK) {
@@ -222,6 +258,7 @@ pm_status render_run(const scene *sc, const config_render *cfg, unsigned threads
     if (rc == PM_OK)
         st->reps_evaluated = reps_evaluated(&rs.reps);
     photons_list_free(&rs.list);
+    photons_map_free(&rs.caustic);
     if (rc == PM_OK && cfg->dump_reps) {
         /* the caller writes them: they stay with the map that places them */
         out->map = rs.map;

@@ -143,6 +143,7 @@ pm_status stats_write_json(FILE *f, const char *scene_path, const config_render 
     fprintf(f, "  \"reps_evaluated\": %llu,\n", (unsigned long long)st->reps_evaluated);
     fprintf(f, "  \"rep_fallbacks\": %llu,\n", (unsigned long long)st->rep_fallbacks);
     fprintf(f, "  \"nn\": %u,\n", cfg->nn);
+    fprintf(f, "  \"gather\": %u,\n", cfg->gather);
     fprintf(f, "  \"max_radius\": %.17g,\n", st->max_radius);
     fprintf(f, "  \"width\": %u,\n  \"height\": %u,\n", cfg->width, cfg->height);
     fprintf(f, "  \"samples_per_pixel\": %u,\n", cfg->subpixels * cfg->subpixels);
@@ -164,6 +165,21 @@ pm_status stats_write_json(FILE *f, const char *scene_path, const config_render 
     fprintf(f, "  \"empty_estimates\": %llu,\n", (unsigned long long)st->empty_estimates);
     fprintf(f, "  \"bytes_photon_map\": %llu,\n", (unsigned long long)st->bytes_photon_map);
     fprintf(f, "  \"bytes_representatives\": %llu,\n", (unsigned long long)st->bytes_representatives);
+    fprintf(f, "  \"caustic_photons\": %llu,\n", (unsigned long long)st->caustic_photons);
+    fprintf(f, "  \"bytes_caustic_map\": %llu,\n", (unsigned long long)st->bytes_caustic_map);
+    fprintf(f,
+            "  \"gather_work\": {\"rays\": %llu, \"specular\": %llu, \"lookups\": %llu, \"empty\": %llu, "
+            "\"fallbacks\": %llu, \"missed\": %llu, \"depth_limit_hits\": %llu, \"caustic_lookups\": %llu, "
+            "\"caustic_nodes\": %llu, \"caustic_points\": %llu},\n",
+            (unsigned long long)st->gather_rays, (unsigned long long)st->gather_specular,
+            (unsigned long long)st->gather_lookups, (unsigned long long)st->gather_empty,
+            (unsigned long long)st->gather_fallbacks, (unsigned long long)st->gather_missed,
+            (unsigned long long)st->gather_depth_limit_hits, (unsigned long long)st->caustic_lookups,
+            (unsigned long long)st->caustic_nodes, (unsigned long long)st->caustic_points);
+    fprintf(f, "  \"gather_time\": {\"gather_thread_s\": %.6f, \"render_thread_s\": %.6f, \"share\": ",
+            st->gather_thread_s, st->render_thread_s);
+    json_number(f, st->render_thread_s > 0.0 ? st->gather_thread_s / st->render_thread_s : 0.0);
+    fputs("},\n", f);
     fprintf(f, "  \"mean_radiance\": [");
     for (int c = 0; c < 3; c++) {
         json_number(f, st->mean_radiance[c]);

@@ -47,6 +47,14 @@ typedef struct {
     /* precomputed, beyond the paper (reps.h) */
     uint64_t reps_evaluated;      /* representatives whose irradiance was computed (all but for --rep-eval lazy) */
     uint64_t rep_fallbacks;       /* eye samples the plane gate sent to the conventional estimate */
+    /* final gathering (--gather, gather.h); zero without it */
+    uint64_t caustic_photons;     /* photons in the caustic map (0: none built) */
+    uint64_t bytes_caustic_map;   /* the caustic map (tree + payload) */
+    uint64_t gather_rays, gather_specular, gather_lookups, gather_empty, gather_fallbacks, gather_missed,
+        gather_depth_limit_hits;  /* gather_counts' (gather.h) */
+    uint64_t caustic_lookups, caustic_nodes, caustic_points; /* the caustic map's estimates and their kNN work */
+    double gather_thread_s;       /* seconds the threads spent casting gather rays and estimating at y, summed */
+    double render_thread_s;       /* seconds the threads spent on the eye pass's tiles, summed */
     work_phases work;             /* what each phase did, counted exactly (work.h) */
     provenance_info provenance;   /* the binary and the machine (its strings NULL: "unknown") */
 } stats_run;

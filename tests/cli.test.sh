@@ -30,6 +30,34 @@ threads_identical() {
 }
 check "exr bit-identical for 1 and 2 threads" threads_identical
 
+# --gather: both methods, 1 and 2 threads, the same image bit for bit; the
+# stats name the gather's counters and the caustic map, and both methods
+# cast the same rays (only the estimate at the gather hits differs)
+GATHER=(--gather 6 --photons 10000 --nn 20 --width 32 --height 24 --quiet)
+gather_threads_identical() {
+  local m
+  for m in conventional precomputed; do
+    $PM render scenes/cornell.scene "${GATHER[@]}" --method $m --threads 1 -o "$TMP/g1.exr" --stats "$TMP/g-$m.json" &&
+    $PM render scenes/cornell.scene "${GATHER[@]}" --method $m --threads 2 -o "$TMP/g2.exr" &&
+    cmp "$TMP/g1.exr" "$TMP/g2.exr" || { echo "$m: 1 and 2 threads differ"; return 1; }
+  done
+  for k in gather gather_work gather_time caustic_photons bytes_caustic_map; do
+    grep -q "\"$k\"" "$TMP/g-conventional.json" || { echo "missing key $k"; return 1; }
+  done
+  grep -q '"direct": "shadow-rays"' "$TMP/g-conventional.json" && grep -q '"gather": 6,' "$TMP/g-conventional.json" &&
+  grep -Eq '"caustic_photons": [1-9]' "$TMP/g-conventional.json" || { echo "direct, gather or caustic map"; return 1; }
+  local a b
+  a=$(grep -o '"gather_work": {"rays": [0-9]*, "specular": [0-9]*, "lookups": [0-9]*' "$TMP/g-conventional.json")
+  b=$(grep -o '"gather_work": {"rays": [0-9]*, "specular": [0-9]*, "lookups": [0-9]*' "$TMP/g-precomputed.json")
+  [ -n "$a" ] && [ "$a" = "$b" ] || { echo "the methods' rays differ: $a / $b"; return 1; }
+}
+check "--gather: exr bit-identical for 1 and 2 threads, both methods; the same gather rays; stats keys" \
+  gather_threads_identical
+gather_zero_unchanged() {
+  $PM render scenes/cornell.scene "${SMALL[@]}" -o "$TMP/g0.exr" --gather 0 && cmp "$TMP/a.exr" "$TMP/g0.exr"
+}
+check "--gather 0: the image without --gather, bit for bit" gather_zero_unchanged
+
 precomputed_ok() {
   $PM render scenes/cornell.scene "${SMALL[@]}" --method precomputed --stats "$TMP/p.json" &&
   grep -q '"method": "precomputed"' "$TMP/p.json" && grep -qE '"representatives": [1-9]' "$TMP/p.json"
@@ -94,7 +122,7 @@ help_lists() { # subcommand, options...
 }
 check "render --help: exit 0, every option with default and range" help_lists render --method --photons --nn --width \
   --height --subpixels --threads --seed --rep-every --rep-count --normal-cos --rep-tree --max-radius --direct \
-  --photon-depth --eye-depth -o --png --exposure --stats --dump-reps --allow-nonfinite --quiet
+  --photon-depth --eye-depth --gather -o --png --exposure --stats --dump-reps --allow-nonfinite --quiet
 check "export-pov --help: exit 0, every option with default and range" help_lists export-pov --width --height \
   --quality --no-radiosity --no-photons --no-glass-caustics -o
 check "photonmap --help: both subcommands, exit 0" bash -c "$PM --help | grep -q 'usage: photonmap render' && $PM --help | grep -q 'usage: photonmap export-pov'"

@@ -13,6 +13,8 @@
 #     closed scenes: negative controls);
 #   - an output name whose extension is not its format's is refused, and so
 #     is a render with no output unless --no-output says so.
+#   - --gather with --direct photons is refused naming both (direct light
+#     would count twice); without --direct it takes shadow rays.
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -138,5 +140,19 @@ check "--no-output: renders, prints the times, writes no file" timing_only
 check "--no-output with -o: exit 2" expect_exit 2 "--no-output contradicts" \
   $PM render scenes/cornell.scene "${FAST[@]}" --no-output -o "$TMP/n.exr"
 check "--help lists --no-output" bash -c "$PM render --help | grep -q -- '--no-output'"
+
+# ---- --gather and the direct light ----
+check "--gather with --direct photons: exit 2, naming both" \
+  expect_exit 2 "--gather .*--direct photons would count it twice" $PM render scenes/cornell.scene "${FAST[@]}" \
+  --gather 4 --direct photons --no-output
+gather_shadow_rays() {
+  $PM render scenes/cornell.scene "${FAST[@]}" --gather 2 --stats "$TMP/g.json" &&
+  grep -q '"direct": "shadow-rays"' "$TMP/g.json" &&
+  $PM render scenes/cornell.scene "${FAST[@]}" --gather 2 --direct shadow-rays --stats "$TMP/g2.json" &&
+  grep -q '"direct": "shadow-rays"' "$TMP/g2.json"
+}
+check "--gather without --direct, or with --direct shadow-rays: direct light by shadow rays" gather_shadow_rays
+check "--gather beyond its range: exit 2" expect_exit 2 "--gather: expected an integer in \[0, 65536\]" \
+  $PM render scenes/cornell.scene --gather 70000
 
 finish

@@ -28,7 +28,7 @@ static pm_status eye_run(const scene *sc, const config_render *cfg, const photon
                          image *img, stats_run *st)
 {
     memset(st, 0, sizeof *st);
-    eye_input in = {sc, cfg, m, NULL, 0.5};
+    eye_input in = {sc, cfg, m, NULL, 0.5, NULL};
     return eye_render(&in, threads, 0, img, st);
 }
 
