@@ -1,15 +1,6 @@
-/* bvh: a bounding-volume hierarchy over a scene's shapes, so that a ray
- * meets O(log n) shapes instead of all n. It owns only the tree (boxes and a
- * permutation of shape indices); the shapes stay in the scene's array.
- *
- * Exactness contract: bvh_intersect returns exactly what a linear loop over
- * the shapes in index order returns (the shape with the smallest t that
- * shape_intersect finds in (0, tmax), the lowest index among equal t), and
- * bvh_occluded returns 1 exactly when some shape has such a t. The boxes are
- * padded (BVH_PAD_REL of the coordinates' magnitude) far beyond the rounding
- * of a hit point, so a box never culls a hit its shape test would report;
- * a ray whose origin lies beyond the `reach` given at build time (where that
- * argument does not hold) is answered by the linear loop. */
+/* bvh: a bounding-volume hierarchy over a scene's shapes (boxes and a
+ * permutation; the shapes stay in the scene). Its answers are exactly the
+ * linear loop's (renderer/README.md, "Ray casting"). */
 #ifndef PM_BVH_H
 #define PM_BVH_H
 
@@ -28,17 +19,15 @@ typedef struct bvh bvh;
  * origins (2^-36: some 2^16 times the rounding of a hit point). */
 #define BVH_PAD_REL 0x1p-36
 
-/* Builds the tree over shapes[0..n) (n >= 1, at most UINT32_MAX). `reach`
- * bounds |coordinate| of the ray origins the tree will serve exactly by box
- * tests (the scene passes the largest of its bounds and its camera); it sets
- * the padding. Returns NULL when memory runs out. The tree does not keep a
- * pointer to shapes; pass the same array to the queries. Time O(n log n). */
+/* Builds the tree over shapes[0..n) (1 <= n <= UINT32_MAX); `reach` bounds
+ * the |coordinates| of ray origins it serves by box tests. Pass the same
+ * array to the queries. Returns NULL when memory runs out. */
 bvh *bvh_build(const shape *shapes, size_t n, double reach);
 /* Frees the tree; NULL is fine. */
 void bvh_free(bvh *b);
 
-/* The nearest hit of r in (0, tmax) among the n shapes the tree was built
- * over: returns the shape's index and sets *t, or -1 on a miss. */
+/* Returns the index of the nearest shape r hits in (0, tmax) (lowest index
+ * on ties) and sets *t, or -1 on a miss. */
 int bvh_intersect(const bvh *b, const shape *shapes, const shape_ray *r, double tmax, double *t);
 /* 1 if any shape has a hit of r in (0, tmax), else 0. */
 int bvh_occluded(const bvh *b, const shape *shapes, const shape_ray *r, double tmax);

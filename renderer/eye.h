@@ -1,11 +1,5 @@
-/* eye: the eye pass, the integrator that turns the photon map into an
- * image: camera rays on an SxS subpixel grid per pixel (box filter), mirror
- * and glass recursion (both glass branches, weighted by Fresnel), and the
- * radiance estimate at the first diffuse hit (the conventional estimate,
- * or the representatives' lookup), plus direct light by shadow rays when
- * asked; with --gather, final gathering there instead (gather.h). No
- * randomness but the gather's counter-based streams: each pixel depends
- * only on its coordinates, so images are identical for any thread count. */
+/* eye: the eye pass, which turns the photon map into an image by estimating
+ * radiance at each camera path's first diffuse hit (renderer/README.md). */
 #ifndef PM_EYE_H
 #define PM_EYE_H
 
@@ -29,11 +23,8 @@ typedef struct {
 } eye_input;
 
 /* Renders in->cfg's image into *out (allocated here) on `threads` workers
- * (>= 1), a progress bar on stderr if show_progress, and sets st's eye-pass
- * fields (render time, samples, depth-limit hits, empty estimates,
- * underflow and non-finite pixels, mean radiance, the gather's counters). Returns PM_OK, or
- * PM_ERR_NOMEM when memory runs out (out may then hold an image to
- * image_free). */
+ * (>= 1) and sets st's eye-pass fields. Returns PM_ERR_NOMEM when memory
+ * runs out (out may then hold an image to image_free). */
 pm_status eye_render(const eye_input *in, unsigned threads, int show_progress, image *out, stats_run *st);
 
 #endif

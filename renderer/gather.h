@@ -1,10 +1,6 @@
-/* gather: final gathering (--gather N) at an eye path's first diffuse hit
- * x: N stratified cosine-weighted gather rays, followed through mirror and
- * glass to their first diffuse hit y, where the global map's estimate
- * (eq. 1, or eq. 2's representatives) gives the radiance leaving y; and
- * the caustic map's estimate at x. Direct light is eye.c's shadow ray.
- * Which photons each map holds, the strata, the streams and the bounded
- * lookups: renderer/README.md, "Final gathering". */
+/* gather: final gathering (--gather N) at an eye path's first diffuse hit:
+ * gather rays to the global map and the caustic map's estimate
+ * (renderer/README.md, "Final gathering"). */
 #ifndef PM_GATHER_H
 #define PM_GATHER_H
 

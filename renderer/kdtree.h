@@ -1,10 +1,6 @@
-/* kdtree: a static 3-d kd-tree over float points (implicit heap order,
- * leaves of x[], y[], z[] arrays) with exact k-nearest and
- * nearest-with-predicate queries. It knows points only: the build returns
- * the leaf-order permutation for the caller's payload. A k-nearest answer
- * is the k smallest (squared distance, leaf-order index) pairs, so it never
- * depends on earlier queries or on the instruction set. The files:
- * renderer/README.md. */
+/* kdtree: a static 3-d kd-tree over float points with exact k-nearest and
+ * nearest-with-predicate queries; it knows points only, the caller keeps
+ * the payload in leaf order. Its files: renderer/README.md. */
 #ifndef PM_KDTREE_H
 #define PM_KDTREE_H
 
@@ -28,37 +24,30 @@ typedef struct {
     uint32_t scan_h;      /* k nearest scans whole subtrees this high (see kdtree_build.c) */
 } kd_tree;
 
-/* Builds a tree over n points (xyz triples in pts) on `threads` threads (0
- * or 1: the calling thread only); the tree is the same for any thread
- * count. If perm is not NULL it receives n entries: perm[i] = input index
- * of the point at leaf position i. Returns PM_OK, or PM_ERR_NOMEM
- * (the tree is then empty and safe to kd_free). n may be 0. */
+/* Builds a tree over n xyz points (n may be 0) on `threads` threads, the
+ * same tree for any count; perm, if not NULL, receives the input index of
+ * each leaf-order point. Returns PM_ERR_NOMEM when memory runs out (the
+ * tree is then empty). */
 pm_status kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size, uint32_t *perm, unsigned threads);
-/* An item of kd_build_items: a point and 20 bytes that are the caller's,
- * which move with it (32 bytes in all). */
+/* An item of kd_build_items: a point and 20 caller bytes that move with it. */
 typedef struct {
     float p[3];
     unsigned char payload[20];
 } kd_build_item;
 
-/* As kd_build over the items' points in their order (the same tree), but
- * in place: the items are reordered into the tree's leaf order (item i
- * holds leaf-order point i and its payload), and the build holds no
- * memory beyond the items and the tree's own arrays (kd_tree_bytes).
- * Returns PM_OK, or PM_ERR_NOMEM (the tree is then empty and the items
- * untouched). n may be 0. */
+/* kd_build in place: reorders the items into leaf order, using no memory
+ * beyond them and the tree's arrays. Returns PM_ERR_NOMEM when memory runs
+ * out (the tree is then empty and the items untouched). */
 pm_status kd_build_items(kd_tree *t, kd_build_item *items, uint32_t n, uint32_t leaf_size, unsigned threads);
 /* Frees the tree's arrays; the struct is left empty. A zeroed tree is fine. */
 void kd_free(kd_tree *t);
-/* Bytes of memory the tree holds. */
+/* Bytes of memory the tree holds. Never fails. */
 size_t kd_bytes(const kd_tree *t);
-/* Peak bytes kd_build holds while it builds a tree over n points with
- * leaf_size (0: KD_DEFAULT_LEAF): its working copy and the tree's arrays,
- * not the caller's pts and perm. A double, so that a count can be sized
- * (and refused) before its points exist. Never fails. */
+/* Peak bytes kd_build holds for n points (its copy and the tree, not pts
+ * or perm), as a double so a count can be refused before it exists. Never
+ * fails. */
 double kd_build_peak_bytes(double n, uint32_t leaf_size);
-/* The bytes a tree over n points with leaf_size holds once built (what
- * kd_bytes will report), a double for the same reason. Never fails. */
+/* What kd_bytes will report for a tree over n points. Never fails. */
 double kd_tree_bytes(double n, uint32_t leaf_size);
 
 /* The coordinates of leaf-order point i (i < t->n) to out. */
@@ -74,19 +63,14 @@ static inline void kd_point(const kd_tree *t, uint32_t i, float out[3])
  * x86-64 (portable C elsewhere); KD_SIMD_AVX2 needs the CPU to have it. */
 typedef enum { KD_SIMD_BASE = 1, KD_SIMD_AVX2 = 2 } kd_simd;
 
-/* The work of searches, counted exactly (work.h): nodes visited (each
- * inner node whose split was compared with the query point, plus each
- * point range scanned: a leaf, or a subtree the k-nearest search scans
- * whole) and points examined (points whose distance to the query was
- * computed, padding not counted). */
+/* The nodes and points searches visited, as work.h's map_nodes and
+ * map_points. */
 typedef struct {
     uint64_t nodes, points;
 } kd_work;
 
-/* One thread's k-nearest query state: the squared radius that held the
- * last query's k nearest (a starting guess for the next search; it changes
- * the cost of a query, never its result) and the candidate buffer. Not
- * shared between threads; any number may be used on one tree. */
+/* One thread's k-nearest state: the candidate buffer and the last query's
+ * radius, which starts the next search (it changes cost, never results). */
 typedef struct {
     uint64_t *buf;     /* candidates: squared distance bits << 32 | index */
     uint32_t cap;      /* candidates one pass may hold (buf is three such regions, with slack) */
@@ -98,43 +82,35 @@ typedef struct {
     kd_work work;      /* the nodes and points those traversals visited */
 } kd_query;
 
-/* Prepares s for queries of up to k_max neighbours (larger k grows the
- * buffer on demand) with the best instruction set this CPU has. Returns
- * PM_OK, or PM_ERR_NOMEM (s is then empty and safe to kd_query_free;
- * kd_query_knn still works with it, more slowly). */
+/* Prepares s for queries of up to k_max neighbours with the CPU's best
+ * leaf scan. Returns PM_ERR_NOMEM when memory runs out (s then still
+ * works, more slowly). */
 pm_status kd_query_init(kd_query *s, uint32_t k_max);
-/* Frees the buffer; the struct is left empty. */
+/* Frees the buffer; the struct is left empty. Never fails. */
 void kd_query_free(kd_query *s);
-/* Drops s's starting radius, so that the next query's cost does not depend
- * on the queries before it (a tile's first query; the result never
- * depends on it). Never fails. */
+/* Drops s's starting radius, so the next query's cost does not depend on
+ * earlier ones. Never fails. */
 void kd_query_forget(kd_query *s);
 /* Restricts s's leaf scans to `want` or the best set below it that the CPU
  * has; returns the set now in use (the tests run every path with it). */
 kd_simd kd_query_simd(kd_query *s, kd_simd want);
 
-/* The k nearest points to q with squared distance <= max_d2 (INFINITY: no
- * cap): writes up to k leaf-order indices and squared distances to idx/d2
- * (in no particular order) and returns how many it found; *r2 receives the
- * largest squared distance among them (0 if none). Exact: the k smallest
- * (squared distance, index) pairs within the cap. Uses and updates s's
- * starting radius; the result is the same whatever s held. */
+/* Writes the k smallest (squared distance, index) pairs within max_d2 of q
+ * to idx/d2, unordered, and returns how many; *r2 receives the largest
+ * (0 if none). Never fails. */
 uint32_t kd_query_knn(const kd_tree *t, kd_query *s, const float q[3], uint32_t k, float max_d2, uint32_t *idx,
                       float *d2, float *r2);
 
 /* Predicate for kd_nearest_if: nonzero when leaf-order point i qualifies. */
 typedef int (*kd_pred)(uint32_t i, const void *ctx);
 
-/* The nearest qualifying point within max_d2 of q: returns its leaf-order
- * index and sets *d2, or returns KD_NONE when none qualifies. Exact; of
- * points at the same distance the one of lowest index, so the result does
- * not depend on `hint`: a point (KD_NONE: none) tried first, whose distance,
- * if it qualifies, bounds the search from the start (the previous query's
- * answer, for coherent queries). */
+/* Returns the leaf-order index of the nearest qualifying point within
+ * max_d2 of q (lowest index on ties) and sets *d2, or KD_NONE if none
+ * qualifies. `hint` (or KD_NONE) is tried first; it never changes the
+ * result. */
 uint32_t kd_nearest_if(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx, uint32_t hint,
                        float *d2);
-/* kd_nearest_if that adds the nodes and points it visited to *w (the
- * hint's distance counts as one point). */
+/* kd_nearest_if that adds the nodes and points it visited to *w. */
 uint32_t kd_nearest_if_counted(const kd_tree *t, const float q[3], float max_d2, kd_pred pred, const void *ctx,
                                uint32_t hint, float *d2, kd_work *w);
 

@@ -1,10 +1,6 @@
-/* outfile: result files that appear whole or not at all. Data goes to a
- * temporary name in the same directory and is renamed over the final path
- * only when complete, so a failed or killed run never leaves a half-written
- * result and an existing file is only replaced by a complete one. On
- * SIGINT, SIGTERM or SIGHUP the temporaries still open are removed before
- * the process dies of the signal (SIGKILL cannot be caught: a temporary
- * name.tmp.PID may then remain, but never a half-written name). */
+/* outfile: result files that appear whole or not at all, written to a
+ * temporary beside the path and renamed over it when complete
+ * (renderer/README.md). */
 #ifndef PM_OUTFILE_H
 #define PM_OUTFILE_H
 
@@ -31,7 +27,8 @@ pm_status outfile_begin(outfile *o, const char *path, int stream, char *err, siz
  * Returns PM_OK, or PM_ERR_IO with "path: reason" in err (the temporary is
  * removed). */
 pm_status outfile_commit(outfile *o, char *err, size_t errlen);
-/* Closes and removes the temporary; the final path is untouched. */
+/* Closes and removes the temporary; the final path is untouched. Never
+ * fails. */
 void outfile_abort(outfile *o);
 /* 1 when paths a and b name the same file (the same string, the same
  * existing file, or the same name in the same resolved directory), else 0. */

@@ -1,8 +1,5 @@
-/* provenance: where a render's times come from, for its stats file: the
- * binary's commit and whether its tree had uncommitted changes (given by
- * the build: PM_COMMIT, PM_TREE), the compiler and the flags it was built
- * with (PM_FLAGS), the CPU model, and the load average when the render
- * started. Outside a git checkout the commit is "unknown". */
+/* provenance: the build (PM_COMMIT, PM_TREE, PM_FLAGS), compiler, CPU and
+ * load average that a stats file records. */
 #ifndef PM_PROVENANCE_H
 #define PM_PROVENANCE_H
 

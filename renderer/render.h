@@ -1,9 +1,5 @@
-/* render: the pipeline of one render (Fig. 1 of the paper: trace photons,
- * build the photon map, precompute irradiance at the representatives for
- * the precomputed method, eye pass), the checks between its steps, and the
- * up-front estimate of its memory. Each step lives in its own module
- * (photons, reps, eye); render only runs them in order, times them and
- * returns what they made. It writes no file: main writes every output. */
+/* render: one render's pipeline (the paper's Fig. 1), run in order and
+ * timed, with the checks between its steps; it writes no file. */
 #ifndef PM_RENDER_H
 #define PM_RENDER_H
 

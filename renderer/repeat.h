@@ -1,8 +1,5 @@
-/* repeat: the timed pipeline run several times with the same settings and
- * seed (the same image bit for bit each time), for times as reproducible
- * as the images: on a shared machine noise only adds time, so the minimum
- * over repeats estimates what the code needs. Each repeat frees the one
- * before it, so memory does not grow with the count. */
+/* repeat: the timed pipeline run several times with the same seed, for
+ * reproducible times (renderer/README.md). */
 #ifndef PM_REPEAT_H
 #define PM_REPEAT_H
 

@@ -1,9 +1,6 @@
-/* status: the one result-code space of the renderer's library and of the
- * command line (after SQLite's and Lua's: one enum, one function from a code
- * to a message, one to the process exit code). A function that can fail
- * returns a pm_status and writes the details (file:line:col, the path, the
- * setting) into its caller's err buffer; its comment says which codes it
- * returns. Invariants are asserts, not codes. */
+/* status: the renderer's one result code, its messages and exit codes.
+ * Functions that can fail return a pm_status and write the details into
+ * the caller's err buffer; invariants are asserts. */
 #ifndef PM_STATUS_H
 #define PM_STATUS_H
 

@@ -417,9 +417,9 @@ void test_stability_tir_depth_limit(void)
 
 void test_stability_exr_round_trip_of_renders(void)
 {
-    /* Regression: OpenEXRCore wrote a ZIP chunk whose compressed size equals
-     * its raw size as compressed; readers took it as raw (rows 16-31 of this
-     * exact render came back NaN/1e38). Real renders must round-trip. */
+    /* Real renders round-trip through EXR. Rows 16-31 of this render make a
+     * ZIP chunk whose compressed size equals its raw size, which image.c
+     * must store raw (readers would take it as raw and read NaN/1e38). */
     scene *sc = cornell(1.0, 12.566371);
     config_render c = config_defaults();
     c.photons = 20000;

@@ -115,10 +115,10 @@ void test_scene_errors(void)
 
 void test_stability_parser_degenerate_sizes(void)
 {
-    /* fuzz_scene findings (tests/fuzz/corpus/finding-*.scene): lengths whose
-     * squares underflow gave a rect an infinite 1/|edge|^2 and a NaN normal,
-     * a scene of no extent got a zero epsilon and radius; hex floats were
-     * taken though the format is decimal. Each is now an input error. */
+    /* Input errors (tests/fuzz/corpus/finding-*.scene): lengths whose
+     * squares underflow (a rect's 1/|edge|^2 would be infinite, its normal
+     * NaN), a scene of no extent (zero epsilon and radius), hex floats (the
+     * format is decimal). */
     static const char *head = "camera position 1 1 1 look_at 1 1 0 up 0 1 0 fov 60\n"
                               "light point position 0 1 0 power 1 1 1\n"
                               "material w lambert rho 1 1 1\n";
