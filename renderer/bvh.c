@@ -1,9 +1,5 @@
-/* bvh: the bounding-volume hierarchy over a scene's shapes (see bvh.h for
- * the exactness contract). Built top-down with a binned surface-area
- * heuristic on the boxes' centres; stored depth-first in one array (an inner
- * node's first child follows it, the second child's index is stored), leaves
- * refer to a range of a permutation of the shape indices. Queries walk it
- * with a fixed stack, nearer child first. */
+/* bvh: building and walking the bounding-volume hierarchy
+ * (renderer/README.md, "Ray casting"). */
 #include "bvh.h"
 
 #include <assert.h>

@@ -1,18 +1,5 @@
-/* kdtree_build: the tree's construction and its memory: kd_build (a
- * recursive median split on the widest axis, each median found by a
- * Floyd-Rivest sampled quickselect on a contiguous working copy of the
- * points; kd_build_items the same on the caller's own items, in place),
- * the height at which searches switch to range scans, kd_free, kd_bytes
- * and kd_build_peak_bytes. The splitting itself is kdtree_build.inc, once
- * per item type.
- *
- * Threads: a node's split depends only on the items of its own range and
- * their order, and every node's range follows from n alone (each splits at
- * lo + (hi - lo) / 2), so nodes of disjoint ranges can be split at the same
- * time without changing the tree. The top levels are split one level at a
- * time (a parallel loop over each level's nodes), then the subtrees below
- * them are built in parallel; the copies in and out run over blocks. The
- * tree is the same for any thread count. */
+/* kdtree_build: the tree's construction (kd_build, kd_build_items), its
+ * scan height and its memory (renderer/README.md). */
 #include "kdtree_impl.h"
 #include "mem.h"
 #include "parallel.h"

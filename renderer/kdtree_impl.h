@@ -1,14 +1,5 @@
 /* kdtree_impl: what the kdtree_*.c files share and nothing outside them
- * reads: the layout constants, the traversal helpers (the incremental cell
- * distance of Arya & Mount, the explicit stack), the 64-bit candidate keys,
- * the base leaf-scan mask (used by the gathering traversal and by
- * kd_nearest_if), and the functions one file defines for another.
- *
- * Search: iterative depth-first descent with an explicit stack; each cell's
- * squared distance is updated per axis, so far cells are pruned without
- * storing boxes. Leaves are scanned KD_CHUNK points at a time (the
- * coordinate arrays carry KD_CHUNK floats of padding, so a chunk may run
- * past the last point). */
+ * reads (renderer/README.md). */
 #ifndef PM_KDTREE_IMPL_H
 #define PM_KDTREE_IMPL_H
 

@@ -1,15 +1,5 @@
-/* kdtree_knn: the k-nearest search's entry points and driver: the
- * per-thread kd_query state (its candidate buffer and its starting radius,
- * the previous query's k-th distance), the passes (repeated wider when the
- * starting radius proves too small), the final selection and output, and
- * the heap search used when no buffer is at hand. Where the leaf scans and
- * traversals live: kdtree_simd.c; the selection: kdtree_select.c.
- *
- * k nearest gathers rather than ranks: a pass collects every point within
- * a radius into a buffer of (distance, index) keys and selects the k
- * smallest at the end, so no heap is kept per point. For k <= KD_SMALL_K
- * the pass keeps the k nearest sorted instead and shrinks the radius as
- * soon as it holds k. */
+/* kdtree_knn: the k-nearest search's entry points, query state, passes and
+ * output, and the heap search used without a buffer (renderer/README.md). */
 #include "kdtree_impl.h"
 
 #include <assert.h>

@@ -1,11 +1,5 @@
 /* kdtree_nearest: kd_nearest_if, the nearest point that passes a caller's
- * predicate: a descent to each leaf in turn with the base leaf scan's
- * mask, the bound shrinking to the best distance found, the hint's
- * distance bounding the search from the start. When the hint qualifies,
- * the first descent follows the path to the hint's own leaf, known from
- * its index: the nodes on it do not wait on each other's compares, where a
- * descent by q's side of each split does (coherent queries mostly find
- * their answer in the hint's leaf or next to it). */
+ * predicate (renderer/README.md). */
 #include "kdtree_impl.h"
 
 #include <string.h>

@@ -1,9 +1,5 @@
-/* kdtree_select: the selection of the k nearest among a pass's gathered
- * candidate keys. kd_select_k runs in expected linear time: each pass
- * splits the candidates three ways around two distances guessed to bracket
- * the k-th (through the instruction set's kd_ops) and goes on with the one
- * part that holds it; kd_select_keys is the quickselect it, the gathering
- * traversal (when its buffer fills) and the base kd_ops fall back on. */
+/* kdtree_select: the selection of the k nearest among a pass's candidate
+ * keys (renderer/README.md). */
 #include "kdtree_impl.h"
 
 #include <assert.h>

@@ -1,10 +1,6 @@
 /* kdtree_simd: everything of the k-nearest search that differs between
- * instruction sets, side by side: the leaf scans (SSE2, or portable C off
- * x86-64, and AVX2, chosen at run time per kd_query), the four gathering
- * traversals built on them from kdtree_gather.inc, the kd_ops of selection
- * and output, and which set this CPU has. Every target("avx2") function of
- * the tree is in this file, and nothing runs AVX2 code unless
- * kd_simd_best found the CPU has it. */
+ * instruction sets, including every AVX2 function of the tree
+ * (renderer/README.md). */
 #include "kdtree_impl.h"
 
 #include <assert.h>

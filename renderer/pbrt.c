@@ -1,20 +1,5 @@
-/* pbrt: exporting a scene as a pbrt-v3 scene file that renders, as a linear
- * OpenEXR, the same radiance our renderer computes. This file owns the
- * mapping of units and conventions (reference/pbrt/README.md has the
- * measured facts behind it):
- *   - coordinates: pbrt is left-handed; `Scale -1 1 1` before `LookAt`
- *     mirrors the camera's x so that the image is our right-handed one;
- *   - camera: pbrt's perspective `fov` is the angle of the shorter image
- *     axis, so a horizontal FOV becomes 2 atan(tan(h/2) H/W) when W > H;
- *   - light: our point light of power P (per channel) is pbrt's `point`
- *     light of intensity I = P/(4 pi);
- *   - materials: Lambert rho -> `matte` Kd (sigma 0), mirror -> `mirror` Kr,
- *     glass -> `glass` with eta and pbrt's defaults Kr = Kt = 1;
- *   - shapes: spheres as spheres, rectangles as two-triangle meshes (both
- *     sides shade alike in pbrt, as in our renderer);
- *   - film and sampling: box filter of one pixel (an average over the
- *     pixel's area), stratified samples, jittered or at fixed points.
- * Nothing here renders; reference/reference.mk runs pbrt on the output. */
+/* pbrt: writing a scene as a pbrt-v3 scene that renders the same radiance,
+ * with the mapping of units and conventions (renderer/README.md). */
 #include "pbrt.h"
 
 #include <assert.h>

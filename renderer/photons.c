@@ -1,9 +1,4 @@
-/* photons: the photon pass and the map build. Photons are traced in fixed
- * chunks of indices, each chunk into its own buffer, and the buffers are
- * joined in chunk order (each copied in parallel to its place, found by
- * prefix sums of the chunks' counts), so the stored list does not depend on
- * the thread count. The build moves the positions into the map frame
- * (photons.h). */
+/* photons: the photon pass and the map build (renderer/README.md). */
 #include "photons.h"
 
 #include <assert.h>

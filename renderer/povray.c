@@ -1,18 +1,5 @@
-/* povray: exporting a scene as POV-Ray 3.7 SDL that renders, as linear
- * OpenEXR (+FE), the same radiance our renderer computes. This file owns the
- * mapping of units and conventions (reference/README.md, "What POV-Ray
- * does", has the measured facts behind it):
- *   - coordinates: POV-Ray is left-handed, so z is negated everywhere;
- *   - camera: `right x*W/H`, `up y`, `sky`, `angle` (horizontal FOV), then
- *     `look_at`; the image plane then matches camera_ray exactly;
- *   - light: POV's attenuation with fade_power 2 is 2/(1+(d/D)^2), so an
- *     intensity I (= power/4pi) becomes colour I/(2 pi D^2) with a tiny D;
- *     the Lambert 1/pi lives in that colour, diffuse is 1;
- *   - rectangles: thin boxes behind the lit face (photon targets need finite
- *     objects), spheres as spheres;
- *   - mirror and glass are photon targets (caustics); radiosity with a
- *     recursion limit of 20 carries the diffuse interreflection.
- * Nothing here renders; `make reference` runs POV-Ray on the output. */
+/* povray: writing a scene as POV-Ray 3.7 SDL that renders the same
+ * radiance, with the mapping of units and conventions (renderer/README.md). */
 #include "povray.h"
 
 #include <assert.h>

@@ -1,9 +1,5 @@
-/* scene: the .scene parser and the scene model's small queries.
- *
- * The format is line-oriented: one statement per line, '#' starts a comment,
- * fields are "key value..." pairs in any order, each required exactly once.
- * Statement tokens must be printable ASCII; comments may hold any valid UTF-8.
- * Every error names file:line:col (1-based, columns in bytes). */
+/* scene: the .scene parser (the format: scenes/README.md) and the scene
+ * model's small queries. */
 #include "scene.h"
 
 #include <assert.h>
