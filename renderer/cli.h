@@ -15,6 +15,7 @@
 #include "povray.h"
 #include "status.h"
 
+/* The kinds of option value, and where each is stored. */
 typedef enum {
     CLI_FLAG,   /* no value: stores flag_value in an int */
     CLI_U32,    /* decimal integer in [ulo, uhi] into a uint32_t */
@@ -24,6 +25,7 @@ typedef enum {
     CLI_STRING  /* any non-empty string into a const char * */
 } cli_kind;
 
+/* One row of an option table. */
 typedef struct {
     const char *name;           /* "--photons" */
     cli_kind kind;
@@ -37,6 +39,7 @@ typedef struct {
     const char *default_text;   /* shown instead of the default's value when not NULL */
 } cli_option;
 
+/* A subcommand: its positional argument and its option table. */
 typedef struct {
     const char *name;            /* "render" */
     const char *summary;         /* one line */
@@ -83,12 +86,13 @@ typedef struct {
     cli_given given;
 } cli_render_args;
 
-/* `photonmap export-pov`'s and `export-pbrt`'s arguments. */
+/* `photonmap export-pov`'s arguments. */
 typedef struct {
     povray_options pov;
     const char *scene, *out;
 } cli_pov_args;
 
+/* `photonmap export-pbrt`'s arguments. */
 typedef struct {
     pbrt_options pbrt;
     const char *scene, *out;

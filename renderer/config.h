@@ -1,6 +1,5 @@
-/* config: every user-settable knob of a render and its default value, in one
- * place. The command line (main.c) fills a config_render from these defaults;
- * tests build one the same way. */
+/* config: every render setting, its default and the checks of which
+ * settings go together. */
 #ifndef PM_CONFIG_H
 #define PM_CONFIG_H
 
@@ -15,6 +14,7 @@ typedef enum { CONFIG_REP_TREE_SEPARATE = 0, CONFIG_REP_TREE_SHARED = 1 } config
 typedef enum { CONFIG_REP_EVAL_EAGER = 0, CONFIG_REP_EVAL_LAZY = 1 } config_rep_eval;
 typedef enum { CONFIG_REP_GATE_NONE = 0, CONFIG_REP_GATE_PLANE = 1, CONFIG_REP_GATE_PLANE_LOOKUP = 2 } config_rep_gate;
 
+/* Every setting of one render. */
 typedef struct {
     config_method method;     /* radiance estimate: eq. 1 or eq. 2 of the paper */
     config_direct direct;     /* direct light from the photon map or by shadow rays */
@@ -112,13 +112,13 @@ typedef struct {
 #define CONFIG_MAX_THREADS 256u
 #define CONFIG_MAX_DEPTH 1000u
 /* A render whose photon map is expected to need more than this share of
- * physical memory is refused up front (main.c). */
+ * physical memory is refused up front (render_check_memory). */
 #define CONFIG_MEMORY_HEADROOM 0.8
 
 /* The defaults above as a struct; never fails. */
 config_render config_defaults(void);
-/* NULL when the settings of c go together, else why they do not (a user
- * error: degenerate estimates are refused rather than computed). */
+/* Returns NULL when the settings of c go together, else why they do not
+ * (a user error: degenerate estimates are refused, not computed). */
 const char *config_check(const config_render *c);
 /* Each enum's spellings, in the enum's order and NULL-terminated: the
  * option tables' choices, the usage text and the stats use these alone. */

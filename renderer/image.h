@@ -10,6 +10,7 @@
 
 #include "status.h"
 
+/* A linear RGB float framebuffer. */
 typedef struct {
     uint32_t width, height;
     float *rgb; /* width*height*3, row 0 at the top */

@@ -13,6 +13,7 @@
 #define KD_DEFAULT_LEAF 12u
 #define KD_NONE UINT32_MAX
 
+/* A built tree: inner nodes in heap order, points in leaf order. */
 typedef struct {
     uint32_t n;           /* points */
     uint32_t nleaves;     /* a power of two (1 when n <= leaf size) */

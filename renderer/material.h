@@ -10,6 +10,7 @@ typedef enum { MATERIAL_LAMBERT = 0, MATERIAL_MIRROR = 1, MATERIAL_GLASS = 2 } m
 
 #define MATERIAL_NAME_MAX 64
 
+/* A material as the scene file defines it. */
 typedef struct {
     material_kind kind;
     vec3 color;  /* Lambert: reflectance rho; mirror: reflectance; glass: unused (1) */

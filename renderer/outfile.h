@@ -10,6 +10,7 @@
 
 #define OUTFILE_PATH_MAX 4096
 
+/* One result file being written. */
 typedef struct {
     char path[OUTFILE_PATH_MAX]; /* final name */
     char tmp[OUTFILE_PATH_MAX];  /* temporary name beside it */

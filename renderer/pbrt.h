@@ -11,12 +11,14 @@
 #include "scene.h"
 #include "status.h"
 
+/* The pbrt integrator the scene asks for. */
 typedef enum {
     PBRT_INTEGRATOR_BDPT = 0,          /* bidirectional path tracing */
     PBRT_INTEGRATOR_PATH = 1,          /* unidirectional path tracing (min_bounces needs the local change) */
     PBRT_INTEGRATOR_DIRECTLIGHTING = 2 /* direct light, specular chains traced: the --direct shadow-rays check */
 } pbrt_integrator;
 
+/* What export-pbrt writes. */
 typedef struct {
     uint32_t width, height;     /* the film resolution */
     pbrt_integrator integrator;

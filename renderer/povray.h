@@ -9,8 +9,10 @@
 #include "scene.h"
 #include "status.h"
 
+/* POV-Ray's radiosity and photon settings. */
 typedef enum { POVRAY_QUALITY_FAST = 0, POVRAY_QUALITY_REFERENCE = 1 } povray_quality;
 
+/* What export-pov writes. */
 typedef struct {
     uint32_t width, height;     /* the image size POV-Ray will be run at (sets the aspect ratio) */
     povray_quality quality;    /* radiosity and photon settings: fast or reference */

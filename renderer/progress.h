@@ -6,6 +6,7 @@
 #include <stdatomic.h>
 #include <stdint.h>
 
+/* One phase's progress bar. */
 typedef struct {
     const char *label;
     uint64_t total;

@@ -3,6 +3,7 @@
 #ifndef PM_PROVENANCE_H
 #define PM_PROVENANCE_H
 
+/* What a stats file records about the binary and the machine. */
 typedef struct {
     const char *commit;   /* the short hash, or "unknown" */
     const char *tree;     /* "clean", "dirty" (uncommitted changes to tracked files) or "unknown" */

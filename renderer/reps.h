@@ -70,6 +70,7 @@ typedef struct {
     float radius2;       /* the squared radius its estimate divided by (map frame) */
 } reps_value;
 
+/* The representatives: their sites, values and lookup layout. */
 typedef struct {
     config_rep_tree rep_tree;
     uint32_t count;

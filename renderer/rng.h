@@ -6,6 +6,7 @@
 
 #include <stdint.h>
 
+/* One random stream: its key and position. */
 typedef struct {
     uint64_t key;     /* hash of (seed, stream index) */
     uint64_t counter; /* how many numbers were drawn */

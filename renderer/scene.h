@@ -13,16 +13,19 @@
 #include "status.h"
 #include "vec.h"
 
+/* The pinhole camera as the scene file gives it. */
 typedef struct {
     vec3 position, look_at, up;
     double hfov_deg; /* horizontal field of view, degrees */
 } scene_camera;
 
+/* The one point light. */
 typedef struct {
     vec3 position;
     vec3 power; /* RGB watts; intensity = power / (4 pi) W/sr */
 } scene_light;
 
+/* A parsed scene; scene_free frees it. */
 typedef struct {
     scene_camera camera;
     scene_light light;

@@ -10,6 +10,7 @@ typedef enum { SHAPE_SPHERE = 0, SHAPE_RECT = 1 } shape_kind;
 
 #define SHAPE_NO_AXIS (-1) /* shape.axis of a shape that is not an axis-aligned rectangle */
 
+/* A sphere or a rectangle, with values precomputed for its hit test. */
 typedef struct {
     shape_kind kind;
     int material;        /* index into scene.materials */
@@ -26,6 +27,7 @@ typedef struct {
                             non-zero component (an axis-aligned rectangle), else SHAPE_NO_AXIS */
 } shape;
 
+/* A ray: origin and unit direction. */
 typedef struct {
     vec3 origin;
     vec3 dir; /* unit length */

@@ -20,6 +20,7 @@ typedef struct {
     double t[CONFIG_MAX_REPEATS][STATS_PHASES];
 } stats_repeats;
 
+/* What a render measured: the stats file's times and counts. */
 typedef struct {
     /* seconds, monotonic clock; over repeats, each phase's minimum and the
      * smallest total (not the sum of the phases' minima) */
