@@ -191,23 +191,18 @@ static inline uint32_t chunk_mask(const float *x, const float *y, const float *z
 /* ---- between the files ---- */
 
 /* The parts of selection and output that differ between instruction sets
- * (kdtree_simd.c defines both tables):
- *
- * split3: splits the n keys src[0..n) around p1 <= p2: keys < p1 to lt,
- * keys in [p1, p2) to mid, the rest to ge; cnt[] receives the three counts.
- * Any one output may be src itself (each is written at or behind the read
- * position); arrays are read and written up to 4 keys past their ends.
- *
- * smallest: writes the need < mc smallest of the mc <= KD_RANK_MAX distinct
- * keys cand[0..mc) to out[0..need) (out may overlap cand and may be
- * written up to 8 keys past need; cand may be reordered).
- *
- * output: splits n keys into idx[] and d2[]; returns the largest d2 (0 if
- * n = 0). */
+ * (kdtree_simd.c defines both tables). */
 typedef struct {
+    /* Splits the n keys of src around p1 <= p2 into lt (< p1), mid ([p1, p2))
+     * and ge, their counts to cnt; any output may be src (each is written at
+     * or behind the read position); reads and writes up to 4 keys past ends. */
     void (*split3)(const uint64_t *src, uint32_t n, uint64_t p1, uint64_t p2, uint64_t *lt, uint64_t *mid,
                    uint64_t *ge, uint32_t cnt[3]);
+    /* Writes the need < mc smallest of the mc <= KD_RANK_MAX distinct keys
+     * of cand to out, which may overlap cand and is written up to 8 keys past
+     * need; cand may be reordered. */
     void (*smallest)(uint64_t *cand, uint32_t mc, uint32_t need, uint64_t *out);
+    /* Splits n keys into idx and d2; returns the largest d2 (0 if n = 0). */
     float (*output)(const uint64_t *keys, uint32_t n, uint32_t *idx, float *d2);
 } kd_ops;
 

@@ -45,11 +45,10 @@ const char *pbrt_integrator_name(pbrt_integrator i);
 extern const char *const pbrt_integrator_names[];
 
 /* Checks that sc and o can be written as a pbrt scene with the same
- * radiance. Returns PM_OK, or PM_ERR_INPUT with the cause in err (a glass
- * rectangle, the camera or the light inside a glass sphere: pbrt scales
- * radiance by eta^2 at each refraction, which our renderer does not, and
- * the two agree only for paths that leave every glass body they enter;
- * min_bounces with an integrator other than path, or not below bounces). */
+ * radiance. Returns PM_ERR_INPUT with the cause in err for a glass
+ * rectangle, the camera or the light inside a glass sphere
+ * (renderer/README.md), or min_bounces with an integrator other than path
+ * or not below bounces. */
 pm_status pbrt_check(const scene *sc, const pbrt_options *o, char *err, size_t errlen);
 
 /* Writes sc (already accepted by pbrt_check) as pbrt-v3 scene text to f;

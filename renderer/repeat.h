@@ -22,7 +22,8 @@ int repeat_done(uint32_t repeats, uint32_t n, double spent);
 /* render_run cfg->repeats times (repeat_done decides for auto) into *out:
  * the last repeat's image and counts, every repeat's times in
  * out->st.repeats, and in out->st's times each phase's minimum and the
- * smallest total. Returns render_run's status (out is then empty). */
+ * smallest total. Returns PM_ERR_NOMEM or PM_ERR_INPUT as render_run
+ * does, with the reason in err (out is then empty). */
 pm_status repeat_render(const scene *sc, const config_render *cfg, unsigned threads, int show_progress,
                         render_result *out, char *err, size_t errlen);
 
