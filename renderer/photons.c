@@ -119,7 +119,7 @@ static pm_status trace_one(const trace_ctx *tc, uint64_t index, photons_chunk *c
     shape_ray r = {sc->light.position, vec_make(s * cos(phi), s * sin(phi), z)};
     vec3 power = vec_make(1, 1, 1);
     unsigned bounces = 0;
-    int diffuse_before = 0; /* a diffuse bounce on the path so far: no longer a caustic path */
+    int diffuse_before = 0; /* a diffuse bounce on the path so far: not a caustic path */
     for (uint32_t depth = 0;; depth++) {
         if (depth >= pp->photon_depth) {
             c->truncated++;

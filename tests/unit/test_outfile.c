@@ -1,6 +1,6 @@
 /* test_outfile: a result file appears whole or not at all: committed data
- * replaces the old file, an aborted or failed write leaves the old file as
- * it was and no temporary behind (the negative controls), and two names of
+ * replaces an existing file, an aborted or failed write leaves that file
+ * untouched and no temporary behind (the negative controls), and two names of
  * one file are recognised. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -53,7 +53,7 @@ void test_outfile_whole_or_nothing(void)
     CHECK(outfile_commit(&o, err, sizeof err) == PM_OK);
     CHECK(read_all(path, buf, sizeof buf) == 5 && !strcmp(buf, "first"));
 
-    /* negative control: an aborted write leaves the old file and no temporary */
+    /* negative control: an aborted write leaves the existing file and no temporary */
     CHECK(outfile_begin(&o, path, 1, err, sizeof err) == PM_OK);
     fputs("second, half written", o.f);
     outfile_abort(&o);
