@@ -18,8 +18,7 @@
  * (photon i draws from stream i < 2^31, so no stream is shared). */
 #define GATHER_STREAM_BASE (1ull << 63)
 
-/* What the gathers of one thread did, counted exactly (the image's order
- * of work does not change them). */
+/* What one thread's gathers did, counted exactly. */
 typedef struct {
     uint64_t rays;            /* gather rays cast from eye hits */
     uint64_t specular;        /* rays spawned at mirror and glass along gather paths */
@@ -45,44 +44,34 @@ typedef struct {
     uint32_t depth;             /* specular bounces a gather path may make (--eye-depth) */
 } gather_params;
 
-/* The gather of cfg (cfg->gather rays) on the global map (its
- * representatives `reps` for the precomputed method, else NULL) and the
- * caustic map (NULL: none), with the radius cap max_radius in scene units.
- * Never fails. */
+/* The gather cfg asks for on the global map (with `reps` for the
+ * precomputed method) and the caustic map (NULL: none). Never fails. */
 gather_params gather_params_make(const scene *sc, const config_render *cfg, const photons_map *global,
                                  const reps_set *reps, const photons_map *caustic, double max_radius);
 
-/* The strata of n gather rays: strata_u x strata_v = n, strata_v >= strata_u,
- * from the divisor of n nearest below sqrt(n) when the grid is no more than
- * 4 times as long as wide, else floor(sqrt(n)) x floor(n / floor(sqrt(n)))
- * and the rest of the n rays uniform. Never fails. */
+/* The strata grid of n gather rays, strata_u <= strata_v, by the rule of
+ * renderer/README.md ("Final gathering"). Never fails. */
 void gather_strata(uint32_t n, uint32_t *strata_u, uint32_t *strata_v);
 
 /* The gather stream of eye sample `sample` (its index in the image's
  * sample order) for seed; never fails. */
 rng_stream gather_stream(uint64_t seed, uint64_t sample);
 
-/* The unit direction of gather ray i at a point of normal n with tangents
- * t and b (vec_basis), from the uniform numbers xi1 and xi2: cosine-weighted
- * over the hemisphere, in ray i's stratum. Never fails. */
+/* Gather ray i's cosine-weighted unit direction in its stratum, about
+ * normal n with tangents t and b, from uniforms xi1, xi2. Never fails. */
 vec3 gather_direction(const gather_params *g, uint32_t i, double xi1, double xi2, vec3 n, vec3 t, vec3 b);
 
-/* The irradiance (W per unit^2) the global map gives at diffuse point y
- * of unit normal n, per --method (g->reps: the nearest agreeing
- * representative, else the n-nearest estimate), searching within the cap
- * only; 0 when nothing qualifies there (counted in c->empty). s is the
- * thread's search state. Never fails. */
+/* The global map's irradiance at diffuse point y with unit normal n, per
+ * --method, within the cap only; 0 when nothing qualifies (counted in
+ * c->empty). Never fails. */
 vec3 gather_estimate(const gather_params *g, vec3 y, vec3 n, est_scratch *s, gather_counts *c);
 
-/* The indirect irradiance at diffuse hit x (W per unit^2, the caller
- * multiplies by rho/pi) by g->rays gather rays drawing from rs: pi times the
- * mean radiance they bring back. s is the thread's search state on the
- * global map; the work is added to c. Never fails. */
+/* The indirect irradiance at diffuse hit x from g->rays gather rays drawn
+ * from rs (pi times their mean radiance); adds the work to c. Never fails. */
 vec3 gather_indirect(const gather_params *g, const scene_hit *x, rng_stream *rs, est_scratch *s, gather_counts *c);
 
-/* The caustic irradiance at diffuse hit x (W per unit^2) from the caustic
- * map by the conventional estimate, s the thread's search state on it; 0
- * without a caustic map. Never fails. */
+/* The caustic map's conventional estimate at diffuse hit x; 0 without a
+ * caustic map. Never fails. */
 vec3 gather_caustic(const gather_params *g, const scene_hit *x, est_scratch *s, gather_counts *c);
 
 /* Adds every counter of b to a; never fails. */

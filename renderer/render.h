@@ -14,28 +14,23 @@
 #include "stats.h"
 #include "status.h"
 
-/* The search radius cap in scene units: cfg->max_radius if set, else
- * cfg->max_radius_frac of the photon map's extent (of the scene's
- * bounding-box diagonal when the photons lie at fewer than two places), so
- * that geometry no photon reaches does not change it. */
+/* Returns the radius cap in scene units: cfg->max_radius if set, else
+ * cfg->max_radius_frac of the photons' extent (of the scene's box diagonal
+ * when they lie at fewer than two places). Never fails. */
 double render_max_radius(const scene *sc, const config_render *cfg, const photons_map *m);
 
 /* The smallest span of the lit scene, relative to its distance from the
  * origin, that renders within 0.5% of the same scene at the origin (2^-38:
- * about 16,000 doubles across the span; measured in results/stability.md). */
+ * about 16,000 doubles across the span; results/stability/stability.md). */
 #define RENDER_MIN_RELATIVE_EXTENT 0x1p-38
 
-/* The pipeline's first step: builds (or drops) sc's ray-casting structure
- * for cfg->accel (scene_set_accel). Returns PM_OK, or
- * PM_ERR_NOMEM with the reason in err (sc then casts rays by the
- * linear loop, which gives the same images). */
+/* Builds (or drops) sc's BVH for cfg->accel. Returns PM_ERR_NOMEM with the
+ * reason in err when memory runs out (sc then uses the linear loop). */
 pm_status render_prepare(scene *sc, const config_render *cfg, char *err, size_t errlen);
 
-/* Refuses up front a render whose photon map would not fit in mem bytes
- * of physical memory (0: unknown, no limit) or in the map's 2^32-1 photons,
- * from a pilot of the photon pass. Returns PM_OK; PM_ERR_INPUT with
- * the reason in err (too many photons); PM_ERR_NOMEM when the pilot
- * runs out of memory. */
+/* Estimates from a pilot whether the photon map fits in mem bytes (0: no
+ * limit) and in 2^32-1 photons. Returns PM_ERR_INPUT with the reason in err
+ * when it does not, PM_ERR_NOMEM when the pilot runs out of memory. */
 pm_status render_check_memory(const scene *sc, const config_render *cfg, uint64_t mem, char *err, size_t errlen);
 
 /* What render_run made. */
@@ -48,10 +43,9 @@ typedef struct {
     reps_set reps;
 } render_result;
 
-/* Renders sc with cfg into *out on `threads` workers (>= 1), progress bars
- * on stderr if show_progress. Returns PM_OK, or PM_ERR_NOMEM, or
- * PM_ERR_INPUT (a scene or setting it cannot render faithfully), with the
- * reason in err (out is then empty). */
+/* Renders sc with cfg into *out on `threads` workers (>= 1). Returns
+ * PM_ERR_NOMEM, or PM_ERR_INPUT for a scene or setting it cannot render
+ * faithfully, with the reason in err (out is then empty). */
 pm_status render_run(const scene *sc, const config_render *cfg, unsigned threads, int show_progress, render_result *out,
                char *err, size_t errlen);
 /* Writes the representatives of r as CSV to f (reps_write_csv). Returns
