@@ -121,12 +121,9 @@ static vec3 radiance(const eye_ctx *c, unsigned thread, shape_ray r, uint32_t de
         return vec_mul(m->color, radiance(c, thread, scene_spawn(&h, material_reflect(r.dir, h.n), 1), depth + 1, w, rs));
     }
     /* glass: both branches, weighted by Fresnel */
-    double n1 = h.front ? 1.0 : m->ior, n2 = h.front ? m->ior : 1.0;
-    double fr = material_fresnel(-vec_dot(r.dir, h.n), n1, n2);
     vec3 refr;
-    int can_refract = material_refract(r.dir, h.n, n1 / n2, &refr);
-    if (!can_refract)
-        fr = 1.0;
+    int can_refract;
+    double fr = material_glass_split(r.dir, h.n, h.front, m->ior, &refr, &can_refract);
     vec3 L = vec_make(0, 0, 0);
     if (weight * fr >= CONFIG_EYE_MIN_THROUGHPUT) {
         shape_ray rr = scene_spawn(&h, material_reflect(r.dir, h.n), 1);

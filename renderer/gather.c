@@ -107,12 +107,9 @@ static vec3 radiance(const gather_params *g, shape_ray r, uint32_t depth, double
         return vec_mul(m->color, radiance(g, scene_spawn(&h, material_reflect(r.dir, h.n), 1), depth + 1, w, s, c));
     }
     /* glass: both branches, weighted by Fresnel, as eye paths */
-    double n1 = h.front ? 1.0 : m->ior, n2 = h.front ? m->ior : 1.0;
-    double fr = material_fresnel(-vec_dot(r.dir, h.n), n1, n2);
     vec3 refr;
-    int can_refract = material_refract(r.dir, h.n, n1 / n2, &refr);
-    if (!can_refract)
-        fr = 1.0;
+    int can_refract;
+    double fr = material_glass_split(r.dir, h.n, h.front, m->ior, &refr, &can_refract);
     vec3 L = vec_make(0, 0, 0);
     if (weight * fr >= CONFIG_EYE_MIN_THROUGHPUT) {
         c->specular++;

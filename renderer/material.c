@@ -18,6 +18,14 @@ vec3 material_reflect(vec3 d, vec3 n)
     return vec_madd(d, n, -2.0 * vec_dot(d, n));
 }
 
+double material_glass_split(vec3 d, vec3 n, int front, double ior, vec3 *refr, int *can_refract)
+{
+    double n1 = front ? 1.0 : ior, n2 = front ? ior : 1.0;
+    double fr = material_fresnel(-vec_dot(d, n), n1, n2);
+    *can_refract = material_refract(d, n, n1 / n2, refr);
+    return *can_refract ? fr : 1.0;
+}
+
 double material_fresnel(double cos_i, double n1, double n2)
 {
     assert(n1 > 0.0 && n2 > 0.0);

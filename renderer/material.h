@@ -29,6 +29,11 @@ double material_fresnel(double cos_i, double n1, double n2);
  * (dot(d, n) < 0), relative index eta = n1/n2. Returns 0 on total internal
  * reflection, else 1 with *out the unit refracted direction. */
 int material_refract(vec3 d, vec3 n, double eta, vec3 *out);
+/* The two branches of a glass surface with index ior, hit by unit d against
+ * unit normal n from outside (front) or inside: returns the Fresnel weight
+ * of reflection, 1 on total internal reflection; *can_refract says whether
+ * *refr (the refracted direction) was set. */
+double material_glass_split(vec3 d, vec3 n, int front, double ior, vec3 *refr, int *can_refract);
 /* Cosine-weighted direction about unit n from two uniforms in [0,1). */
 vec3 material_sample_cosine(vec3 n, double u1, double u2);
 
