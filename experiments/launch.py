@@ -5,11 +5,13 @@ command line (command) and makes one render's files in the run layout
 (experiments/rules/render.smk) call it.
 
     python3 -m experiments.launch --pm PM --scene SCENE --width W --height H \\
-        --subpixels S --threads T --of N --stem ESTIMATE-pP-nN/seedK \\
+        --subpixels S --threads T --repeats R --of N --stem ESTIMATE-pP-nN/seedK \\
         --member ROOT METHOD "EXTRA ARGS" K [--member ...]
 
 renders every member (the render ROOT/METHOD-ESTIMATE-pP-nN/seedK with the
-extra renderer options EXTRA ARGS, run K of the study's N) back to back: a
+extra renderer options EXTRA ARGS, run K of the study's N) back to back,
+each timed with the renderer's --repeats R (auto, or a count; 1: a single
+timed run; the times the analysis reads are the repeats' minima): a
 group of renders of one (cell, seed) whose times are compared is run as one
 job so that they are paired samples of one machine state. The order
 alternates with the seed: odd seeds in the order given, even seeds
@@ -49,13 +51,24 @@ class LaunchError(Exception):
     """A render failed (exit other than 0 and 2) or its name is not in the layout."""
 
 
-def command(pm, scene, method, estimate, photons, nn, seed, width, height, subpixels, threads, extra, out_base):
+def check_repeats(repeats):
+    """REPEATS as the renderer's --repeats takes it: "auto" or a positive count."""
+    text = str(repeats)
+    if text == "auto" or re.fullmatch(r"[1-9][0-9]*", text):
+        return text
+    raise LaunchError(f"--repeats {text}: auto or a positive number of timed runs (1: a single timed run)")
+
+
+def command(pm, scene, method, estimate, photons, nn, seed, width, height, subpixels, threads, extra, out_base,
+            repeats):
     """The renderer's command line of one render, as a list of words:
-    the image to OUT_BASE.exr and the stats to OUT_BASE.json."""
+    the image to OUT_BASE.exr and the stats to OUT_BASE.json, timed with
+    --repeats REPEATS."""
     if estimate not in ESTIMATE_ARGS:
         raise LaunchError(f"estimate '{estimate}' is neither paper nor corrected")
     return ([pm, "render", scene, "--method", method, "--photons", str(photons), "--nn", str(nn), "--seed", str(seed),
-             "--width", str(width), "--height", str(height), "--subpixels", str(subpixels), "--threads", str(threads)]
+             "--width", str(width), "--height", str(height), "--subpixels", str(subpixels), "--threads", str(threads),
+             "--repeats", check_repeats(repeats)]
             + extra.split() + ESTIMATE_ARGS[estimate] + ["-o", out_base + ".exr", "--stats", out_base + ".json", "--quiet"])
 
 
@@ -91,7 +104,7 @@ def remove_tmp(base):
 
 def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k):
     """One render of the settings S (argparse namespace: pm, scene, width,
-    height, subpixels, threads, of) into ROOT; prints its progress line.
+    height, subpixels, threads, repeats, of) into ROOT; prints its progress line.
     Returns 0 (rendered) or 2 (refused, recorded); raises LaunchError on
     any other failure (nothing recorded)."""
     name = f"{layout.cell_name(method, estimate, photons, nn)}/seed{seed}"
@@ -103,7 +116,7 @@ def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k):
         if os.path.exists(base + ext):
             os.remove(base + ext)
     cmd = command(s.pm, s.scene, method, estimate, photons, nn, seed, s.width, s.height, s.subpixels, s.threads,
-                  extra, base + ".tmp")
+                  extra, base + ".tmp", s.repeats)
     with open("/proc/loadavg", encoding="ascii") as f:
         load = f.read().split()[0]
     with open(base + ".tmp.err", "wb") as err:
@@ -167,10 +180,16 @@ def main(argv=None):
     ap.add_argument("--height", type=int, required=True)
     ap.add_argument("--subpixels", type=int, required=True)
     ap.add_argument("--threads", default="1", help="--threads of the renderer (0: all cores)")
+    ap.add_argument("--repeats", required=True,
+                    help="--repeats of the renderer: auto, or a count (1: a single timed run); a study's TIME_REPEATS")
     ap.add_argument("--of", type=int, required=True, help="the number of renders of the study (progress lines)")
     ap.add_argument("--stem", required=True, help="ESTIMATE-pPHOTONS-nNN/seedK")
     ap.add_argument("--member", nargs=4, action="append", required=True, metavar=("ROOT", "METHOD", "ARGS", "K"))
     s = ap.parse_args(argv)
+    try:
+        check_repeats(s.repeats)
+    except LaunchError as e:
+        ap.error(str(e))
 
     def stop(signum, frame):
         raise SystemExit(1)

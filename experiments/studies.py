@@ -7,7 +7,7 @@ Snakefile (experiments/Snakefile) builds its rules from one Study.
 
 A knob given (SIZE, SEEDS, SCENE, PHOTONS, NNS, ...) overrides the study's
 own value; a retired knob name is refused with the name that replaced it;
-SIZE and SEEDS are checked before anything renders.
+SIZE, SEEDS and TIME_REPEATS are checked before anything renders.
 """
 
 import os
@@ -61,6 +61,14 @@ def parse_seeds(seeds):
     return list(range(1, int(seeds) + 1))
 
 
+def parse_time_repeats(text):
+    """TIME_REPEATS checked: "auto" or a positive count, as the renderer's
+    --repeats takes it (1: a single timed run)."""
+    if text == "auto" or re.fullmatch(r"[1-9][0-9]*", text):
+        return text
+    raise StudyError(f"TIME_REPEATS={text}: auto or a positive number of timed runs per render (1: a single timed run)")
+
+
 def pov_reference(size, scene, fast=False, top="."):
     """The POV-Ray reference EXR of SCENE at SIZE in reference/<scene>/, or
     "". Prefers, for the per-pixel metrics, the one rendered with the
@@ -106,6 +114,8 @@ class Study:
         self.root = (os.path.join(self.results, decl["root"]) if decl.get("root") else
                      layout.run_root(self.results, self.scene, self.size, self.subpixels, self.threads, self.tag))
         self.timed = 1 if decl.get("timed", True) else 0
+        # a study whose times are not compared renders once
+        self.time_repeats = parse_time_repeats(k["TIME_REPEATS"]) if self.timed else "1"
         self.conv_root = k["CONV_RUNROOT"] or self.root
         self.run_names = layout.run_names(self.photons, self.nns, self.methods, self.estimates, self.seeds)
         self.run_files = [layout.record_path(self.root, n) for n in self.run_names]
@@ -139,7 +149,8 @@ class Study:
         stem = f"{estimate}-p{photons}-n{nn}/seed{seed}"
         words = [self.python, "-m", "experiments.launch", "--pm", self.pm, "--scene", self.scene,
                  "--width", self.width, "--height", self.height, "--subpixels", self.subpixels,
-                 "--threads", self.threads_arg, "--of", len(self.run_names), "--stem", stem]
+                 "--threads", self.threads_arg, "--repeats", self.time_repeats, "--of", len(self.run_names),
+                 "--stem", stem]
         for m in methods:
             name = f"{layout.cell_name(m, estimate, photons, nn)}/seed{seed}"
             words += ["--member", root, m, self.pm_args, self.position(name)]
