@@ -111,3 +111,15 @@ def test_launcher_refuses_bad_or_missing_repeats(tmp_path, monkeypatch, capsys, 
     assert not (tmp_path / "argv").exists()
     if bad is not None:
         assert "auto or a positive number" in capsys.readouterr().err
+
+
+def test_phase_sums_are_minima_of_sums():
+    """collect.py's sums of phases: the minimum over repeats of each repeat's
+    sum, not the sum of per-phase minima (which is smaller here: the
+    minima come from different repeats)."""
+    from experiments.analysis import collect
+    st = {"time_s": {"precompute": 1.0, "render": 2.0},
+          "time_s_repeats": {"precompute": [1.0, 1.5, 3.0], "render": [2.5, 2.0, 2.1]}}
+    assert collect.repeat_min(st, ("precompute", "render")) == 3.5
+    # one timed run (no repeats recorded): the sum
+    assert collect.repeat_min({"time_s": {"trace": 0.25, "build": 0.5}}, ("trace", "build")) == 0.75

@@ -9,7 +9,12 @@ once, with metrics.py.
 runs.csv, one row per render of the requested grid (a render that has not
 been made yet is a row with status "missing"): the settings, the status
 ("ok", "refused": the renderer rejected the combination with exit 2, i.e.
-not applicable, or "missing"), the renderer's per-phase times, the CPU
+not applicable, or "missing"), the renderer's per-phase times (each the
+minimum over the render's repeats, `time_s`; total_s the minimum of the
+repeats' totals), the number of repeats, the two sums of phases the
+analysis compares as the minimum over repeats of each repeat's sum
+(trace_build_s: photon pass + kd-tree build; precompute_render_s:
+precompute + eye pass; never a sum of per-phase minima), the CPU
 seconds of the process, its place in a back-to-back pair (pair_pos: 1 or 2,
 rendered first or second by experiments/pair.sh; 0: not paired), photon
 counts, and the image's relMSE/NMSE/RMSE/PSNR
@@ -38,8 +43,8 @@ from experiments.analysis import report, runs as layout
 RUN_COLUMNS = [
     "scene", "size", "width", "height", "subpixels", "threads", "tag", "method", "estimate",
     "photons", "nn", "seed", "rep_every", "rep_count", "status", "exit", "message",
-    "trace_s", "build_s", "precompute_s", "render_s", "total_s", "cpu_s", "user_s", "sys_s",
-    "photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "loadavg_1min", "pair_pos",
+    "trace_s", "build_s", "precompute_s", "render_s", "total_s", "repeats", "trace_build_s", "precompute_render_s",
+    "cpu_s", "user_s", "sys_s", "photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "loadavg_1min", "pair_pos",
     "relmse_ref", "nmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "role", "run",
 ]
 CELL_COLUMNS = [
@@ -55,6 +60,16 @@ def load_json(path):
         return layout.load_json(path)
     except layout.RunError as e:
         report.die("collect.py", str(e))
+
+
+def repeat_min(st, phases):
+    """The minimum over the repeats in the stats ST of the sum of PHASES in
+    one repeat (`time_s_repeats`); one timed run (stats without repeats):
+    the sum of `time_s`."""
+    reps = st.get("time_s_repeats")
+    if not reps:
+        return sum(float(st["time_s"][p]) for p in phases)
+    return min(sum(float(reps[p][i]) for p in phases) for i in range(len(reps[phases[0]])))
 
 
 def read_run(root, method, estimate, photons, nn, seed):
@@ -80,6 +95,9 @@ def read_run(root, method, estimate, photons, nn, seed):
     try:
         for phase in ("trace", "build", "precompute", "render", "total"):
             row[f"{phase}_s"] = float(st["time_s"][phase])
+        row["repeats"] = st.get("repeats", 1)
+        row["trace_build_s"] = repeat_min(st, ("trace", "build"))
+        row["precompute_render_s"] = repeat_min(st, ("precompute", "render"))
         for key in ("photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "rep_every", "threads"):
             row[key] = st[key]
         row["width"], row["height"] = st["width"], st["height"]
