@@ -16,7 +16,7 @@ Owns drawing, from the analysis layer's files and the renders they name:
   tradeoff.png      time against relMSE for every cell, both estimates, with
                     intervals on both axes, and the rep-study's rules.
   ratio-vs-n.png    precomputed / conventional time against n per P_e, ours
-                    with bootstrap intervals and the paper's.
+                    with paired t intervals and the paper's.
   phases.png        per-phase times (trace, build, precompute, eye pass) of
                     every cell, both methods.
 Tables are read with pandas by column name (table1.csv, runs.csv, cells.csv
@@ -570,8 +570,10 @@ def tradeoff(args):
 
 def ratio_vs_n(args):
     """ratio-vs-n.png: precomputed / conventional time (%) against n, one
-    panel per P_e: ours with the bootstrap interval of the ratio of medians,
-    both estimates, and the paper's (single runs, no interval)."""
+    panel per P_e: ours with the t interval of the paired per-seed log ratio
+    (a table1.csv without paired columns: its ratio of medians with the
+    bootstrap interval), both estimates, and the paper's (single runs, no
+    interval)."""
     t = args.table_frame
     pre = t[t["method"] == "precomputed"]
     allp = sorted(set(pre["photons"]))
