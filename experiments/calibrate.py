@@ -7,9 +7,15 @@ minima), and validated on renders it did not fit.
 
 writes coefficients.csv (seconds per unit of each counter, per phase),
 renders.csv (every render: counters, measured and predicted times, whether
-it was fitted or held out) and calibrate.md (the model and its validation:
-the median and the largest relative error of the predicted total on the
-held-out renders; the goal is a median of at most 5%).
+it was fitted or held out), model.json (the coefficients and the validation,
+read back by load_model: the analysis's model ratios) and calibrate.md (the
+model and its validation: the median and the largest relative error of the
+predicted total on the held-out renders; the goal is a median of at most
+5%).
+
+The analysis side: model_ratio (the model's paired time ratio of two sets
+of renders from their work counters) and explain (the phase and the counter
+behind a measured ratio the model does not predict).
 
 The fitted and held-out renders differ in their settings (scene, size,
 photons, n), so the validation asks what the model is for: the time of a
@@ -17,6 +23,7 @@ render it has not seen."""
 
 import argparse
 import json
+import math
 import os
 import subprocess
 import sys
@@ -53,6 +60,13 @@ def part_time(row, part):
         return max(0.0, row["time"]["total"] - sum(row["time"][p] for p in PHASES))
     return row["time"][part]
 GOAL_MEDIAN = 0.05  # the held-out renders' median relative error of the total
+DEFAULT_OUT = os.path.join("results", "calibrate")  # make calibrate's --out with RESULTS=results
+MODEL_NAME = "model.json"
+DEFAULT_MODEL = os.path.join(DEFAULT_OUT, MODEL_NAME)
+
+
+class ModelError(Exception):
+    """A model file that cannot be read, with the reason."""
 
 # (scene, method, photons, nn, width, height): the fitted renders, then the held-out ones
 FIT = [(sc, m, p, n, w, h)
@@ -114,6 +128,79 @@ def part_error(model, rows, part):
     return float(np.median(errs)) if errs else float("nan")
 
 
+def write_model(path, model, median, largest, phase_errors, provenance):
+    """model.json: per part its counters and coefficients (seconds; seconds
+    per unit), the held-out validation (median and largest relative error
+    of the total, the median per phase) and the machine's provenance;
+    written to a temporary name and renamed."""
+    doc = {"parts": {p: {"counters": ["constant", *FEATURES[p]], "seconds_per_unit": [float(c) for c in model[p]]}
+                     for p in PARTS},
+           "validation": {"median": median, "largest": largest, "phases": phase_errors},
+           "provenance": provenance}
+    with open(path + ".tmp", "w", encoding="utf-8") as f:
+        json.dump(doc, f, indent=1)
+        f.write("\n")
+    os.replace(path + ".tmp", path)
+
+
+def load_model(path=DEFAULT_MODEL):
+    """(model, validation) of the model file PATH (write_model), or None when
+    there is none; ModelError when it is not a model of these counters."""
+    if not os.path.isfile(path):
+        return None
+    try:
+        with open(path, encoding="utf-8") as f:
+            doc = json.load(f)
+        model = {}
+        for p in PARTS:
+            part = doc["parts"][p]
+            if part["counters"] != ["constant", *FEATURES[p]]:
+                raise ModelError(f"{path}: the {p} counters {part['counters']} are not this version's; "
+                                 "run `make calibrate` again")
+            model[p] = np.array(part["seconds_per_unit"], float)
+        validation = {"median": float(doc["validation"]["median"]), "largest": float(doc["validation"]["largest"])}
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        raise ModelError(f"{path}: not a cost model ({e.__class__.__name__}: {e}); run `make calibrate` again")
+    return model, validation
+
+
+def model_ratio(model, works_a, works_b):
+    """The model's paired time ratio A / B: exp of the mean over pairs of the
+    log of the predicted totals' ratio, the work counters (stats' "work") of
+    A[s] and B[s] one pair each; nan with no pair."""
+    logs = [math.log(predict(model, {"work": a})["total"] / predict(model, {"work": b})["total"])
+            for a, b in zip(works_a, works_b)]
+    return math.exp(sum(logs) / len(logs)) if logs else math.nan
+
+
+def explain(model, rows_a, rows_b):
+    """(phase, counter) behind the difference between the measured and the
+    model's paired ratio of the renders ROWS_A against ROWS_B (pairs; each
+    row {"work": ..., "time": {phase: seconds, "total": ...}}): the phase
+    whose measured times, put in the place of its predicted ones in both
+    renders of every pair, bring the model's ratio closest to the measured
+    one; the counter, of that phase's counters, with the largest predicted
+    seconds (coefficient x count, mean over the pairs) in the set where the
+    phase's measured time is furthest from its prediction."""
+    def ratio(rows_x, rows_y, swap=None):
+        logs = []
+        for x, y in zip(rows_x, rows_y):
+            tot = []
+            for r in (x, y):
+                q = predict(model, r)
+                tot.append(q["total"] - q[swap] + part_time(r, swap) if swap else r["time"]["total"])
+            logs.append(math.log(tot[0] / tot[1]))
+        return sum(logs) / len(logs)
+    measured = ratio(rows_a, rows_b)
+    phase = min(PARTS, key=lambda p: abs(ratio(rows_a, rows_b, p) - measured))
+    off = [abs(np.mean([part_time(r, phase) - predict(model, r)[phase] for r in rows])) for rows in (rows_a, rows_b)]
+    rows = rows_a if off[0] >= off[1] else rows_b
+    share = {f: np.mean([c * counter(r, phase, f) for r in rows])
+             for f, c in zip(FEATURES[phase], model[phase][1:])}
+    name = max(share, key=share.get)
+    return phase, name if share[name] > 0 else "constant"
+
+
 def render(pm, scene, method, photons, nn, width, height, tmp):
     """One render with --repeats auto: its counters and its times' minima."""
     stats = os.path.join(tmp, "s.json")
@@ -143,6 +230,8 @@ def write(out, model, fitted, held, median, largest):
                     name, r["scene"], r["method"], r["photons"], r["nn"], r["width"], r["height"], r["repeats"],
                     r["time"]["total"], p["total"], (p["total"] - r["time"]["total"]) / r["time"]["total"],
                     ",".join("%.6f,%.6f" % (r["time"][ph], p[ph]) for ph in PHASES)))
+    write_model(os.path.join(out, MODEL_NAME), model, median, largest,
+                {p: part_error(model, held, p) for p in PHASES}, fitted[0]["provenance"])
     prov = fitted[0]["provenance"]
     with open(os.path.join(out, "calibrate.md"), "w") as f:
         f.write("# Cost model of this machine\n\n")
@@ -175,7 +264,7 @@ def write(out, model, fitted, held, median, largest):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--pm", default="build/photonmap")
-    ap.add_argument("--out", default="results/calibrate")
+    ap.add_argument("--out", default=DEFAULT_OUT)
     a = ap.parse_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
         fitted = [render(a.pm, *c, tmp) for c in FIT]

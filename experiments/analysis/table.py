@@ -9,7 +9,11 @@ against the reference (mean over seeds with a 95% t-interval, bias and
 variance over seeds from cells.csv), the error against the conventional
 image of the same seed, the reference floor, and the paired comparisons with
 the conventional cell (time ratios over the pairs of renders of one seed,
-the drift control, the relMSE difference with its Holm-corrected verdict).
+the drift control, the relMSE difference with its Holm-corrected verdict),
+and beside the measured time ratio the calibrated cost model's ratio from
+the same renders' work counters (experiments/calibrate.py; "no model"
+without one), naming the phase and the counter that explain the two
+ratios' difference where it exceeds the model's validation error.
 Columns of the estimate
 "paper" have no suffix, those of another estimate E the suffix _E
 (relmse_ref_mean_corrected, ...). The Markdown compares the two methods
@@ -24,8 +28,10 @@ import os
 import numpy as np
 import pandas as pd
 
+from experiments import calibrate
 from experiments.analysis import metrics
 from experiments.analysis import report
+from experiments.analysis import runs as layout
 from experiments.analysis import stats
 from experiments.analysis.report import fmt, fmt_ci, fmt_pm, fmt_range, isnum
 
@@ -59,8 +65,9 @@ def ok_values(frame, column):
     return frame.loc[frame["status"] == "ok", column].to_numpy(dtype=np.float64)
 
 
-def summarize(runs, cells, paper):
-    """One dict per (photons, nn, method) of the grid: the table1.csv row."""
+def summarize(runs, cells, paper, model=None):
+    """One dict per (photons, nn, method) of the grid: the table1.csv row.
+    MODEL: (model, validation) of calibrate.load_model, or None."""
     grid = runs[runs["role"] == "grid"]
     conv_all = runs[runs["role"] == "comparison"] if (runs["role"] == "comparison").any() \
         else grid[grid["method"] == "conventional"]
@@ -105,6 +112,7 @@ def summarize(runs, cells, paper):
                 r, lo, hi, _ = stats.paired_log_ratio(a[col], b[col])
                 row[f"{name}_percent{sfx}"] = 100 * r
                 row[f"{name}_ci95_lo{sfx}"], row[f"{name}_ci95_hi{sfx}"] = 100 * lo, 100 * hi
+            row.update(model_columns(model, sel, conv, sfx))
             d = stats.paired_difference(a[ERR], b[ERR])
             for k in ("mean", "lo", "hi", "p", "delta", "relative"):
                 row[f"relmse_diff_{k}{sfx}"] = d[k]
@@ -150,6 +158,83 @@ def summarize(runs, cells, paper):
 # the drift control, the photon trace (the same code in both methods: 1 when
 # the machine did not drift between the two renders of a pair)
 PAIRED_RATIOS = (("total_s", "paired_ratio"), ("cpu_s", "paired_cpu_ratio"), ("trace_s", "trace_ratio"))
+
+
+def model_rows(sel, conv):
+    """The pairs of calibrate's rows ({"work", "time"}) of the seeds where
+    both SEL and CONV rendered ok: the work counters from each render's
+    stats file, the times (the repeats' minima) from runs.csv; None when a
+    stats file has no counters."""
+    a = sel[sel["status"] == "ok"].drop_duplicates("seed").set_index("seed")
+    b = conv[conv["status"] == "ok"].drop_duplicates("seed").set_index("seed")
+    out = ([], [])
+    for seed in sorted(set(a.index) & set(b.index)):
+        for frame, rows in ((a, out[0]), (b, out[1])):
+            r = frame.loc[seed]
+            work = layout.load_json(r["run"] + ".stats.json").get("work")
+            if work is None:
+                return None
+            rows.append({"work": work, "time": {**{ph: float(r[f"{ph}_s"]) for ph in PHASES},
+                                                "total": float(r["total_s"])}})
+    return out
+
+
+def model_columns(model, sel, conv, sfx):
+    """The cost model's columns of one cell against its conventional cell:
+    model_ratio_percent (the model's paired ratio of the predicted totals),
+    model_differs (the measured paired ratio and the model's differ by more
+    than the model's validation error, the held-out median relative error
+    of the total), model_phase and model_counter (calibrate.explain, where
+    they differ); nan / False / "" without a model or counters."""
+    out = {f"model_ratio_percent{sfx}": math.nan, f"model_differs{sfx}": False, f"model_phase{sfx}": "",
+           f"model_counter{sfx}": ""}
+    if model is None:
+        return out
+    pairs = model_rows(sel, conv)
+    if not pairs or not pairs[0]:
+        return out
+    coef, validation = model
+    q = calibrate.model_ratio(coef, [r["work"] for r in pairs[0]], [r["work"] for r in pairs[1]])
+    m = math.exp(float(np.mean([math.log(x["time"]["total"] / y["time"]["total"]) for x, y in zip(*pairs)])))
+    out[f"model_ratio_percent{sfx}"] = 100 * q
+    if abs(m / q - 1) > validation["median"]:
+        phase, name = calibrate.explain(coef, *pairs)
+        out.update({f"model_differs{sfx}": True, f"model_phase{sfx}": phase, f"model_counter{sfx}": name})
+    return out
+
+
+def model_text(row, model, sfx=""):
+    """The model's ratio as the Markdown shows it: "no model" without one."""
+    if model is None:
+        return "no model"
+    return fmt(row.get(f"model_ratio_percent{sfx}", math.nan)) if len(row) else "n/a"
+
+
+def model_lines(table, model, estimates):
+    """Markdown lines: the model's validation error and, per estimate, the
+    cells where the measured and the model's ratio differ by more, with the
+    phase and the counter that explain it."""
+    if model is None:
+        return ["", f"Model ratio: no model (`make calibrate` writes `{calibrate.DEFAULT_MODEL}`, this machine's "
+                "cost model; the table then gives its predicted ratio beside the measured one)."]
+    err = model[1]["median"]
+    out = ["", f"Model ratio: the calibrated cost model's (`{calibrate.DEFAULT_MODEL}`, validation error: median "
+           f"{100 * err:.1f}%, largest {100 * model[1]['largest']:.1f}% of a held-out render's total) paired "
+           "ratio of the predicted totals, from the same renders' work counters."]
+    for est in estimates:
+        sfx = suffix(est)
+        col = f"model_differs{sfx}"
+        if col not in table:
+            continue
+        rows = [r for _, r in table.iterrows() if bool(r[col])]
+        if not rows:
+            out.append(f"- {est} estimate: measured and model ratios agree within the model's error in every cell.")
+            continue
+        out.append(f"- {est} estimate: measured and model ratios differ by more than the model's error in "
+                   + "; ".join(f"{cell_label(r)} (measured {fmt(r.get(f'paired_ratio_percent{sfx}'))}%, model "
+                               f"{fmt(r.get(f'model_ratio_percent{sfx}'))}%: phase {r[f'model_phase{sfx}']}, counter "
+                               f"{r[f'model_counter{sfx}']})" for r in rows) + ".")
+    return out
 
 
 def paired_values(sel, conv, columns):
@@ -365,12 +450,14 @@ def markdown(table, runs, estimates, args):
                          fmt_range(g(c, "total_median_s"), g(c, "total_min_s"), g(c, "total_max_s")),
                          fmt_range(g(q, "total_median_s"), g(q, "total_min_s"), g(q, "total_max_s")),
                          fmt_ci(g(q, "ratio_percent"), g(q, "ratio_ci95_lo"), g(q, "ratio_ci95_hi"), 1),
+                         model_text(q, args.model_state),
                          fmt_range(g(c, "cpu_median_s"), g(c, "cpu_min_s"), g(c, "cpu_max_s")),
                          fmt_range(g(q, "cpu_median_s"), g(q, "cpu_min_s"), g(q, "cpu_max_s")),
                          fmt_ci(g(q, "cpu_ratio_percent"), g(q, "cpu_ratio_ci95_lo"), g(q, "cpu_ratio_ci95_hi"), 1)])
         out += report.md_table(["P_e", "n", "paper conv. s", "paper prop. s", "paper ratio %", "our conv. s",
-                                "our prec. s", "our ratio % [95% CI]", "our conv. CPU s", "our prec. CPU s",
-                                "our CPU ratio % [95% CI]"], rows, ["r"] * 11)
+                                "our prec. s", "our ratio % [95% CI]", "model ratio %", "our conv. CPU s",
+                                "our prec. CPU s", "our CPU ratio % [95% CI]"], rows, ["r"] * 12)
+        out += model_lines(table, args.model_state, estimates)
         out += ["", "## Our phases (paper estimate, median seconds over seeds)", "",
                 "Each phase's own median (so the phases need not add up to the median total). Empty estimates: "
                 "eye samples where no photon or representative applied (black), median over seeds.", ""]
@@ -454,6 +541,15 @@ def markdown(table, runs, estimates, args):
             "the two renders of a seed ran back to back (`pair_pos` in `runs.csv`). `relmse_diff_*`: the paired "
             "difference precomputed − conventional of `relmse_ref` (`stats.paired_difference`), `_p_holm` Holm's "
             "adjustment over the precomputed cells, `_verdict` from `stats.compare_family`.",
+            "- `model_ratio_percent`: the cost model's (`make calibrate`; nan without one) paired ratio of the "
+            "predicted totals, 100 x exp(mean over the paired seeds of log(predicted precomputed / predicted "
+            "conventional)), each prediction from the render's work counters (its `--stats` JSON's `work`); "
+            "`model_differs`: the measured paired ratio and the model's differ by more than the model's "
+            "validation error (the median relative error of a held-out render's total); `model_phase`, "
+            "`model_counter` (where they differ): the phase whose measured times, put in the place of its "
+            "predicted ones, bring the model's ratio closest to the measured one, and that phase's counter with "
+            "the most predicted seconds in the method where the phase is furthest from its prediction "
+            "(`calibrate.explain`).",
             "- `nmse_ref_mean`, `nmse_ref_ci95`: the same for NMSE = mean((x-r)^2) / mean(r^2), the error that "
             "stays relative in dark pixels (`metrics.py` says why relMSE stays the primary one).",
             "- `relmse_ref_mean`, `relmse_ref_ci95`: mean over seeds and the half-width of its 95% Student-t "
@@ -481,6 +577,8 @@ def main():
     ap.add_argument("--pm", default="build/photonmap")
     ap.add_argument("--pm-args", default="")
     ap.add_argument("--runroot", required=True)
+    ap.add_argument("--model", default=calibrate.DEFAULT_MODEL,
+                    help="this machine's cost model (make calibrate); absent: the model columns say no model")
     ap.add_argument("--bootstrap", type=int, default=2000, help="accepted, unused: the time ratios' intervals are t intervals")
     ap.add_argument("--bootstrap-seed", type=int, default=1, help="accepted, unused")
     args = ap.parse_args()
@@ -489,7 +587,14 @@ def main():
         report.die("table.py", f"{args.runs_csv}: no render of the grid")
     args.ref = cells["ref"].dropna().iloc[0] if cells["ref"].notna().any() else ""
     args.ref_fast = cells["ref_fast"].dropna().iloc[0] if cells["ref_fast"].notna().any() else ""
-    table, estimates = summarize(runs, cells, paper)
+    try:
+        args.model_state = calibrate.load_model(args.model)
+    except calibrate.ModelError as e:
+        report.die("table.py", str(e))
+    try:
+        table, estimates = summarize(runs, cells, paper, args.model_state)
+    except layout.RunError as e:
+        report.die("table.py", str(e))
     report.write_csv_atomic(table, args.out + ".csv", "%.6g")
     report.write_atomic(args.out + ".md", markdown(table, runs, estimates, args))
     print(f"wrote {args.out}.csv and {args.out}.md ({len(table)} rows)")
