@@ -98,3 +98,23 @@ def test_equal_error_no_common_range():
     assert res["targets"] == [] and res["rows"] == []
     res = equal_error.analyse(runs, "paper", "cpu_s", "0.05", np.random.default_rng(2), 50)
     assert math.isnan(res["rows"][0]["precomputed_s"]) and math.isnan(res["rows"][0]["speedup"])
+
+
+def test_headline_only_where_defined():
+    """equal_error.headline: the tightest curve target with at least 95% of
+    the resamples defined; a tightest target defined in 50% is never the
+    headline, and with none at 95% there is none. evaluate.py's verdict
+    words the headline, not the half-defined tightest target."""
+    from experiments.analysis import evaluate
+    rows = [{"estimate": "paper", "kind": "curve", "target": 0.01, "speedup": 1.8, "lo": 0.9, "hi": 7.0,
+             "defined_fraction": 0.5},
+            {"estimate": "paper", "kind": "curve", "target": 0.02, "speedup": 1.5, "lo": 1.2, "hi": 1.9,
+             "defined_fraction": 0.96},
+            {"estimate": "paper", "kind": "curve", "target": 0.04, "speedup": 1.3, "lo": 1.1, "hi": 1.6,
+             "defined_fraction": 1.0}]
+    assert equal_error.headline(rows)["target"] == 0.02
+    assert equal_error.headline([dict(r, defined_fraction=0.94) for r in rows]) is None
+    ee = pd.DataFrame([dict(rows[0], kind="tightest")] + rows)
+    text = evaluate.verdict_of(ee, "paper")
+    assert "1.8x" not in text and "[0.9, 7]" not in text, text
+    assert "(relMSE 0.02) the method pays: 1.5x [1.2, 1.9]" in text, text

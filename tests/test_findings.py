@@ -149,7 +149,9 @@ def test_findings_resolution_per_size():
     read (negative control)."""
     rows = lambda s: pd.DataFrame([  # noqa: E731
         {"estimate": "paper", "kind": "tightest", "target": 0.02, "speedup": s, "lo": s - 0.1, "hi": s + 0.1,
-         "defined_fraction": 1.0},
+         "defined_fraction": 0.5},
+        {"estimate": "paper", "kind": "curve", "target": 0.02, "speedup": s, "lo": s - 0.1, "hi": s + 0.1,
+         "defined_fraction": 0.5},
         {"estimate": "paper", "kind": "curve", "target": 0.03, "speedup": s + 0.2, "lo": s + 0.1, "hi": s + 0.3,
          "defined_fraction": 1.0}])
     with tempfile.TemporaryDirectory() as d:
@@ -158,13 +160,44 @@ def test_findings_resolution_per_size():
         _, lines = findings.finding7({"root": d, "resolution": d})
         text = "\n".join(lines)
         assert text.index("- 256x192:") < text.index("- 1024x768:")
-        assert "1.25 [1.15, 1.35]x" in text and "0.75 [0.65, 0.85]x" in text
+        # the headline: the curve's tightest target where 95% of the resamples are defined
+        assert "1.45 [1.35, 1.55]x" in text and "0.95 [0.85, 1.05]x" in text
+        assert "1.25 [1.15, 1.35]" not in text and "0.75 [0.65, 0.85]" not in text  # the tightest: 50% defined
         rows(1.0).drop(columns=["kind"]).to_csv(os.path.join(d, "equal-error-512x384.csv"), index=False)
         try:
             findings.finding7({"root": d, "resolution": d})
             assert False, "finding7 read a CSV without its columns"
         except findings.Missing as e:
             assert "kind" in str(e)
+
+
+def test_tightest_half_defined_not_quoted():
+    """An equal-error CSV whose tightest target is reached by both fronts in
+    only 50% of the resamples: FINDINGS.md and README's summary name it as
+    where the curve starts and quote no number of its row; they quote the
+    tightest curve target with at least 95% defined. Negative control: the
+    same CSV with the tightest target fully defined quotes it."""
+    def frame(tight_defined):
+        return pd.DataFrame([
+            {"estimate": "paper", "kind": "tightest", "target": 0.0101, "speedup": 1.83, "lo": 0.917, "hi": 7.77,
+             "defined_fraction": tight_defined},
+            {"estimate": "paper", "kind": "curve", "target": 0.0101, "speedup": 1.83, "lo": 0.917, "hi": 7.77,
+             "defined_fraction": tight_defined},
+            {"estimate": "paper", "kind": "curve", "target": 0.0123, "speedup": 1.61, "lo": 1.42, "hi": 1.88,
+             "defined_fraction": 0.97},
+            {"estimate": "paper", "kind": "curve", "target": 0.0187, "speedup": 2.44, "lo": 2.11, "hi": 2.83,
+             "defined_fraction": 1.0}])
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "equal-error.csv")
+        frame(0.5).to_csv(path, index=False)
+        for text in ("\n".join(findings.finding2({"equal_error": path})[1]),
+                     findings.summary_equal_error({"equal_error": path})):
+            assert "1.83" not in text and "0.917" not in text and "7.77" not in text, text
+            assert "the curve starts at relmse 0.0101" in text.lower(), text
+            assert "at 0.0123" in text and "1.61 [1.42, 1.88]x" in text, text
+        frame(1.0).to_csv(path, index=False)
+        text = findings.summary_equal_error({"equal_error": path})
+        assert "at 0.0101" in text and "1.83 [0.917, 7.77]x" in text, text
 
 
 def test_findings_beyond():
@@ -174,7 +207,7 @@ def test_findings_beyond():
     control), and a table without the seeds column names the target."""
     def row(case, variant, sp, lo, hi, best, above, vs, met, seeds):
         return {"case": case, "variant": variant, "estimate": "paper", "target": 0.02, "speedup": sp, "lo": lo,
-                "hi": hi, "fallback_rate": 0.125, "evaluated_share": 0.5, "seeds": seeds, "best": best,
+                "hi": hi, "defined_fraction": 1.0, "fallback_rate": 0.125, "evaluated_share": 0.5, "seeds": seeds, "best": best,
                 "above_one": above, "vs_paper": vs, "goal_met": met}
     rows = [row("a-64x48", "paper", 0.9, 0.8, 1.0, False, False, "", False, 5),
             row("a-64x48", "lazy", 1.3, 1.2, 1.4, True, True, "higher", True, 5),

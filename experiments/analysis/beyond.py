@@ -5,8 +5,10 @@ STEM.md, STEM.csv and a figure.
 Owns the comparison of the paper's representative rule with the variants
 beyond it (lazy evaluation, the gated lookup, both) on every case (a scene at
 a size): per (case, variant) the equal-error speed-up over the conventional
-method at the tightest relMSE target both fronts reach, with its bootstrap
-interval (equal_error.analyse, one call per variant's runs.csv), the fallback
+method at its headline target (equal_error.headline: the tightest relMSE
+target of the curve that at least 95% of the bootstrap resamples reach on
+both fronts), with its bootstrap interval (equal_error.analyse, one call per
+variant's runs.csv), the fallback
 rate (rep_fallbacks / eye samples, pooled over the variant's renders), the
 share of the representatives evaluated (reps_evaluated / representatives,
 pooled), where the time goes (median over renders of the precompute and the
@@ -215,7 +217,7 @@ def measure(case, scene, size, variant, args, runs_csv, time_col, rng, replicate
     for est in dict.fromkeys(grid["estimate"]):
         ok = grid[(grid["status"] == "ok") & (grid["estimate"] == est)]
         res = equal_error.analyse(runs, est, time_col, "auto", rng, replicates)
-        tight = res.get("tightest") or {}
+        tight = res.get("headline") or {}
         fb, ev = counters(ok) if len(ok) else (math.nan, math.nan)
         conv_ok = runs[(runs["method"] == "conventional") & (runs["status"] == "ok") & (runs["estimate"] == est)]
         excess, edge_px, edge_share = excess_of(runs, est, ref)
@@ -327,7 +329,7 @@ def figure(table, path, note):
         plotting.log_ticks(ax.yaxis, ylo, yhi, extra=(1.0,))
     ax.set_xticks(np.arange(len(cases)))
     ax.set_xticklabels(cases, rotation=20, ha="right", fontsize=8)
-    ax.set_ylabel("speed-up at the tightest common relMSE")
+    ax.set_ylabel("speed-up at equal relMSE (95% defined)")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.005, 1.0), title="variant", title_fontsize=7)
     fig.subplots_adjust(left=0.07, right=0.88, top=0.95,
                         bottom=0.18 + 0.025 * plotting.footer_lines(note, fig.get_figwidth()))
@@ -385,9 +387,10 @@ def write_md(table, cases, args):
            f"in `studies/`). Machine: {report.machine()}; median 1-minute load average at the start of the "
            f"renders {fmt(load[0])} (range {fmt(load[1])}-{fmt(load[2])}); commit {report.commit()}; renderer: "
            f"{report.renderer_note(args.pm)}. Time: {report.TIME_LABEL[args.time]}.", "",
-           "Speed-up: conventional time / variant time at the tightest relMSE target both fronts reach "
-           "(`equal_error.py`; each variant against the conventional renders of the same seeds and photon maps, "
-           f"its own tightest target), with the 95% percentile interval of {args.bootstrap} bootstrap resamples "
+           "Speed-up: conventional time / variant time at the tightest relMSE target of the equal-error curve "
+           f"that at least {100 * equal_error.DEFINED_MIN:.0f}% of the bootstrap resamples reach on both fronts "
+           "(`equal_error.headline`; each variant against the conventional renders of the same seeds and photon "
+           "maps, its own such target; none: n/a), with the 95% percentile interval of {args.bootstrap} bootstrap resamples "
            f"over seeds (random seed {args.bootstrap_seed}, one stream per case and variant). Reference: each scene's converged render at its size "
            "(`converged_ref` of `experiments/studies.mk`). Fallback rate: rep_fallbacks / eye samples; evaluated: "
            "reps_evaluated / representatives (both pooled over the variant's renders). Error ratio: the variant's "

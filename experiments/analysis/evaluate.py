@@ -32,6 +32,7 @@ import sys
 
 import numpy as np
 
+from experiments.analysis import equal_error
 from experiments.analysis import metrics
 from experiments.analysis import reference as refmod
 
@@ -372,19 +373,27 @@ def fnum(x, nd=3):
 
 def verdict_of(ee, estimate):
     """One sentence from the equal-error rows EE (a DataFrame) of ESTIMATE."""
-    c = ee[(ee["estimate"] == estimate) & (ee["kind"] == "curve")].sort_values("target")
+    allc = ee[(ee["estimate"] == estimate) & (ee["kind"] == "curve")].sort_values("target")
     t = ee[(ee["estimate"] == estimate) & (ee["kind"] == "tightest")]
-    if c.empty:
+    if allc.empty:
         return f"{estimate} estimate: undetermined: the two methods' fronts share no relMSE range at this grid."
+    # only targets that enough resamples reach on both fronts are worded (equal_error.DEFINED_MIN)
+    c = allc[allc["defined_fraction"] >= equal_error.DEFINED_MIN]
     pays = c[c["lo"] > 1]
     loses = c[c["hi"] < 1]
     und = c[~((c["lo"] > 1) | (c["hi"] < 1))]
     parts = []
+    h = equal_error.headline([r for _, r in allc.iterrows()])
+    if h is None:
+        parts.append(f"at the tightest target both reach and every other, fewer than "
+                     f"{100 * equal_error.DEFINED_MIN:.0f}% of the resamples reach both fronts: no speed-up is worded")
+    else:
+        kind = "pays" if h["lo"] > 1 else "costs" if h["hi"] < 1 else "is undetermined"
+        parts.append(f"at the tightest target {100 * equal_error.DEFINED_MIN:.0f}% of the resamples reach on both "
+                     f"fronts (relMSE {fnum(h['target'], 2)}) the method {kind}: "
+                     f"{fnum(h['speedup'], 2)}x [{fnum(h['lo'], 2)}, {fnum(h['hi'], 2)}]")
     if not t.empty:
-        r = t.iloc[0]
-        kind = "pays" if r["lo"] > 1 else "costs" if r["hi"] < 1 else "is undetermined"
-        parts.append(f"at the tightest target both reach (relMSE {fnum(r['target'], 2)}) the method {kind}: "
-                     f"{fnum(r['speedup'], 2)}x [{fnum(r['lo'], 2)}, {fnum(r['hi'], 2)}]")
+        parts.append(f"the curve starts at relMSE {fnum(t.iloc[0]['target'], 2)}, the tightest target both reach")
     if not pays.empty:
         best = pays.loc[pays["lo"].idxmax()]
         parts.append(f"pays by {fnum(best['speedup'], 2)}x [{fnum(best['lo'], 2)}, {fnum(best['hi'], 2)}] at relMSE "

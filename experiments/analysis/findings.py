@@ -12,6 +12,9 @@ from its test, never from a reading of the numbers:
     are disjoint (stats.rank), else "undetermined"; never "equal";
   - a number against the paper's single measurement: whether our interval
     contains it (the paper's value carries no interval of its own).
+A speed-up at equal error is quoted only at a target where at least 95% of
+the bootstrap resamples reach both fronts (equal_error.headline); the
+tightest target both fronts reach is named as where the curve starts.
 A finding whose input file or column is missing says so, with the target
 that makes it, instead of a number. The findings are numbered as the
 hand-written ones of results/README.md that they replace (1-9), each with
@@ -28,6 +31,7 @@ import numpy as np
 import pandas as pd
 from scipy import stats as sps
 
+from experiments.analysis import equal_error as ee
 from experiments.analysis import metrics
 from experiments.analysis import report
 from experiments.analysis import stats
@@ -186,10 +190,21 @@ def finding2(d):
     return "The speed-up at equal error", equal_error_lines(e)
 
 
+def headline_text(h):
+    """'the speed-up is S [lo, hi]x at relMSE T, the tightest target ...' of
+    a headline row, or the sentence that there is none."""
+    if h is None:
+        return f"at no target of the curve do {100 * ee.DEFINED_MIN:.0f}% of the resamples reach both fronts, " \
+            "so no speed-up is quoted"
+    return f"at {fmt(h['target'])}, the tightest target that at least {100 * ee.DEFINED_MIN:.0f}% of the " \
+        f"resamples reach on both fronts, the speed-up is {ci(h['speedup'], h['lo'], h['hi'])}x"
+
+
 def equal_error_lines(e):
     """One line per estimate of an equal-error CSV (equal_error.py's kinds
-    `tightest` and `curve`): the speed-up at the tightest target both fronts
-    reach, and the range of the curve where it is defined."""
+    `tightest` and `curve`): where the curve starts, the speed-up at the
+    headline target (equal_error.headline) and the range of the curve where
+    it is defined."""
     lines = []
     for est, g in e.groupby("estimate", sort=False):
         c = g[g["kind"] == "curve"]
@@ -199,10 +214,10 @@ def equal_error_lines(e):
             lines.append(f"- {est} estimate: the two fronts reach no common {metrics.PRIMARY}: no speed-up at equal "
                          "error is defined.")
             continue
-        s = f"- {est} estimate: the tightest {metrics.PRIMARY} both fronts reach (defined as the larger of the two " \
-            f"fronts' smallest errors) is {fmt(t['target'])}; there the speed-up is " \
-            f"{ci(t['speedup'], t['lo'], t['hi'])}x, with {pct(100 * t['defined_fraction'])}% of the bootstrap " \
-            "resamples reaching it on both fronts"
+        s = f"- {est} estimate: the curve starts at {metrics.PRIMARY} {fmt(t['target'])}, the tightest both fronts " \
+            "reach (the larger of the two fronts' smallest errors" \
+            + ("; fewer than 95% of the bootstrap resamples reach it on both fronts, so no speed-up is quoted there"
+               if t["defined_fraction"] < ee.DEFINED_MIN else "") + f"); {headline_text(headline_of(g, est))}"
         if span is not None:
             a, b = span
             s += f". Over the {len(c)} targets of the curve ({fmt(c['target'].min())} to {fmt(c['target'].max())}), " \
@@ -422,8 +437,9 @@ def finding9(d):
 
 def finding_beyond(d):
     """Beyond the paper's rule: the representative variants at equal error, per case (make beyond)."""
-    b = load(d["beyond"], ["case", "variant", "estimate", "target", "speedup", "lo", "hi", "fallback_rate",
-                           "evaluated_share", "seeds", "best", "above_one", "vs_paper", "goal_met"], "make beyond")
+    b = load(d["beyond"], ["case", "variant", "estimate", "target", "speedup", "lo", "hi", "defined_fraction",
+                           "fallback_rate", "evaluated_share", "seeds", "best", "above_one", "vs_paper", "goal_met"],
+             "make beyond")
     b = b[b["estimate"] == "paper"]
     lines = []
     met = total = thin = 0
@@ -437,6 +453,11 @@ def finding_beyond(d):
         p, r = paper.iloc[0], best.iloc[0]
         if seeds < MIN_SEEDS_QUOTED:
             lines.append(few_seeds(case, seeds, "make beyond"))
+            continue
+        if min(float(p["defined_fraction"]), float(r["defined_fraction"])) < ee.DEFINED_MIN:
+            lines.append(f"- {case}: its speed-ups are taken at a target that fewer than {100 * ee.DEFINED_MIN:.0f}% "
+                         "of the bootstrap resamples reach on both fronts: not quoted (`make beyond` again quotes "
+                         "each at the tightest target that enough resamples reach).")
             continue
         f3 = lambda x: report.fmt_fixed(x, 3)  # noqa: E731 (an end at 1.001 must not print as 1)
         margin = stats.EQUIVALENCE_MARGIN
@@ -604,6 +625,14 @@ def summary_table(d):
             f"{lower} of {len(out)} (`results/table1/table1.md`).")
 
 
+def headline_of(e, est):
+    """The headline row of estimate EST in an equal-error CSV (the tightest
+    curve target at least equal_error.DEFINED_MIN of the resamples reach on
+    both fronts), or None."""
+    g = e[(e["estimate"] == est) & (e["kind"] == "curve")]
+    return ee.headline([r for _, r in g.iterrows()])
+
+
 def tightest_and_curve(e, est):
     """(tightest row, (lowest, highest) curve rows where 95% of the resamples
     reach both fronts, or None) of estimate EST in an equal-error CSV; Missing
@@ -612,7 +641,7 @@ def tightest_and_curve(e, est):
     t = g[g["kind"] == "tightest"]
     if len(t) == 0:
         raise Missing(f"the {est} estimate's fronts reach no common {metrics.PRIMARY}")
-    c = g[(g["kind"] == "curve") & (g["defined_fraction"] >= 0.95)]
+    c = g[(g["kind"] == "curve") & (g["defined_fraction"] >= ee.DEFINED_MIN)]
     span = (c.loc[c["speedup"].idxmin()], c.loc[c["speedup"].idxmax()]) if len(c) else None
     return t.iloc[0], span
 
@@ -629,8 +658,8 @@ def summary_equal_error(d):
             "; at no target do 95% of the resamples reach both fronts")
     if span is not None and not curve:
         rest += " (the two ends' 95% intervals overlap, so no trend with the target is claimed)"
-    return (f"- {head}: at the tightest {primary_name()} both fronts reach ({fmt(t['target'])}, paper estimate) it is "
-            f"{ci(t['speedup'], t['lo'], t['hi'])}x{rest} (`results/table1/equal-error.md`).")
+    return (f"- {head} (paper estimate; the curve starts at {primary_name()} {fmt(t['target'])}, the tightest both "
+            f"fronts reach): {headline_text(headline_of(e, 'paper'))}{rest} (`results/table1/equal-error.md`).")
 
 
 def summary_cost(d):
@@ -672,16 +701,22 @@ def summary_resolution(d):
     est = "corrected"
     got = []
     for f in (files[0], files[-1]):
-        t, _ = tightest_and_curve(load(f, EQUAL_ERROR_COLUMNS, "make resolution"), est)
-        got.append((os.path.basename(f)[len("equal-error-"):-4], t))
+        e = load(f, EQUAL_ERROR_COLUMNS, "make resolution")
+        tightest_and_curve(e, est)
+        h = headline_of(e, est)
+        if h is None:
+            raise Missing(f"`{os.path.relpath(f, d['root'])}`: at no target do {100 * ee.DEFINED_MIN:.0f}% of the "
+                          "resamples reach both fronts (`make resolution` with more seeds)")
+        got.append((os.path.basename(f)[len("equal-error-"):-4], h))
     (s0, a), (s1, b) = got
     small = stats.rank((a["lo"], a["hi"]), (1.0, 1.0))
     head = {"lower": "Small images: the precomputation stops paying",
             "higher": "Small images: the precomputation still pays"}.get(small, "Small images: undetermined")
     said = {"lower": ", slower", "higher": ", faster"}.get(small, " (its interval contains 1)")
-    return (f"- **{head}**: at {s0} and the tightest target both fronts reach ({primary_name()} {fmt(a['target'])}, "
-            f"{est} estimate) the precomputed method's speed-up is {ci(a['speedup'], a['lo'], a['hi'])}x{said}; at "
-            f"{s1} it is {ci(b['speedup'], b['lo'], b['hi'])}x (`results/resolution/resolution.md`).")
+    return (f"- **{head}**: at {s0} and the tightest target that {100 * ee.DEFINED_MIN:.0f}% of the resamples "
+            f"reach on both fronts ({primary_name()} {fmt(a['target'])}, {est} estimate) the precomputed method's "
+            f"speed-up is {ci(a['speedup'], a['lo'], a['hi'])}x{said}; at {s1} (its own such target, "
+            f"{fmt(b['target'])}) it is {ci(b['speedup'], b['lo'], b['hi'])}x (`results/resolution/resolution.md`).")
 
 
 def summary_bias(d):
@@ -711,11 +746,15 @@ def summary_rules(d):
 
 
 def summary_beyond(d):
-    b = load(d["beyond"], ["case", "variant", "estimate", "speedup", "lo", "hi", "seeds", "best", "above_one",
-                           "goal_met"], "make beyond")
+    b = load(d["beyond"], ["case", "variant", "estimate", "speedup", "lo", "hi", "defined_fraction", "seeds", "best",
+                           "above_one", "goal_met"], "make beyond")
     b = b[(b["estimate"] == "paper") & b["best"].astype(bool)]
     if len(b) == 0:
         raise Missing("`beyond.csv` has no best variant (`make beyond`)")
+    b = b[b["defined_fraction"].astype(float) >= ee.DEFINED_MIN]
+    if len(b) == 0:
+        raise Missing(f"`beyond.csv` quotes every best variant at a target that fewer than {100 * ee.DEFINED_MIN:.0f}% "
+                      "of the resamples reach on both fronts (`make beyond` again)")
     margin = stats.EQUIVALENCE_MARGIN
     met = b[b["goal_met"].astype(bool)]
     thin = met[met["lo"] < 1.0 + margin]
