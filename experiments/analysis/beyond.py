@@ -16,10 +16,19 @@ eye pass as shares of the total, and their median seconds) and how much
 error the representatives add (the variant's mean relMSE over the
 conventional one's, cell by cell at the same seeds) and where it lies (the
 share of the per-pixel excess relMSE on the pixels near an edge of the
-reference, edge_mask). Per case the verdict of the goal: the best variant (the largest
-speed-up point estimate other than the paper's) has its interval above 1.0
-and not below the paper's (stats.rank: an overlap is "not below", never
-"above"). A variant whose grid renders are missing is refused (exit 1): a
+reference, edge_mask). Variants against each other are paired
+(paired_tests): the renders of one (cell, seed) of a case ran back to back
+in one group, so per seed each variant's time (summed over the grid's
+cells) is compared with the paper's rule's as a log ratio (t interval, t
+test) and its relMSE (mean over the cells) as a difference, Holm over the
+family of variants of the case; settings whose images are bit-identical
+(relMSE and work counters equal on every cell and seed) are one row. A
+variant is "best" only
+when the paired tests rank it above every other (the paper's rule
+included): faster after Holm and its error not ranked higher. Per case the
+verdict of the goal: the best variant's equal-error interval lies above 1.0
+and the paired test does not rank it below the paper's rule. A variant
+whose grid renders are missing is refused (exit 1): a
 half-run study never reads as a result. Every number in STEM.md is written
 here from the runs CSVs and the stats JSONs they name.
 """
@@ -55,7 +64,10 @@ NEED = ["role", "status", "estimate", "method", "photons", "nn", "seed", "relmse
 COLUMNS = ["case", "scene", "size", "variant", "args", "estimate", "target", "speedup", "lo", "hi",
            "defined_fraction", "fallback_rate", "evaluated_share", "precompute_share", "render_share",
            "conv_render_share", "photons_med_s", "precompute_med_s", "render_med_s", "error_ratio", "excess_relmse", "edge_pixels",
-           "excess_edge_share", "renders", "seeds", "best", "above_one", "vs_paper", "goal_met"]
+           "excess_edge_share", "renders", "seeds", "image_group", "pair_seeds", "vs_paper_ratio", "vs_paper_ratio_lo",
+           "vs_paper_ratio_hi", "vs_paper_p_holm", "vs_paper_relmse_diff", "vs_paper_relmse_verdict", "best",
+           "above_one", "vs_paper", "goal_met"]
+ALPHA = 0.05  # the family-wise level of the paired tests (Holm)
 
 
 def read_stats(run):
@@ -236,30 +248,137 @@ def measure(case, scene, size, variant, args, runs_csv, time_col, rng, replicate
     return out
 
 
+def work_of(row):
+    """The work counters of the render ROW (its stats JSON's "work", as
+    sorted JSON text), or None when the runs.csv names no stats file or the
+    stats have none."""
+    if "run" not in row or not isinstance(row["run"], str) or not os.path.isfile(row["run"] + ".stats.json"):
+        return None
+    w = read_stats(row["run"]).get("work")
+    return None if w is None else json.dumps(w, sort_keys=True)
+
+
+def seed_cells(runs, estimate, time_col):
+    """{(photons, nn, seed): (time, relMSE, work)} of the ok precomputed grid
+    renders of ESTIMATE in RUNS (one variant's runs.csv)."""
+    sel = runs[(runs["status"] == "ok") & (runs["estimate"] == estimate) & (runs["method"] == "precomputed")
+               & (runs["role"] == "grid")]
+    return {(int(r["photons"]), int(r["nn"]), int(r["seed"])): (float(r[time_col]), float(r["relmse_ref"]), work_of(r))
+            for _, r in sel.iterrows()}
+
+
+def identical_images(a, b):
+    """True when the cells A and B (seed_cells) hold the same renders, every
+    render's relMSE is exactly equal (bit-identical images: the runs record
+    no image hash, equal relMSE on every cell and seed stands for it) and so
+    are its work counters where the stats have them (the same computation:
+    a variant that reaches the same image with other work, e.g. lazy
+    evaluation, is not one of them)."""
+    return bool(a) and set(a) == set(b) and all(a[k][1:] == b[k][1:] for k in a)
+
+
+def paired_seeds(a, b):
+    """(times A, times B, errors A, errors B): per seed both rendered (in
+    seed order), the time summed and the relMSE averaged over the cells
+    both rendered ok at that seed."""
+    seeds = sorted({k[2] for k in set(a) & set(b)})
+    out = ([], [], [], [])
+    for s in seeds:
+        keys = [k for k in set(a) & set(b) if k[2] == s]
+        out[0].append(sum(a[k][0] for k in keys))
+        out[1].append(sum(b[k][0] for k in keys))
+        out[2].append(float(np.mean([a[k][1] for k in keys])))
+        out[3].append(float(np.mean([b[k][1] for k in keys])))
+    return tuple(np.array(x, dtype=np.float64) for x in out)
+
+
+def compare(a, b):
+    """The paired comparison of cells A against B (seed_cells): ratio (B's
+    time / A's, the speed-up of A over B: exp of the mean per-seed log
+    ratio) with its t interval, the t test's p of the mean log ratio, and
+    stats.paired_difference of the relMSE (A - B)."""
+    ta, tb, ea, eb = paired_seeds(a, b)
+    ratio, lo, hi, n = stats.paired_log_ratio(tb, ta)
+    ok = (ta > 0) & (tb > 0)
+    p = stats.paired_difference(np.log(tb[ok]), np.log(ta[ok]))["p"] if ok.sum() else math.nan
+    return {"ratio": ratio, "lo": lo, "hi": hi, "pairs": n, "p": p, "err": stats.paired_difference(ea, eb)}
+
+
+def time_verdicts(comparisons, alpha=ALPHA):
+    """Holm over the time tests of COMPARISONS (compare dicts): adds p_holm
+    and verdict "higher" (faster), "lower" (slower), "undetermined" or
+    "unknown" (no test) to each."""
+    for c, q in zip(comparisons, stats.holm([c["p"] for c in comparisons])):
+        c["p_holm"] = float(q)
+        c["verdict"] = ("unknown" if not np.isfinite(q) else
+                        ("higher" if c["ratio"] > 1 else "lower") if q < alpha else "undetermined")
+    stats.compare_family([c["err"] for c in comparisons], alpha)
+    return comparisons
+
+
+def paired_tests(frames, estimate, time_col, alpha=ALPHA):
+    """The paired tests of one case and estimate. FRAMES: {variant name:
+    its runs.csv} in the order given, the paper's rule's ("paper") among
+    them. Returns {name: columns}: image_group (the first variant, in that
+    order, whose images are bit-identical to this one's: the row it is
+    reported in), pair_seeds, vs_paper_ratio (_lo, _hi: the paper's rule's
+    time / this variant's, paired per seed, t interval), vs_paper_p_holm
+    and vs_paper (its Holm-corrected verdict over the family of variants:
+    higher = faster), vs_paper_relmse_diff and vs_paper_relmse_verdict (the
+    paired relMSE difference, stats.compare_family over the family), best
+    (the variant with the largest vs_paper_ratio, when the paired tests
+    against every other image group, the paper's rule's included, Holm over
+    those, rank it faster and none ranks its error higher)."""
+    cells = {n: seed_cells(f, estimate, time_col) for n, f in frames.items()}
+    group = {}
+    for n in cells:
+        group[n] = next((r for r in group.values() if r == group.get(r) and identical_images(cells[n], cells[r])), n)
+    out = {n: {"image_group": group[n], "pair_seeds": 0, "vs_paper_ratio": math.nan, "vs_paper_ratio_lo": math.nan,
+               "vs_paper_ratio_hi": math.nan, "vs_paper_p_holm": math.nan, "vs_paper": "",
+               "vs_paper_relmse_diff": math.nan, "vs_paper_relmse_verdict": "", "best": False} for n in cells}
+    if "paper" not in cells:
+        return out
+    reps = [n for n in cells if group[n] == n]
+    family = [n for n in reps if n != group["paper"]]
+    comps = time_verdicts([compare(cells[n], cells[group["paper"]]) for n in family], alpha)
+    for n, c in zip(family, comps):
+        out[n].update(pair_seeds=c["pairs"], vs_paper_ratio=c["ratio"], vs_paper_ratio_lo=c["lo"],
+                      vs_paper_ratio_hi=c["hi"], vs_paper_p_holm=c["p_holm"], vs_paper=c["verdict"],
+                      vs_paper_relmse_diff=c["err"]["mean"], vs_paper_relmse_verdict=c["err"]["verdict"])
+    finite = [n for n in family if np.isfinite(out[n]["vs_paper_ratio"])]
+    if finite:
+        cand = max(finite, key=lambda n: out[n]["vs_paper_ratio"])
+        against = time_verdicts([compare(cells[cand], cells[r]) for r in reps if r != cand], alpha)
+        out[cand]["best"] = bool(against) and all(c["verdict"] == "higher" and c["err"]["verdict"] != "higher"
+                                                  for c in against)
+    for n in cells:  # a bit-identical variant is reported in its group's row
+        if group[n] != n:
+            out[n].update({k: v for k, v in out[group[n]].items() if k != "image_group"}, best=False)
+    return out
+
+
+def add_paired(table, frames, time_col):
+    """TABLE with the columns of paired_tests per (case, estimate); FRAMES:
+    {case: {variant: runs.csv frame}}."""
+    cols = {}
+    for (cid, est), _g in table.groupby(["case", "estimate"], sort=False):
+        for name, c in paired_tests(frames[cid], est, time_col).items():
+            cols[(cid, est, name)] = c
+    keys = list(zip(table["case"], table["estimate"], table["variant"]))
+    for col in ("image_group", "pair_seeds", "vs_paper_ratio", "vs_paper_ratio_lo", "vs_paper_ratio_hi",
+                "vs_paper_p_holm", "vs_paper", "vs_paper_relmse_diff", "vs_paper_relmse_verdict", "best"):
+        table[col] = [cols[k][col] if k in cols else (False if col == "best" else "") for k in keys]
+    return table
+
+
 def verdicts(table):
-    """Fill best, above_one, vs_paper and goal_met per (case, estimate):
-    best = the variant other than the paper's with the largest speed-up
-    point estimate; above_one: its interval's lower end > 1; vs_paper:
-    stats.rank of its interval against the paper's ("higher", "overlap",
-    "lower", "unknown"); goal_met: above_one and vs_paper is higher or
-    overlap. The paper's row carries above_one for itself. Returns TABLE."""
-    for c in ("best", "above_one", "goal_met"):
-        table[c] = False
-    table["vs_paper"] = ""
-    for (_case, _est), g in table.groupby(["case", "estimate"], sort=False):
-        for i in g.index:
-            table.loc[i, "above_one"] = bool(report.isnum(g.loc[i, "lo"]) and g.loc[i, "lo"] > 1.0)
-        paper = g[g["variant"] == "paper"]
-        others = g[(g["variant"] != "paper") & np.isfinite(g["speedup"].astype(float))]
-        if others.empty or paper.empty:
-            continue
-        b = others["speedup"].astype(float).idxmax()
-        p = paper.index[0]
-        r = stats.rank((float(table.loc[b, "lo"]), float(table.loc[b, "hi"])),
-                       (float(table.loc[p, "lo"]), float(table.loc[p, "hi"])))
-        table.loc[b, "best"] = True
-        table.loc[b, "vs_paper"] = r
-        table.loc[b, "goal_met"] = bool(table.loc[b, "above_one"] and r in ("higher", "overlap"))
+    """Fill above_one and goal_met per row (best, vs_paper: paired_tests):
+    above_one: the equal-error interval's lower end > 1; goal_met: the best
+    variant's above_one, and the paired test does not rank it below the
+    paper's rule. Returns TABLE."""
+    table["above_one"] = [bool(report.isnum(x) and x > 1.0) for x in table["lo"]]
+    table["goal_met"] = [bool(b and a and v != "lower") for b, a, v in
+                         zip(table["best"], table["above_one"], table["vs_paper"])]
     return table
 
 
@@ -273,6 +392,27 @@ def interval(row):
     return f"{fmt(row['speedup'])} [{fmt(row['lo'])}, {fmt(row['hi'])}]"
 
 
+PAIRED_WORDS = {"higher": "faster", "lower": "slower", "undetermined": "not ranked", "unknown": "no test"}
+
+
+def paired_text(row):
+    """'1.05 [1.01, 1.09], faster (Holm p 0.012)' of a row's paired time
+    ratio against the paper's rule; '' for the paper's rule itself."""
+    if not row.get("vs_paper"):
+        return ""
+    return (f"{fmt(row['vs_paper_ratio'])} [{fmt(row['vs_paper_ratio_lo'])}, {fmt(row['vs_paper_ratio_hi'])}], "
+            f"{PAIRED_WORDS.get(row['vs_paper'], row['vs_paper'])} (Holm p {fmt(row['vs_paper_p_holm'], 2)}); "
+            f"relMSE {row['vs_paper_relmse_verdict']}")
+
+
+def group_label(table, row):
+    """The variant's name, or 'a = b = c' for the bit-identical variants
+    reported in its row."""
+    same = table[(table["case"] == row["case"]) & (table["estimate"] == row["estimate"])
+                 & (table["image_group"] == row["variant"])]["variant"].tolist()
+    return " = ".join(same) if len(same) > 1 else row["variant"]
+
+
 def why(g, best, paper):
     """The sentences saying why a case misses the goal: where the time goes
     and where the error lies, for the best variant against the paper's rule."""
@@ -282,7 +422,7 @@ def why(g, best, paper):
     if not best["above_one"]:
         s.append(f"the best variant ({best['variant']}) has its interval's lower end at {fmt(best['lo'])}, not above 1.0")
     if best["vs_paper"] == "lower":
-        s.append(f"its interval lies below the paper's rule ({interval(paper)})")
+        s.append(f"the paired test ranks it slower than the paper's rule ({paired_text(best)})")
     s.append(f"time: its precompute is {pct(best['precompute_share'])} and its eye pass {pct(best['render_share'])} of "
              f"its total (median over renders; the paper's rule: {pct(paper['precompute_share'])} and "
              f"{pct(paper['render_share'])}; the conventional eye pass: {pct(best['conv_render_share'])} of its total)")
@@ -360,7 +500,7 @@ def main():
         names = [v[1] for v in args.variant if v[0] == cid]
         if "paper" not in names:
             report.die(WHERE, f"case {cid}: no --variant {cid} paper (the rule every variant is compared with)")
-    rows = []
+    rows, frames = [], {}
     for cid, name, vargs, csv in args.variant:
         if cid not in cases:
             report.die(WHERE, f"--variant {cid} {name}: no --case {cid}")
@@ -369,7 +509,9 @@ def main():
         # depend on which other cases the run included or their order
         rng = np.random.default_rng([args.bootstrap_seed, zlib.crc32(f"{cid}/{name}".encode())])
         rows += measure(cid, scene, size, name, vargs, csv, args.time, rng, args.bootstrap, _ref)
-    table = verdicts(pd.DataFrame(rows))
+        frames.setdefault(cid, {})[name] = report.read_csv(csv, NEED, WHERE)
+    table = pd.DataFrame(rows)
+    table = verdicts(add_paired(table, frames, args.time))
     report.write_csv_atomic(table[COLUMNS], args.out + ".csv")
     write_md(table, cases, args)
     if args.figure:
@@ -398,13 +540,22 @@ def write_md(table, cases, args):
            "of a case, the conventional, the paper's rule and every variant, ran back to back in one group "
            "(`experiments/group.sh`, in the order given at odd seeds and reversed at even ones), so each time "
            "ratio is a paired sample of one machine state.", "",
-           "| case | variant | target relMSE | speed-up [95%] | fallback | evaluated | precompute | eye pass | error ratio |",
-           "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+           "Against the paper's rule (paired): per seed the paper's rule's time over the variant's, each summed "
+           "over the case's grid cells, exp of the mean log ratio with its 95% t interval over seeds (above 1: "
+           "the variant is faster), its t test Holm-corrected over the case's variants (\"faster\" / "
+           f"\"slower\" at a family-wise {100 * ALPHA:g}%, else \"not ranked\"), and the paired relMSE difference "
+           "(mean over the cells per seed; `stats.compare_family`, Holm over the variants). Variants whose "
+           "images are bit-identical (relMSE equal on every cell and seed) from the same work (the renders' work "
+           "counters equal) are one row, named a = b; the row's numbers are the first's.", "",
+           "| case | variant | target relMSE | speed-up [95%] | against the paper's rule (paired) | fallback | evaluated | precompute | eye pass | error ratio |",
+           "|---|---|---:|---:|---|---:|---:|---:|---:|---:|"]
     for _, r in table.iterrows():
+        if r["image_group"] and r["image_group"] != r["variant"]:
+            continue
         mark = " (best)" if r["best"] else ""
-        out.append(f"| {r['case']} | {r['variant']}{mark} | {fmt(r['target'])} | {interval(r)} | "
-                   f"{pct(r['fallback_rate'])} | {pct(r['evaluated_share'])} | {pct(r['precompute_share'])} | "
-                   f"{pct(r['render_share'])} | {fmt(r['error_ratio'])} |")
+        out.append(f"| {r['case']} | {group_label(table, r)}{mark} | {fmt(r['target'])} | {interval(r)} | "
+                   f"{paired_text(r)} | {pct(r['fallback_rate'])} | {pct(r['evaluated_share'])} | "
+                   f"{pct(r['precompute_share'])} | {pct(r['render_share'])} | {fmt(r['error_ratio'])} |")
     out += ["", "## Where the time goes and where the error lies", "",
             "Per case and variant, medians over the variant's renders of the renderer's own timers (`--stats` "
             "time_s, each the minimum over the render's repeats: the photon pass with the kd-tree build, the minimum of "
@@ -424,21 +575,26 @@ def write_md(table, cases, args):
                    f"{pct(r['evaluated_share'])} | {pct(r['fallback_rate'])} | {fmt(r['excess_relmse'])} | "
                    f"{pct(r['edge_pixels'])} | {pct(r['excess_edge_share'])} |")
     out += ["", "## The goal per case", "",
-            "The goal: the best variant's interval lies above 1.0 and at or above the paper's rule's. The best is "
-            "the largest point estimate other than the paper's (a choice on point estimates: its interval is "
-            "what counts); \"not below\" means the two intervals overlap, which does not rank them.", ""]
+            "The goal: the best variant's equal-error interval lies above 1.0 and the paired test does not rank it "
+            "slower than the paper's rule. The best is the variant the paired tests rank faster than every other "
+            "(the paper's rule and the other image groups; Holm over those comparisons) without ranking its error "
+            "higher; a case where no variant is so ranked has no best.", ""]
     met = 0
     for (cid, est), g in table.groupby(["case", "estimate"], sort=False):
         best = g[g["best"]]
         paper = g[g["variant"] == "paper"].iloc[0]
         if best.empty:
-            out.append(f"- **{cid}** ({est}): no variant has a speed-up here: the goal is not shown.")
+            out.append(f"- **{cid}** ({est}): no variant is ranked faster than every other by the paired tests: "
+                       "no best, the goal is not shown.")
             continue
         b = best.iloc[0]
-        rel = {"higher": "above the paper's rule", "overlap": "not below the paper's rule (the intervals overlap)",
-               "lower": "below the paper's rule", "unknown": "not comparable with the paper's rule"}[b["vs_paper"]]
-        head = (f"- **{cid}** ({est}): best {b['variant']} {interval(b)}, "
-                f"{'above' if b['above_one'] else 'not above'} 1.0 and {rel} ({interval(paper)}): ")
+        rel = {"higher": "faster than the paper's rule (paired, Holm)",
+               "undetermined": "not ranked against the paper's rule (paired, Holm)",
+               "lower": "slower than the paper's rule (paired, Holm)",
+               "unknown": "not compared with the paper's rule"}[b["vs_paper"]]
+        head = (f"- **{cid}** ({est}): best {group_label(table, b)} {interval(b)}, "
+                f"{'above' if b['above_one'] else 'not above'} 1.0 and {rel} ({paired_text(b)}; the paper's rule "
+                f"at equal error: {interval(paper)}): ")
         if b["goal_met"]:
             met += 1
             out.append(head + "the goal holds.")
