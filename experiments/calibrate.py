@@ -14,8 +14,11 @@ predicted total on the held-out renders; the goal is a median of at most
 5%).
 
 The analysis side: model_ratio (the model's paired time ratio of two sets
-of renders from their work counters) and explain (the phase and the counter
-behind a measured ratio the model does not predict).
+of renders from their work counters), explain (the phase and the counter
+behind a measured ratio the model does not predict) and predict_seconds
+(the wall time a list of render configurations will take, for a study's dry
+run: each render's counters scaled from the calibration renders' work per
+photon and per eye sample, times its repeats).
 
 The fitted and held-out renders differ in their settings (scene, size,
 photons, n), so the validation asks what the model is for: the time of a
@@ -25,6 +28,7 @@ import argparse
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -128,15 +132,16 @@ def part_error(model, rows, part):
     return float(np.median(errs)) if errs else float("nan")
 
 
-def write_model(path, model, median, largest, phase_errors, provenance):
+def write_model(path, model, median, largest, phase_errors, provenance, per_unit=None):
     """model.json: per part its counters and coefficients (seconds; seconds
     per unit), the held-out validation (median and largest relative error
-    of the total, the median per phase) and the machine's provenance;
-    written to a temporary name and renamed."""
+    of the total, the median per phase), the machine's provenance and the
+    calibration renders' work per unit (work_per_unit); written to a
+    temporary name and renamed."""
     doc = {"parts": {p: {"counters": ["constant", *FEATURES[p]], "seconds_per_unit": [float(c) for c in model[p]]}
                      for p in PARTS},
            "validation": {"median": median, "largest": largest, "phases": phase_errors},
-           "provenance": provenance}
+           "provenance": provenance, "work_per_unit": per_unit or {}}
     with open(path + ".tmp", "w", encoding="utf-8") as f:
         json.dump(doc, f, indent=1)
         f.write("\n")
@@ -162,6 +167,91 @@ def load_model(path=DEFAULT_MODEL):
     except (OSError, ValueError, KeyError, TypeError) as e:
         raise ModelError(f"{path}: not a cost model ({e.__class__.__name__}: {e}); run `make calibrate` again")
     return model, validation
+
+
+def load_work_per_unit(path=DEFAULT_MODEL):
+    """The work per unit of the model file PATH (work_per_unit), or None
+    when there is no model file or it has none."""
+    if not os.path.isfile(path):
+        return None
+    try:
+        with open(path, encoding="utf-8") as f:
+            return json.load(f).get("work_per_unit") or None
+    except (OSError, ValueError) as e:
+        raise ModelError(f"{path}: not a cost model ({e}); run `make calibrate` again")
+
+
+def driver(phase, name):
+    """What counter NAME of PHASE grows with: the photons emitted ("P"), the
+    eye samples ("S"), or either times n for the points a k-nearest search
+    examines ("Pn", "Sn")."""
+    d = "S" if phase == "render" else "P"
+    return d + "n" if name == "map_points" else d
+
+
+def drivers(photons, nn, samples):
+    return {"P": float(photons), "Pn": float(photons) * nn, "S": float(samples), "Sn": float(samples) * nn}
+
+
+def work_per_unit(rows):
+    """{scene: {method: {phase: {counter: count per unit of its driver}}}}:
+    the mean over the calibration renders ROWS of each counter divided by
+    what it grows with (driver)."""
+    acc = {}
+    for r in rows:
+        d = drivers(r["photons"], r["nn"], r["samples"])
+        for ph in PHASES:
+            for name, v in r["work"][ph].items():
+                acc.setdefault(r["scene"], {}).setdefault(r["method"], {}).setdefault(ph, {}).setdefault(
+                    name, []).append(v / d[driver(ph, name)])
+    return {sc: {m: {ph: {n: float(np.mean(v)) for n, v in c.items()} for ph, c in ph_.items()}
+                 for m, ph_ in ms.items()} for sc, ms in acc.items()}
+
+
+def auto_repeats_rule(config_h=os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                                            "renderer", "config.h")):
+    """(minimum, maximum, budget seconds) of the renderer's --repeats auto,
+    read from renderer/config.h (the one place they are set)."""
+    with open(config_h, encoding="utf-8") as f:
+        text = f.read()
+    get = lambda name: re.search(r"#define\s+" + name + r"\s+([0-9.]+)", text).group(1)  # noqa: E731
+    return int(get("CONFIG_REPEATS_AUTO_MIN")), int(get("CONFIG_REPEATS_AUTO_MAX")), float(get("CONFIG_REPEATS_AUTO_BUDGET_S"))
+
+
+def repeats_of(repeats, seconds, rule):
+    """How many times a render of SECONDS is run under --repeats REPEATS
+    ("auto": at least rule's minimum, then until the repeats add up to its
+    budget, at most its maximum)."""
+    if str(repeats) != "auto":
+        return int(repeats)
+    lo, hi, budget = rule
+    return min(hi, max(lo, math.ceil(budget / seconds) if seconds > 0 else hi))
+
+
+def predict_seconds(model, per_unit, configs, repeats="auto", rule=None):
+    """The predicted wall seconds of each render configuration in CONFIGS
+    (dicts: scene (a path or a name), method, photons, nn, width, height,
+    subpixels), as a list: the model's total of the counters a render of
+    that configuration does (the calibration renders' work per unit of the
+    same scene and method, times its photons, eye samples and n; a scene
+    not calibrated: the mean over the calibrated scenes), times its repeats
+    (REPEATS: a count or "auto", the renderer's rule). nan for a method the
+    calibration did not render."""
+    rule = rule or auto_repeats_rule()
+    out = []
+    for c in configs:
+        scene = os.path.splitext(os.path.basename(str(c["scene"])))[0]
+        known = [per_unit[s][c["method"]] for s in (per_unit if scene not in per_unit else [scene])
+                 if c["method"] in per_unit[s]]
+        if not known:
+            out.append(math.nan)
+            continue
+        d = drivers(c["photons"], c["nn"], c["width"] * c["height"] * c["subpixels"] ** 2)
+        work = {ph: {n: float(np.mean([k[ph][n] for k in known])) * d[driver(ph, n)] for n in known[0][ph]}
+                for ph in PHASES}
+        t = predict(model, {"work": work})["total"]
+        out.append(t * repeats_of(repeats, t, rule))
+    return out
 
 
 def model_ratio(model, works_a, works_b):
@@ -210,7 +300,8 @@ def render(pm, scene, method, photons, nn, width, height, tmp):
     with open(stats) as f:
         s = json.load(f)
     return {"scene": scene, "method": method, "photons": photons, "nn": nn, "width": width, "height": height,
-            "work": s["work"], "time": s["time_s"], "repeats": s["repeats"], "provenance": s["provenance"]}
+            "samples": s["samples"], "work": s["work"], "time": s["time_s"], "repeats": s["repeats"],
+            "provenance": s["provenance"]}
 
 
 def write(out, model, fitted, held, median, largest):
@@ -231,7 +322,7 @@ def write(out, model, fitted, held, median, largest):
                     r["time"]["total"], p["total"], (p["total"] - r["time"]["total"]) / r["time"]["total"],
                     ",".join("%.6f,%.6f" % (r["time"][ph], p[ph]) for ph in PHASES)))
     write_model(os.path.join(out, MODEL_NAME), model, median, largest,
-                {p: part_error(model, held, p) for p in PHASES}, fitted[0]["provenance"])
+                {p: part_error(model, held, p) for p in PHASES}, fitted[0]["provenance"], work_per_unit(fitted + held))
     prov = fitted[0]["provenance"]
     with open(os.path.join(out, "calibrate.md"), "w") as f:
         f.write("# Cost model of this machine\n\n")

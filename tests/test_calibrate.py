@@ -3,6 +3,7 @@ are a known linear function of their counters (plus 2% noise) predicts
 held-out renders within the goal; the negative control, the same model
 fitted on the times shuffled among the renders, must fail the validation."""
 
+import math
 import os
 import sys
 
@@ -63,3 +64,64 @@ def test_shuffled_times_fail():
         r["time"] = times[j]
     median, _ = calibrate.validate(calibrate.fit(rows), synthetic(20, 2))
     assert median > calibrate.GOAL_MEDIAN
+
+
+# ---- predict_seconds: a study's wall time from its render configurations
+
+def per_unit_rows(scene, k):
+    """Calibration-like renders of SCENE whose counters are exactly K x a
+    fixed work per unit of their drivers (photons, eye samples, n)."""
+    rows = []
+    for method in ("conventional", "precomputed"):
+        for photons, nn, w, h in ((20000, 20, 64, 48), (50000, 50, 128, 96)):
+            samples = w * h * 4
+            work = {p: {f: 0 for f in calibrate.FEATURES["render"] + ("traced_photons", "stored_photons",
+                                                                       "tree_points")} for p in calibrate.PHASES}
+            work["trace"].update(traced_photons=photons, stored_photons=3 * k * photons, rays=4 * k * photons,
+                                 shape_tests=36 * k * photons)
+            work["build"]["tree_points"] = 3 * k * photons
+            if method == "precomputed":
+                work["precompute"].update(knn_queries=k * photons, map_points=k * photons * nn)
+                work["render"].update(rays=k * samples, rep_lookups=samples, rep_points=10 * k * samples)
+            else:
+                work["render"].update(rays=k * samples, knn_queries=samples, map_points=3 * k * samples * nn)
+            rows.append({"scene": scene, "method": method, "photons": photons, "nn": nn, "samples": samples,
+                         "work": work})
+    return rows
+
+
+def linear_model():
+    return {p: np.array([0.0] + [TRUE.get(p, {}).get(f, 0.0) for f in calibrate.FEATURES[p]])
+            for p in calibrate.PARTS}
+
+
+def test_predict_seconds_scales_with_the_configuration():
+    model = linear_model()
+    per_unit = calibrate.work_per_unit(per_unit_rows("cornell", 1) + per_unit_rows("caustic", 3))
+    rule = (3, 10, 2.0)
+    conf = {"scene": "scenes/cornell.scene", "method": "precomputed", "photons": 100000, "nn": 100, "width": 256,
+            "height": 192, "subpixels": 2}
+    samples = 256 * 192 * 4
+    # by hand from TRUE and the work per unit of per_unit_rows (k = 1)
+    want = (2e-7 * 4 * 100000 + 3e-8 * 36 * 100000 + 1.5e-7 * 3 * 100000 + 2e-8 * 100000 * 100
+            + 4e-7 * 100000 + 3e-7 * samples + 1e-8 * 10 * samples)
+    one, = calibrate.predict_seconds(model, per_unit, [conf], repeats=1, rule=rule)
+    assert abs(one / want - 1) < 1e-9, (one, want)
+    # three repeats: three times; auto: as many as the renderer's rule runs
+    three, = calibrate.predict_seconds(model, per_unit, [conf], repeats=3, rule=rule)
+    assert abs(three - 3 * one) < 1e-9
+    auto, = calibrate.predict_seconds(model, per_unit, [conf], repeats="auto", rule=rule)
+    assert abs(auto - one * min(10, max(3, math.ceil(2.0 / one)))) < 1e-9
+    # a scene with three times the work per unit costs more; an unknown scene: the calibrated scenes' mean
+    caustic, = calibrate.predict_seconds(model, per_unit, [dict(conf, scene="caustic")], repeats=1, rule=rule)
+    other, = calibrate.predict_seconds(model, per_unit, [dict(conf, scene="box")], repeats=1, rule=rule)
+    assert caustic > 2 * one and abs(other - (one + caustic) / 2) < 1e-9 * caustic
+    # a method not calibrated: nan, not a guess
+    assert math.isnan(calibrate.predict_seconds(model, per_unit, [dict(conf, method="pathtrace")], 1, rule)[0])
+
+
+def test_auto_repeats_rule_is_the_renderers():
+    lo, hi, budget = calibrate.auto_repeats_rule()
+    assert 1 <= lo <= hi and budget > 0
+    assert calibrate.repeats_of("auto", budget / 1000, (lo, hi, budget)) == hi
+    assert calibrate.repeats_of("auto", budget, (lo, hi, budget)) == lo
