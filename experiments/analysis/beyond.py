@@ -585,7 +585,7 @@ def write_md(table, cases, args):
         paper = g[g["variant"] == "paper"].iloc[0]
         if best.empty:
             out.append(f"- **{cid}** ({est}): no variant is ranked faster than every other by the paired tests: "
-                       "no best, the goal is not shown.")
+                       "no best, so the goal does not hold.")
             continue
         b = best.iloc[0]
         rel = {"higher": "faster than the paper's rule (paired, Holm)",
