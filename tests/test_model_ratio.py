@@ -134,3 +134,14 @@ def test_model_file_round_trip_and_refusal(tmp_path):
         f.write('{"parts": {}}')
     with pytest.raises(calibrate.ModelError, match="not a cost model"):
         calibrate.load_model(path)
+
+
+def test_runs_without_their_stats_files(tmp_path):
+    """A runs.csv whose renders are not on this machine (committed results
+    without the run directories): the model columns are empty, no failure."""
+    model = synthetic_model()
+    runs, cells, paper = make_runs(tmp_path, model)
+    runs["run"] = [str(tmp_path / "gone" / f"r{i}") for i in range(len(runs))]
+    t, _ = table.summarize(runs, cells, paper, (model, VALIDATION))
+    assert t["model_ratio_percent"].isna().all() and not t["model_differs"].any()
+    assert table.model_text(prec(t, 10), (model, VALIDATION)) == "n/a"

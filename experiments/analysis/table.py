@@ -164,13 +164,16 @@ def model_rows(sel, conv):
     """The pairs of calibrate's rows ({"work", "time"}) of the seeds where
     both SEL and CONV rendered ok: the work counters from each render's
     stats file, the times (the repeats' minima) from runs.csv; None when a
-    stats file has no counters."""
+    stats file is not there (a runs.csv without its renders) or has no
+    counters."""
     a = sel[sel["status"] == "ok"].drop_duplicates("seed").set_index("seed")
     b = conv[conv["status"] == "ok"].drop_duplicates("seed").set_index("seed")
     out = ([], [])
     for seed in sorted(set(a.index) & set(b.index)):
         for frame, rows in ((a, out[0]), (b, out[1])):
             r = frame.loc[seed]
+            if not os.path.isfile(r["run"] + ".stats.json"):
+                return None
             work = layout.load_json(r["run"] + ".stats.json").get("work")
             if work is None:
                 return None
