@@ -544,7 +544,7 @@ def markdown(table, runs, estimates, args):
             "the two renders of a seed ran back to back (`pair_pos` in `runs.csv`). `relmse_diff_*`: the paired "
             "difference precomputed − conventional of `relmse_ref` (`stats.paired_difference`), `_p_holm` Holm's "
             "adjustment over the precomputed cells, `_verdict` from `stats.compare_family`.",
-            "- `model_ratio_percent`: the cost model's (`make calibrate`; nan without one) paired ratio of the "
+            "- `model_ratio_percent`: the cost model's (`make calibrate`; empty without one) paired ratio of the "
             "predicted totals, 100 x exp(mean over the paired seeds of log(predicted precomputed / predicted "
             "conventional)), each prediction from the render's work counters (its `--stats` JSON's `work`); "
             "`model_differs`: the measured paired ratio and the model's differ by more than the model's "
