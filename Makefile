@@ -60,6 +60,7 @@ figures: ## Figures 2 and 3 at 1:1, error maps, trade-off, time ratio and phases
 rep-study: ## representative rules (REP_RULES) against the paper's cost pattern -> results/rep-study/, figures/rep-study.png
 caustic: ## the Fig. 3 cells on the caustic scene, caustic-window error over seeds -> results/caustic/, figures/caustic.png (Snakemake: studies.yaml, rules/caustic.smk)
 resolution: ## cheapest settings per output size -> results/resolution/
+gather: ## final gathering (--gather N), both methods over P_e x n x N on every scene and cornell's sizes: equal-error and gather-phase speed-ups, best configuration per target -> results/gather/, figures/gather.png (Snakemake: studies.yaml, rules/gather.smk)
 estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias/ (Snakemake: studies.yaml, rules/bias.smk)
 reproducibility: ## the grid twice, runs interleaved: how far the paired ratios move between runs -> results/reproducibility/
 findings: ## results/FINDINGS.md from the results files; checks that README's findings numbers are in results/

@@ -64,3 +64,12 @@ estimator-bias: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,bias,bias,bias)
 estimator-bias-runs: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,bias,runs)
+
+# gather (issue 37; studies.yaml, rules/gather.smk): SCENES at the scenes
+# study's size, cornell also at GATHER_CORNELL_SIZES (SIZE given: that size
+# only), each grid against its converged reference (made first, as for `make scenes`)
+GATHER_CORNELL_SIZES ?= 256x192 512x384 1024x768
+gather_grids = $(foreach s,$(SCENES),$(foreach z,$(if $(and $(filter %/cornell.scene,$(s)),$(if $(filter command line,$(origin SIZE)),,y)),$(GATHER_CORNELL_SIZES),$(scenes_size)),$(s)@$(z)=$(call converged_ref,$(s),$(z))))
+.PHONY: gather
+gather: $(BUILD)/photonmap $(foreach g,$(gather_grids),$(lastword $(subst =, ,$(g)))) | $(DEPS_TEST)
+	+@$(call smk,gather $(call shell_quote,GATHER_GRIDS=$(call yaml_quote,$(gather_grids))) $(call shell_quote,DIRECT_RUNS=$(call yaml_quote,$(foreach s,$(SCENES),$(s)@$(scenes_size)=$(scene-$(call scene_id,$(s))_RUNS_CSV)))),gather,gather_collect)
