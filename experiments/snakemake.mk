@@ -19,7 +19,9 @@ TIMED_AT_ONCE ?= 1
 SNAKEFLAGS ?=
 # the knobs read from the environment too (as make's ?= defaults do)
 SMK_ENV_KNOBS := SCENE SIZE SEEDS PHOTONS NNS METHODS ESTIMATES SUBPIXELS THREADS PM PM_ARGS TAG CONV_RUNROOT \
-  REF REF_FAST RESULTS EE_TARGETS TIME BOOTSTRAP BOOTSTRAP_SEED PYTHON
+  REF REF_FAST RESULTS EE_TARGETS TIME BOOTSTRAP BOOTSTRAP_SEED PYTHON \
+  CONV_REF_PHOTONS CONV_REF_FACTOR CONV_REF_NN CONV_REF_SEEDS CONV_REF_DIRECT RES_SIZES RES_TARGETS RES_REF \
+  SCENES SCENES_CELL FIGURES REP_RULES
 SMK_OWN_VARS := SNAKEMAKE CORES TIMED_AT_ONCE SNAKEFLAGS CLUSTER GROUP_RENDERS SLURM_JOBS SLURM_DIR SBATCH_OPTS
 # yaml_quote TEXT: TEXT as a single-quoted YAML string (Snakemake's --config
 # would otherwise read 1e5 as a number and "a: b" as a mapping)
@@ -55,7 +57,7 @@ smk = $(smk_logs)$(SNAKEMAKE) -s experiments/Snakefile $(smk_where) \
   --config STUDY=$(1) $(smk_config) $(if $(3),--forcerun $(3)) -- $(2)
 
 # the study targets: STUDY (studies.yaml), its report rule, its first analysis rule
-.PHONY: reproduce-table caustic estimator-bias estimator-bias-runs
+.PHONY: reproduce-table caustic estimator-bias estimator-bias-runs resolution resolution-runs scenes scenes-runs rep-study rep-study-runs
 reproduce-table: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,table1,table1,collect)
 caustic: $(BUILD)/photonmap | $(DEPS_TEST)
@@ -64,3 +66,15 @@ estimator-bias: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,bias,bias,bias)
 estimator-bias-runs: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,bias,runs)
+resolution: $(BUILD)/photonmap | $(DEPS_TEST)
+	+@$(call smk,resolution,resolution,collect)
+resolution-runs: $(BUILD)/photonmap | $(DEPS_TEST)
+	+@$(call smk,resolution,runs)
+scenes: $(BUILD)/photonmap | $(DEPS_TEST)
+	+@$(call smk,scenes,scenes,collect)
+scenes-runs: $(BUILD)/photonmap | $(DEPS_TEST)
+	+@$(call smk,scenes,runs)
+rep-study: $(BUILD)/photonmap | $(DEPS_TEST)
+	+@$(call smk,rep-study,rep_study,collect collect_rep)
+rep-study-runs: $(BUILD)/photonmap | $(DEPS_TEST)
+	+@$(call smk,rep-study,runs)

@@ -11,8 +11,12 @@
 import re
 
 NONE = "(?!)"  # a root regex that matches nothing
-PAIRED = re.escape(STUDY.root) if STUDY.paired else NONE
-SINGLE = NONE if STUDY.paired else re.escape(STUDY.root)
+def roots(paired):
+    """The run roots of the study's grids that render both methods as one
+    job (PAIRED) or one by one, as a regex."""
+    rs = [re.escape(g.root) for g in STUDY.grids if g.paired == paired]
+    return "|".join(rs) if rs else NONE
+PAIRED, SINGLE = roots(True), roots(False)
 
 wildcard_constraints:
     estimate="[a-z]+",
@@ -30,7 +34,7 @@ rule pair:
         timed=STUDY.timed,
     group: "renders"
     params:
-        cmd=lambda wc: STUDY.launch_command(wc.root, ["conventional", "precomputed"], wc.estimate, wc.photons, wc.nn, wc.seed),
+        cmd=lambda wc: STUDY.by_root[wc.root].launch_command(wc.root, ["conventional", "precomputed"], wc.estimate, wc.photons, wc.nn, wc.seed),
     shell:
         "{params.cmd}"
 
@@ -44,13 +48,13 @@ rule render:
         timed=STUDY.timed,
     group: "renders"
     params:
-        cmd=lambda wc: STUDY.launch_command(wc.root, [wc.method], wc.estimate, wc.photons, wc.nn, wc.seed),
+        cmd=lambda wc: STUDY.by_root[wc.root].launch_command(wc.root, [wc.method], wc.estimate, wc.photons, wc.nn, wc.seed),
     shell:
         "{params.cmd}"
 
-# only the renders of the study (make estimator-bias-runs)
+# only the renders of the study and the references it renders (make estimator-bias-runs)
 localrules: runs
 
 rule runs:
     input:
-        STUDY.run_files,
+        STUDY.run_files + sorted({g.ref for g in STUDY.grids if g.ref_converged}),
