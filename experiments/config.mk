@@ -101,8 +101,6 @@ CONV_REF_SEEDS ?= 1000001 1000002 1000003 1000004
 CONV_REF_DIRECT ?= shadow-rays
 CONV_REF_MARGIN ?= 0.1
 
-# make beyond: every scene (make scenes: studies.yaml)
-SCENES ?= $(filter-out scenes/furnace.scene,$(wildcard scenes/*.scene))
 
 # the seeds of the scenes and rep-study grids (studies.yaml), which the
 # converged reference of studies.mk must not use

@@ -59,4 +59,4 @@ $(dir $(call converged_ref,$(1),WxH))%.exr: $(1) | $$(BUILD)/photonmap $$(DEPS_T
 	  --direct $$(CONV_REF_DIRECT) --seeds "$$(CONV_REF_SEEDS)" --grid-seeds "$$(conv_ref_grid_seeds)" \
 	  --dir $$(dir $$@)$$* --out $$@
 endef
-$(foreach s,$(sort $(SCENE) $(SCENES)),$(eval $(call converged_ref_rule,$(s))))
+$(eval $(call converged_ref_rule,$(SCENE)))

@@ -11,6 +11,7 @@ SIZE and SEEDS are checked before anything renders.
 """
 
 import glob
+import itertools
 import os
 import re
 import shlex
@@ -162,36 +163,74 @@ def reference_kind(decl_ref, knobs):
     return kinds[value]
 
 
+def knob_words(k, knob, exclude=()):
+    """The words of the knob KNOB's value, a word with * a glob (sorted, less EXCLUDE)."""
+    out = []
+    for w in k[knob].split():
+        out += [f for f in sorted(glob.glob(w)) if f not in exclude] if "*" in w else [w]
+    return out
+
+
 def grid_values(block, k, given):
-    """The values of a block of grids: one grid per word of the knob OVER
-    (a word with * is a glob, sorted, less EXCLUDE), given to the grid as the
-    knob KNOB; KNOB given alone, without OVER: that value only. A block
-    without OVER: one grid, value ""."""
+    """The values of a block's knob OVER: one grid per word, given to the
+    grid as the knob KNOB; KNOB given alone, without OVER: that value only.
+    A block without OVER: one value, ""."""
     if not block.get("over"):
         return [""]
     if block["knob"] in given and block["over"] not in given:
         return [k[block["knob"]]]
+    if not k[block["over"]] and block.get("over_default"):
+        return default_words(block["over_default"], k)
+    return knob_words(k, block["over"], block.get("exclude") or [])
+
+
+def default_words(spec, k):
+    """The words of OVER_DEFAULT (for an empty OVER): each item a word, or
+    {each: KNOB, words: [..]}: those words with {} the KNOB's each word."""
     out = []
-    for w in k[block["over"]].split():
-        out += sorted(glob.glob(w)) if "*" in w else [w]
-    return [w for w in out if w not in (block.get("exclude") or [])]
+    for item in spec:
+        if isinstance(item, dict):
+            out += [w.format(x) for x in k[item["each"]].split() for w in item["words"]]
+        else:
+            out.append(item)
+    return out
 
 
-def grid_name(block, value):
-    """A grid's name in its files' {grid}: the scene's name for SCENE, else
-    the value (a block without OVER: its name)."""
-    if not block.get("over"):
-        return block.get("name", "")
-    return os.path.splitext(os.path.basename(value))[0] if block.get("knob") == "SCENE" else value
+def block_cases(block, k):
+    """The cases of a block (studies.yaml cases:): [(name, knob settings)],
+    the union of the products of the listed knobs' words (only: the scenes
+    of that name), sorted by the block's SORT; a block without cases: one
+    case without settings."""
+    if not block.get("cases"):
+        return [("", {})]
+    cases = {}
+    for entry in block["cases"]:
+        axes = [(knob, knob_words(k, src, block.get("exclude") or [])) for knob, src in entry.items() if knob != "only"]
+        for combo in itertools.product(*[words for _, words in axes]):
+            st = dict(zip([knob for knob, _ in axes], combo))
+            name = os.path.splitext(os.path.basename(st.get("SCENE", k["SCENE"])))[0]
+            if entry.get("only") in (None, name):
+                fmt = dict(k, **st, name=name)
+                cases[block["sort"].format(**fmt)] = (block["case_name"].format(**fmt), st)
+    return [cases[key] for key in sorted(cases)]
 
 
-def value_args(block, value, target):
+def grid_name(block, case, value):
+    """A grid's name in its files' {grid}: its case's name and its value
+    (the scene's name for SCENE) joined by -, or the block's name."""
+    if block.get("over"):
+        value = os.path.splitext(os.path.basename(value))[0] if block.get("knob") == "SCENE" else value
+    return "-".join(x for x in (case, value) if x) or block.get("name", "")
+
+
+def value_args(block, value, target, k):
     """The renderer options of a grid's VALUE by the block's ARGS table
-    (regex: options, {0}.. its groups); a value no regex matches is refused."""
+    (regex: options, {0}.. its groups, {KNOB} a knob's value); a value no
+    regex matches is refused."""
     for regex, options in (block.get("args") or {}).items():
         m = re.fullmatch(regex, value)
         if m:
-            return options.format(*m.groups())
+            return options.format(*m.groups(), **k)
     if block.get("args"):
         raise StudyError(f"{target}: " + block.get("bad_value", "'{value}': no options for it").format(value=value))
     return ""
@@ -203,7 +242,7 @@ class Study:
     study.run_files, ...)."""
 
     def __init__(self, sid, decl, knobs, given=()):
-        self.id, self.target = sid, decl["target"]
+        self.id, self.target, self.decl = sid, decl["target"], decl
         k = {name: knob_text(v) for name, v in knobs.items()}
         self.knobs = k
         self.results, self.pm, self.python = k["RESULTS"], k["PM"], k["PYTHON"]
@@ -218,15 +257,17 @@ class Study:
         for b in decl.get("grids") or [{}]:
             files = self.block_files(b["files"]) if b.get("files") else self.files
             grids = []
-            for value in grid_values(b, k, given):
-                kk = dict(k)
-                kk.update({n: knob_text(v) for n, v in (b.get("knobs") or {}).items() if n not in given})
-                if b.get("over"):
-                    kk[b["knob"]] = value
-                conv = by_block[b["conv"]][0] if b.get("conv") else None
-                args = value_args(b, value, self.target)
-                kk.update({n: knob_text(v).format(value=value, args=args) for n, v in (b.get("fixed") or {}).items()})
-                grids.append(Grid(self, decl, kk, grid_name(b, value), files, conv))
+            for case, settings in block_cases(b, k):
+                for value in grid_values(b, k, given):
+                    kk = dict(k)
+                    kk.update({n: knob_text(v) for n, v in (b.get("knobs") or {}).items() if n not in given})
+                    kk.update(settings)
+                    if b.get("over"):
+                        kk[b["knob"]] = value
+                    conv = by_block[b["conv"]][len(grids) // len(grid_values(b, k, given))] if b.get("conv") else None
+                    args = value_args(b, value, self.target, kk)
+                    kk.update({n: knob_text(v).format(value=value, args=args) for n, v in (b.get("fixed") or {}).items()})
+                    grids.append(Grid(self, decl, kk, grid_name(b, case, value), files, conv))
             by_block[b.get("name", "")] = grids
             self.blocks.append((b.get("name", ""), files, grids))
         self.grids = [g for _, _, gs in self.blocks for g in gs]

@@ -9,12 +9,15 @@
 # untimed study, `timed: false` in studies.yaml, run beside them). Jobs
 # of the group `renders` are sent to a cluster together (--group-components).
 import re
+from experiments.studies import shell_words
 
 NONE = "(?!)"  # a root regex that matches nothing
+GROUPED = STUDY.decl.get("grouped", False)
+
 def roots(paired):
     """The run roots of the study's grids that render both methods as one
-    job (PAIRED) or one by one, as a regex."""
-    rs = [re.escape(g.root) for g in STUDY.grids if g.paired == paired]
+    job (PAIRED) or one by one, as a regex (none in a grouped study)."""
+    rs = [re.escape(g.root) for g in STUDY.grids if g.paired == paired and not GROUPED]
     return "|".join(rs) if rs else NONE
 PAIRED, SINGLE = roots(True), roots(False)
 
@@ -51,6 +54,40 @@ rule render:
         cmd=lambda wc: STUDY.by_root[wc.root].launch_command(wc.root, [wc.method], wc.estimate, wc.photons, wc.nn, wc.seed),
     shell:
         "{params.cmd}"
+
+# a grouped study (studies.yaml grouped: true): the renders of one (cell,
+# seed) of a case, every method of the first block's grid, then the
+# precomputed render of each grid compared with it (the variants), are one
+# job, back to back, the order alternating with the seed (rule group)
+if GROUPED:
+    BASES = STUDY.blocks[0][2]
+    MEMBERS = [(g.root[len(BASES[0].root):], g) for g in STUDY.grids if g not in BASES and g.conv_root == BASES[0].root]
+    STEM = "{estimate}-p{photons}-n{nn}/seed{seed}.run.json"
+
+    def group_command(wc):
+        base = STUDY.by_root[wc.root]
+        members = [(base.root, m, base.pm_args) for m in base.methods]
+        members += [(STUDY.by_root[wc.root + sfx].root, "precomputed", g.pm_args) for sfx, g in MEMBERS]
+        stem = f"{wc.estimate}-p{wc.photons}-n{wc.nn}/seed{wc.seed}"
+        words = [base.python, "-m", "experiments.launch", "--pm", base.pm, "--scene", base.scene,
+                 "--width", base.width, "--height", base.height, "--subpixels", base.subpixels,
+                 "--threads", base.threads_arg, "--of", len(base.run_names), "--stem", stem]
+        for root, m, args in members:
+            words += ["--member", root, m, args, base.position(f"{m}-{stem}")]
+        return shell_words(words)
+
+    rule group:
+        output:
+            [f"{{root}}/{m}-{STEM}" for m in BASES[0].methods] + [f"{{root}}{sfx}/precomputed-{STEM}" for sfx, _ in MEMBERS],
+        wildcard_constraints:
+            root="|".join(re.escape(g.root) for g in BASES),
+        resources:
+            timed=STUDY.timed,
+        group: "renders"
+        params:
+            cmd=group_command,
+        shell:
+            "{params.cmd}"
 
 # only the renders of the study and the references it renders (make estimator-bias-runs)
 localrules: runs
