@@ -84,7 +84,7 @@ config_renamed := REPEATS=SEEDS SEED_LIST=SEEDS WIDTH=SIZE HEIGHT=SIZE EE_TIME=T
 $(foreach r,$(config_renamed),$(if $(filter command line environment,$(origin $(word 1,$(subst =, ,$(r))))),\
   $(error $(word 1,$(subst =, ,$(r))) is gone: every study target reads $(word 2,$(subst =, ,$(r))) (e.g. make scenes SIZE=128x96 SEEDS=2))))
 
-# our converged reference (make resolution, scenes, evaluate;
+# our converged reference (make evaluate; the studies: studies.yaml;
 # experiments/analysis/reference.py): method-neutral, the corrected estimate
 # with direct light by CONV_REF_DIRECT at CONV_REF_PHOTONS photons (empty:
 # CONV_REF_FACTOR times the grid's largest P_e), n = CONV_REF_NN, the mean of
@@ -102,10 +102,6 @@ CONV_REF_DIRECT ?= shadow-rays
 CONV_REF_MARGIN ?= 0.1
 
 
-# the seeds of the scenes and rep-study grids (studies.yaml), which the
-# converged reference of studies.mk must not use
-scenes_seeds_default := 3
-rep_seeds := 3
 
 # make figures (experiments/figures.mk): drawn from the grid's TABLE.csv,
 # RUNS_CSV and CELLS_CSV (their size, seeds, reference) and the renders
@@ -146,19 +142,6 @@ TASKS ?=
 SWEEP ?=
 SLURM_DIR ?= $(BUILD)/slurm
 SBATCH_OPTS ?=
-
-# make reproducibility (experiments/reproducibility.mk): the Table-1 grid
-# twice, runs A and B interleaved pair by pair, at SIZE (default
-# REPRO_SIZE_DEFAULT), SEEDS seeds (default REPRO_SEEDS_DEFAULT), against the POV-Ray reference of that
-# size or else the converged reference (CONV_REF_*); REPRO_TASKSET: a CPU list
-# every render is pinned to with taskset (default: the last CPU, e.g. 1 on 2
-# cores; empty: none); REPRO_GOAL_PP: the goal for the median
-# |ratio A - ratio B| over the cells, in percentage points
-REPRO_DIR = $(RESULTS)/reproducibility
-REPRO_SIZE_DEFAULT := 512x384
-REPRO_SEEDS_DEFAULT := 10
-REPRO_TASKSET ?= $(shell n=$$(nproc 2>/dev/null || echo 1); echo $$((n - 1)))
-REPRO_GOAL_PP ?= 3
 
 # make bench (experiments/bench.mk): the scaling section (bench-scaling:
 # emitted photon counts and threads; 50k..20M takes about 3 minutes on two

@@ -247,6 +247,11 @@ class Study:
         self.knobs = k
         self.results, self.pm, self.python = k["RESULTS"], k["PM"], k["PYTHON"]
         self.timed = 1 if decl.get("timed", True) else 0
+        # REPRO_TASKSET (interleaved studies): a CPU list, "last" (this
+        # machine's last CPU) or empty (not pinned)
+        self.taskset = k.get("REPRO_TASKSET", "")
+        if self.taskset == "last":
+            self.taskset = str(len(os.sched_getaffinity(0)) - 1)
         self.figures = k.get("FIGURES") or os.path.join(self.results, "figures")
         self.files = self.block_files(decl["files"])
         self.ref_scenes = {}  # name -> scene file of every converged reference

@@ -26,11 +26,11 @@ for t in $targets; do
     check "make -n reproducibility at 512x384: the converged reference, pinned renders, the reference named to the report" bash -c "
       out=\$(make -n reproducibility RESULTS=$R 2>&1) &&
       grep -q 'analysis.reference build .*--width 512 --height 384' <<< \"\$out\" &&
-      grep -q 'taskset -c [0-9]* bash experiments/pair.sh' <<< \"\$out\" &&
-      grep -q -- '--ref \"$R/runs/cornell-convref-[^\"]*/512x384.exr\" --equal-error-a' <<< \"\$out\""
+      grep -q 'taskset -c [0-9]* [^ ]*python3 -m experiments.launch ' <<< \"\$out\" &&
+      grep -q -- '--ref $R/runs/cornell-convref-[^ ]*/512x384.exr --equal-error-a' <<< \"\$out\""
     check "control: make -n reproducibility SIZE=256x192 judges against POV-Ray, renders no converged reference" bash -c "
       out=\$(make -n reproducibility SIZE=256x192 RESULTS=$R 2>&1) &&
-      grep -q -- '--ref \"reference/cornell/cornell-reference-256x192.exr\"' <<< \"\$out\" &&
+      grep -q -- '--ref reference/cornell/cornell-reference-256x192.exr ' <<< \"\$out\" &&
       ! grep -q 'analysis.reference build' <<< \"\$out\""
     continue
   fi

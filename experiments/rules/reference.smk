@@ -39,6 +39,8 @@ rule converged_reference:
         direct="shadow-rays|photons",
         subpixels="[0-9]+",
         seeds="[0-9_]+",
+    resources:
+        timed=STUDY.timed,  # all cores: never beside a timed render
     params:
         cmd=convref_cmd,
         msg=lambda wc: (f"reference: {STUDY.ref_scenes[wc.name]} at {wc.width}x{wc.height}, conventional, corrected, "
