@@ -1,7 +1,9 @@
 """studies.py: a study of experiments/studies.yaml with the knobs of one
-command line applied and checked: its grid, run layout, reference, analysis
-files and the command lines of its renders and analysis steps. The
-Snakefile (experiments/Snakefile) builds its rules from one Study.
+command line applied and checked: its grids (Grid: one grid of renders with
+its run layout, reference, analysis files and render command lines), in
+blocks (studies.yaml grids:: one grid per word of a knob, per case, or
+both), and its report's files. The Snakefile (experiments/Snakefile) builds
+its rules from one Study.
 
     study = studies.load("table1", {"SIZE": "64x48", "SEEDS": "2"})
 

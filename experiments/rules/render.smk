@@ -3,7 +3,10 @@
 # launcher (experiments/launch.py). With both methods in the study, the two
 # renders of one (cell, seed) are one job (rule pair), back to back, their
 # order alternating with the seed, so that they are paired samples of one
-# machine state; otherwise one render is one job (rule render). Renders
+# machine state; otherwise one render is one job (rule render). A grouped
+# study renders one (cell, seed) of a case, every block's render, as one job
+# (rule group), an interleaved one pair k of each of its grids (rule
+# interleave). Renders
 # whose times a study compares hold the resource `timed` (make passes
 # --resources timed=1: one at a time; analysis jobs and the renders of an
 # untimed study, `timed: false` in studies.yaml, run beside them). Jobs
