@@ -108,3 +108,43 @@ def test_rep_study_blocks_table1_and_one_variant_per_rule():
 def test_rep_study_unknown_rule_refused_before_any_render():
     with pytest.raises(studies.StudyError, match="rule 'every0' is not everyK, countN or shared"):
         studies.load("rep-study", dict(TINY, REF="x.exr", REP_RULES="every2 every0"))
+
+
+def test_beyond_cases_times_variants():
+    s = studies.load("beyond", {"RESULTS": "/r", "SCENES": "scenes/slabs.scene scenes/cornell.scene",
+                                "SIZE": "32x24", "BEYOND_SIZES": "16x12 32x24", "BEYOND_TAUS": "0.1 0.2"})
+    (_, _, bases), (_, _, variants) = s.blocks
+    # every scene at SIZE, and cornell at each of BEYOND_SIZES, once each, sorted as name@size@scene
+    assert [b.name for b in bases] == ["cornell-16x12", "cornell-32x24", "slabs-32x24"]
+    assert [b.root for b in bases] == ["/r/runs/cornell-16x12-s2-t1-beyond", "/r/runs/cornell-32x24-s2-t1-beyond",
+                                       "/r/runs/slabs-32x24-s2-t1-beyond"]
+    names = ["lazy", "gated0.1", "lazygated0.1", "gated0.2", "lazygated0.2"]  # BEYOND_VARIANTS empty: from the taus
+    assert [v.name for v in variants] == [f"{b.name}-{n}" for b in bases for n in names]
+    v = {x.name: x for x in variants}
+    assert v["slabs-32x24-lazy"].pm_args == "--rep-eval lazy"
+    assert v["slabs-32x24-gated0.2"].pm_args == "--rep-gate plane-lookup --rep-gate-tau 0.2"
+    assert v["cornell-16x12-lazygated0.1"].pm_args == "--rep-eval lazy --rep-gate plane-lookup --rep-gate-tau 0.1"
+    assert v["cornell-16x12-lazy"].root == "/r/runs/cornell-16x12-s2-t1-beyond-lazy"
+    assert all(x.conv_root == b.root for b in bases for x in variants if x.name.startswith(b.name + "-"))
+    assert all(x.methods == ["precomputed"] for x in variants) and all(b.paired for b in bases)
+    assert {x.ref for x in variants if x.name.startswith("slabs")} == {bases[2].ref} and bases[2].ref_converged
+    # without cornell among SCENES: no BEYOND_SIZES case
+    s2 = studies.load("beyond", {"SCENES": "scenes/slabs.scene", "SIZE": "32x24", "BEYOND_VARIANTS": "lazy"})
+    assert [g.name for g in s2.grids] == ["slabs-32x24", "slabs-32x24-lazy"]
+    with pytest.raises(studies.StudyError, match="variant 'fast' is not lazy, gatedT or lazygatedT"):
+        studies.load("beyond", {"SCENES": "scenes/slabs.scene", "BEYOND_VARIANTS": "lazy fast"})
+
+
+def test_reproducibility_two_runs_pinned():
+    s = studies.load("reproducibility", {"RESULTS": "/r", "SIZE": "32x24", "SEEDS": "2", "REF": "x.exr"})
+    a, b = s.grids
+    assert (a.name, b.name) == ("a", "b") and a.root == "/r/runs/cornell-32x24-s2-t1-repro-a"
+    assert b.files["runs_csv"] == "/r/reproducibility/runs-b.csv" and a.ref == b.ref == "x.exr"
+    assert s.taskset == str(len(os.sched_getaffinity(0)) - 1)  # last: this machine's last CPU
+    assert studies.load("reproducibility", {"REPRO_TASKSET": "", "REF": "x.exr"}).taskset == ""
+    assert studies.load("reproducibility", {"REPRO_TASKSET": "0", "REF": "x.exr"}).taskset == "0"
+    # no REF: the POV-Ray reference of 256x192, else our converged one at that size
+    assert studies.load("reproducibility", {"SIZE": "256x192"}).grids[0].ref == \
+        "reference/cornell/cornell-reference-256x192.exr"
+    g = studies.load("reproducibility", {"SIZE": "40x30", "RESULTS": "/r"}).grids[0]
+    assert g.ref_converged and g.ref.endswith("/40x30.exr")
