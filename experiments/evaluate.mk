@@ -122,7 +122,7 @@ $(eval_out)/pilot/pilot.json: $(SCENE) | $(BUILD)/photonmap $(DEPS_TEST)
 # ---- stage 2
 $(eval_out)/pov/thickness.json: $(eval_pov_scene) $(eval_out)/pilot/pilot.json
 	@echo "evaluate: [2/5] POV-Ray references of $(eval_pov_scene) at $(eval_size) (fast and reference presets)"
-	@$(PYTHON) -m experiments.analysis.evaluate thickness --scene $(eval_pov_scene) --out $@ > /dev/null
+	@$(PYTHON) -m experiments.analysis.evaluate thickness --pm $(PM) --scene $(eval_pov_scene) --out $@ > /dev/null
 eval_thick = $$($(PYTHON) -c 'import json, sys; print(json.load(open(sys.argv[1]))["rect_thickness"])' $(eval_out)/pov/thickness.json)
 eval_pov = PM=$(PM) bash experiments/evaluate-pov.sh $(eval_pov_scene) $(eval_w) $(eval_h) $(EVAL_CACHE)
 $(eval_out)/pov/reference.exr: $(eval_out)/pov/thickness.json

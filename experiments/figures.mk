@@ -17,5 +17,5 @@ figures: $(FIG2_DIR)/reps.csv
 	@$(PYTHON) -m experiments.analysis.figures --table $(TABLE).csv --runs $(RUNS_CSV) --cells-csv $(CELLS_CSV) \
 	  --ref "$(FIG_REF)" --cells "$(FIG3_CELLS)" --paper-cells $(FIG3_PAPER_CELLS) --seed $(FIG_SEED) \
 	  --crop $(FIG3_CROP) --crop-at $(FIG3_CROP_AT) --error-block $(FIG_ERROR_BLOCK) --time $(TIME) \
-	  --fig2-dir $(FIG2_DIR) --fig2-plane $(FIG2_PLANE) --fig2-window "$(FIG2_WINDOW)" --scene $(SCENE) \
+	  --fig2-dir $(FIG2_DIR) --fig2-plane $(FIG2_PLANE) --fig2-window "$(FIG2_WINDOW)" --scene $(SCENE) --pm $(PM) \
 	  --rep-study-cells $(REP_STUDY)-cells.csv --out $(FIGURES)

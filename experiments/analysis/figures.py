@@ -37,6 +37,7 @@ import pandas as pd
 from experiments.analysis import metrics
 from experiments.analysis import plotting
 from experiments.analysis import report
+from experiments.analysis import scene_info
 from experiments.analysis import stats
 from experiments.analysis.plotting import kilo, plt
 from experiments.analysis.report import fmt, isnum
@@ -300,36 +301,14 @@ def fig3_errors(args):
 
 # ---- Figure 2: the representatives and the cells they make
 
-def read_camera(scene_path):
-    """The scene file's camera: (position, look_at, up, hfov_deg)."""
+def scene_facts(args, width, height):
+    """The scene's facts with the camera basis of a WIDTH x HEIGHT image
+    (`photonmap info --json`, scene_info.py); exits with the renderer's
+    message when it refuses the scene."""
     try:
-        with open(scene_path, encoding="utf-8", errors="replace") as f:
-            for line in f:
-                line = line.split("#", 1)[0]
-                if line.split()[:1] == ["camera"]:
-                    w = line.split()
-                    get = lambda k, n: [float(v) for v in w[w.index(k) + 1:w.index(k) + 1 + n]]  # noqa: E731
-                    return (np.array(get("position", 3)), np.array(get("look_at", 3)), np.array(get("up", 3)),
-                            get("fov", 1)[0])
-    except (OSError, ValueError, IndexError) as e:
-        report.die(WHERE, f"{scene_path}: cannot read the camera: {e}")
-    report.die(WHERE, f"{scene_path}: no camera statement")
-
-
-def project(camera, pts, width, height):
-    """Pixel coordinates (x, y) of world points PTS (N, 3) through the
-    renderer's pinhole camera (render_camera_make / render_camera_at)."""
-    pos, look, up, hfov = camera
-    fwd = (look - pos) / np.linalg.norm(look - pos)
-    right = np.cross(fwd, up)
-    right /= np.linalg.norm(right)
-    upv = np.cross(right, fwd)
-    hw = math.tan(math.radians(hfov) / 2)
-    d = np.asarray(pts, dtype=float) - pos
-    z = d @ fwd
-    u = ((d @ right) / z / hw + 1) / 2
-    v = (1 - (d @ upv) / z / (hw * height / width)) / 2
-    return u * width, v * height
+        return scene_info.load(args.scene, args.pm, width, height)
+    except scene_info.SceneInfoError as e:
+        report.die(WHERE, f"{args.scene}: cannot read the camera: {e}")
 
 
 def fig2(args):
@@ -382,7 +361,7 @@ def fig2(args):
     corners[:, ia] = at
     corners[:, iu] = [u0, u1, u1, u0]
     corners[:, iv] = [v0, v0, v1, v1]
-    px, py = project(read_camera(args.scene), corners, W, H)
+    px, py = scene_info.project(scene_facts(args, W, H), corners)
     cx0, cx1 = max(0, int(px.min()) - 4), min(W, int(math.ceil(px.max())) + 4)
     cy0, cy1 = max(0, int(py.min()) - 4), min(H, int(math.ceil(py.max())) + 4)
     if cx1 - cx0 < 2 or cy1 - cy0 < 2:
@@ -710,6 +689,7 @@ def main():
                     help="window 'u0 u1 v0 v1' on that plane (u, v: the other two axes in x, y, z order)")
     ap.add_argument("--normal-cos", type=float, default=0.9)
     ap.add_argument("--scene", default="scenes/cornell.scene")
+    ap.add_argument("--pm", default=scene_info.DEFAULT_PM, help="the renderer, for the scene's camera (photonmap info)")
     ap.add_argument("--rep-study-cells", default="", help="rep-study-cells.csv (optional)")
     ap.add_argument("--time", default="cpu_s", choices=sorted(report.TIME_LABEL))
     ap.add_argument("--out", required=True, help="output directory")
