@@ -56,7 +56,7 @@ check: all $(BUILD)/unit-tests $(DEPS_TEST) ## the fast tier: unit tests, comman
 reproduce-table: ## Table 1 over SEEDS seeds, both estimates -> results/table1/ (Snakemake: experiments/studies.yaml, experiments/rules/table1.smk)
 reproduce-runs: ## only the renders of reproduce-table, one make target each (make -j; resumes)
 list-runs: ## print the target of every render of reproduce-table, one per line (for a job array)
-figures: ## Figures 2 and 3 at 1:1, error maps, trade-off, time ratio and phases -> results/figures/ (after reproduce-table)
+figures: ## Figures 2 and 3 at 1:1, error maps, trade-off, time ratio and phases -> results/figures/ (after reproduce-table; Snakemake: studies.yaml, rules/figures.smk)
 rep-study: ## representative rules (REP_RULES) against the paper's cost pattern -> results/rep-study/, figures/rep-study.png
 caustic: ## the Fig. 3 cells on the caustic scene, caustic-window error over seeds -> results/caustic/, figures/caustic.png (Snakemake: studies.yaml, rules/caustic.smk)
 resolution: ## cheapest settings per output size -> results/resolution/
@@ -158,7 +158,6 @@ include experiments/study.mk
 include experiments/studies.mk
 include experiments/snakemake.mk
 include experiments/beyond.mk
-include experiments/figures.mk
 include experiments/reproducibility.mk
 include experiments/findings.mk
 include experiments/bench.mk

@@ -125,32 +125,6 @@ scenes_seeds_default := 3
 # render, and a rule's cost varies little from seed to seed): about 10 minutes
 rep_seeds := 3
 
-# make figures (experiments/figures.mk): drawn from the grid's TABLE.csv,
-# RUNS_CSV and CELLS_CSV (their size, seeds, reference) and the renders
-# RUNS_CSV names. FIG3_CELLS: the cells of Figure 3 as P_e:n, the first
-# FIG3_PAPER_CELLS of them the paper's, the rest controls; FIG_SEED: the
-# seed whose images are shown; FIG3_CROP: the 1:1 crop WxH+X+Y, given for
-# FIG3_CROP_AT and scaled to the grid's size; FIG_ERROR_BLOCK: the error
-# maps' block size in pixels; FIG_REF: the reference (empty: the one in
-# CELLS_CSV). The time shown is TIME.
-FIG3_CELLS ?= 50000:10 100000:100 500000:100 50000:100 500000:10
-FIG3_PAPER_CELLS ?= 3
-FIG_SEED ?= 1
-FIG3_CROP ?= 384x288+150+440
-FIG3_CROP_AT ?= 1024x768
-FIG_ERROR_BLOCK ?= 2
-FIG_REF ?=
-# Figure 2: one precomputed render of SCENE at WIDTHxHEIGHT with
-# --dump-reps (P_e FIG2_PHOTONS, n FIG2_NN, seed FIG_SEED); the plane drawn
-# (FIG2_PLANE: the normal axis, at that coordinate's minimum: z = the back
-# wall, y = the floor) and the window on it (u0 u1 v0 v1, u and v the other
-# two axes in x, y, z order)
-FIG2_PHOTONS ?= 50000
-FIG2_NN ?= 10
-FIG2_PLANE ?= z
-FIG2_WINDOW ?= -0.4 0.2 1.0 1.45
-FIG2_DIR = $(RESULTS)/runs/fig2-$(SCENE_NAME)-$(SIZE)-s$(SUBPIXELS)-p$(FIG2_PHOTONS)-n$(FIG2_NN)-seed$(FIG_SEED)
-
 # make rep-study: the representative rules run besides the renderer's
 # default (everyK: --rep-every K; countN: --rep-count N; shared: --rep-tree
 # shared), each a variant of Table 1 (experiments/studies.mk).

@@ -19,7 +19,8 @@ TIMED_AT_ONCE ?= 1
 SNAKEFLAGS ?=
 # the knobs read from the environment too (as make's ?= defaults do)
 SMK_ENV_KNOBS := SCENE SIZE SEEDS PHOTONS NNS METHODS ESTIMATES SUBPIXELS THREADS PM PM_ARGS TAG CONV_RUNROOT \
-  REF REF_FAST RESULTS EE_TARGETS TIME BOOTSTRAP BOOTSTRAP_SEED PYTHON
+  REF REF_FAST RESULTS EE_TARGETS TIME BOOTSTRAP BOOTSTRAP_SEED PYTHON FIGURES FIG3_CELLS FIG3_PAPER_CELLS FIG_SEED \
+  FIG3_CROP FIG3_CROP_AT FIG_ERROR_BLOCK FIG_REF FIG2_PHOTONS FIG2_NN FIG2_PLANE FIG2_WINDOW
 SMK_OWN_VARS := SNAKEMAKE CORES TIMED_AT_ONCE SNAKEFLAGS CLUSTER GROUP_RENDERS SLURM_JOBS SLURM_DIR SBATCH_OPTS
 # yaml_quote TEXT: TEXT as a single-quoted YAML string (Snakemake's --config
 # would otherwise read 1e5 as a number and "a: b" as a mapping)
@@ -55,7 +56,7 @@ smk = $(smk_logs)$(SNAKEMAKE) -s experiments/Snakefile $(smk_where) \
   --config STUDY=$(1) $(smk_config) $(if $(3),--forcerun $(3)) -- $(2)
 
 # the study targets: STUDY (studies.yaml), its report rule, its first analysis rule
-.PHONY: reproduce-table caustic estimator-bias estimator-bias-runs
+.PHONY: reproduce-table caustic estimator-bias estimator-bias-runs figures
 reproduce-table: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,table1,table1,collect)
 caustic: $(BUILD)/photonmap | $(DEPS_TEST)
@@ -64,3 +65,5 @@ estimator-bias: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,bias,bias,bias)
 estimator-bias-runs: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,bias,runs)
+figures: $(BUILD)/photonmap | $(DEPS_TEST)
+	+@$(call smk,figures,figures)

@@ -61,6 +61,13 @@ def parse_seeds(seeds):
     return list(range(1, int(seeds) + 1))
 
 
+def parse_seed(seed, knob):
+    """The one seed of KNOB=SEED, checked."""
+    if not re.fullmatch(r"[0-9]+", seed) or int(seed) == 0:
+        raise StudyError(f"{knob}={seed}: a positive seed")
+    return [int(seed)]
+
+
 def pov_reference(size, scene, fast=False, top="."):
     """The POV-Ray reference EXR of SCENE at SIZE in reference/<scene>/, or
     "". Prefers, for the per-pixel metrics, the one rendered with the
@@ -97,13 +104,18 @@ class Study:
         self.results, self.pm, self.python = k["RESULTS"], k["PM"], k["PYTHON"]
         self.scene, self.size, self.subpixels = k["SCENE"], k["SIZE"], int(k["SUBPIXELS"])
         self.width, self.height = parse_size(self.size)
-        self.seeds = parse_seeds(k["SEEDS"])
-        self.photons, self.nns = k["PHOTONS"].split(), k["NNS"].split()
+        # a study of one render names the knobs of its P_e, n and seed (grid:)
+        grid = decl.get("grid") or {}
+        self.seeds = parse_seed(k[grid["seed"]], grid["seed"]) if "seed" in grid else parse_seeds(k["SEEDS"])
+        self.photons, self.nns = k[grid.get("photons", "PHOTONS")].split(), k[grid.get("nns", "NNS")].split()
+        self.dump_reps = bool(decl.get("dump_reps", False))
         self.methods, self.estimates = k["METHODS"].split(), k["ESTIMATES"].split()
         self.threads = k["THREADS"]
         self.threads_arg = self.threads or "0"
         self.tag, self.pm_args = k["TAG"], k["PM_ARGS"]
-        self.root = (os.path.join(self.results, decl["root"]) if decl.get("root") else
+        name = os.path.splitext(os.path.basename(self.scene))[0]
+        self.root = (os.path.join(self.results, decl["root"].format(name=name, size=self.size, subpixels=self.subpixels))
+                     if decl.get("root") else
                      layout.run_root(self.results, self.scene, self.size, self.subpixels, self.threads, self.tag))
         self.timed = 1 if decl.get("timed", True) else 0
         self.conv_root = k["CONV_RUNROOT"] or self.root
@@ -115,7 +127,6 @@ class Study:
         if decl.get("reference") == "pov" and not self.ref:
             self.ref = pov_reference(self.size, self.scene)
             self.ref_fast = pov_reference(self.size, self.scene, fast=True) if decl.get("pov_floor", True) else ""
-        name = os.path.splitext(os.path.basename(self.scene))[0]
         self.no_ref = decl.get("no_reference", "no reference").format(scene=self.scene, size=self.size, name=name)
         self.figures = k.get("FIGURES") or os.path.join(self.results, "figures")
         tag = f"-{self.tag}" if self.tag else ""
@@ -143,7 +154,7 @@ class Study:
         for m in methods:
             name = f"{layout.cell_name(m, estimate, photons, nn)}/seed{seed}"
             words += ["--member", root, m, self.pm_args, self.position(name)]
-        return shell_words(words)
+        return shell_words(words + (["--dump-reps"] if self.dump_reps else []))
 
 
 def shell_words(words):

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""figures.py: the figures of `make figures` (experiments/figures.mk).
+"""figures.py: the figures of `make figures` (experiments/rules/figures.smk).
 
 Owns drawing, from the analysis layer's files and the renders they name:
   fig3.png          the paper's Figure 3 at 1:1: for each (P_e, n) cell a
@@ -321,11 +321,11 @@ def fig2(args):
     enlarged without smoothing."""
     from scipy.spatial import cKDTree
 
-    d = args.fig2_dir
-    reps = read_csv(os.path.join(d, "reps.csv"), ["x", "y", "z", "nx", "ny", "nz", "e_r", "e_g", "e_b"],
+    d = args.fig2_run
+    reps = read_csv(d + ".reps.csv", ["x", "y", "z", "nx", "ny", "nz", "e_r", "e_g", "e_b"],
                     "the representatives of the Fig. 2 run (--dump-reps)")
-    img = read_image(os.path.join(d, "image.exr"), "the Fig. 2 run's image")
-    st = pd.read_json(os.path.join(d, "stats.json"), typ="series")
+    img = read_image(d + ".exr", "the Fig. 2 run's image")
+    st = pd.read_json(d + ".stats.json", typ="series")
     H, W = img.shape[:2]
     axis = args.fig2_plane
     if axis not in ("x", "y", "z"):
@@ -337,7 +337,7 @@ def fig2(args):
         report.die(WHERE, f"FIG2_WINDOW '{args.fig2_window}': expected four numbers u0 u1 v0 v1")
     facing = reps[reps["n" + axis] > args.normal_cos]
     if facing.empty:
-        report.die(WHERE, f"{d}/reps.csv: no representative faces +{axis}")
+        report.die(WHERE, f"{d}.reps.csv: no representative faces +{axis}")
     at = float(facing[axis].min())
     wall = facing[np.abs(facing[axis] - at) <= 1e-6 * max(1.0, abs(at))]
     e = plotting.luminance(wall[["e_r", "e_g", "e_b"]].to_numpy())
@@ -370,7 +370,7 @@ def fig2(args):
     rule = (f"a fixed count of {st['rep_count']}" if st.get("rep_count", 0) else
             "every stored photon" if int(st["rep_every"]) == 1 else
             f"every {plotting.ordinal(st['rep_every'])} stored photon")
-    foot = (f"Data: {d}/ (reps.csv from `photonmap render --dump-reps`, image.exr and stats.json of the same render): "
+    foot = (f"Data: {d}.* (.reps.csv from `photonmap render --dump-reps`, .exr and .stats.json of the same render): "
             f"{st['scene']}, precomputed method, P_e = {kilo(st['photons_emitted'])}, n = {st['nn']}, seed "
             f"{st['seed']}, {W}x{H}, {int(st['representatives'])} representatives ({rule}), {len(wall)} on the plane "
             f"{axis} = {at:g}, {int(inwin.sum())} in the window {u} in [{u0:g}, {u1:g}], {v} in [{v0:g}, {v1:g}]. "
@@ -669,7 +669,7 @@ FIGURES = {"fig3": fig3, "fig3-errors": fig3_errors, "fig2": fig2, "tradeoff": t
 
 
 def main():
-    """Command line: see the module docstring and experiments/figures.mk."""
+    """Command line: see the module docstring and experiments/rules/figures.smk."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--table", required=True, help="table1.csv of the FIG_SIZE grid")
     ap.add_argument("--runs", required=True, help="runs.csv of the same grid")
@@ -682,7 +682,8 @@ def main():
     ap.add_argument("--crop", default="384x288+150+440", help="Fig. 3 crop WxH+X+Y, given at --crop-at")
     ap.add_argument("--crop-at", default="1024x768")
     ap.add_argument("--error-block", type=int, default=2)
-    ap.add_argument("--fig2-dir", default="", help="the Fig. 2 run: reps.csv, image.exr, stats.json")
+    ap.add_argument("--fig2-run", default="", help="the Fig. 2 render's files without their extensions (the run "
+                    "layout's CELL/seedK): .reps.csv, .exr, .stats.json")
     ap.add_argument("--fig2-plane", default="z", help="the plane of Fig. 2: normal +x, +y or +z, at the lowest "
                     "such coordinate (z: the back wall, y: the floor)")
     ap.add_argument("--fig2-window", default="-0.4 0.2 1.0 1.45",
@@ -713,8 +714,8 @@ def main():
     for n in names:
         if n not in FIGURES:
             report.die(WHERE, f"unknown figure '{n}' (one of {', '.join(FIGURES)})")
-        if n == "fig2" and not args.fig2_dir:
-            report.die(WHERE, "fig2 needs --fig2-dir")
+        if n == "fig2" and not args.fig2_run:
+            report.die(WHERE, "fig2 needs --fig2-run")
         FIGURES[n](args)
 
 
