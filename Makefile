@@ -54,8 +54,8 @@ test: all unit-tests $(BUILD)/san/photonmap $(DEPS_TEST) $(DEPS_CLUSTER) ## ever
 check: all $(BUILD)/unit-tests $(DEPS_TEST) ## the fast tier: unit tests, command line, hostile input, refusals, pytest tests/ (under 3 min)
 	bash tests/run.sh --fast
 reproduce-table: ## Table 1 over SEEDS seeds, both estimates -> results/table1/ (Snakemake: experiments/studies.yaml, experiments/rules/table1.smk)
-reproduce-runs: ## only the renders of reproduce-table, one make target each (make -j; resumes)
-list-runs: ## print the target of every render of reproduce-table, one per line (for a job array)
+reproduce-runs: ## only the renders of reproduce-table (Snakemake; resumes)
+list-runs: ## print the record path of every render of reproduce-table, one per line
 figures: ## Figures 2 and 3 at 1:1, error maps, trade-off, time ratio and phases -> results/figures/ (after reproduce-table; Snakemake: studies.yaml, rules/figures.smk)
 rep-study: ## representative rules (REP_RULES) against the paper's cost pattern -> results/rep-study/, figures/rep-study.png
 caustic: ## the Fig. 3 cells on the caustic scene, caustic-window error over seeds -> results/caustic/, figures/caustic.png (Snakemake: studies.yaml, rules/caustic.smk)
@@ -76,7 +76,7 @@ reference-small: ## the POV-Ray references except the 1024x768 one
 reference-pbrt: ## re-render the pbrt-v3 references (needs pbrt: PBRT=path; reference/pbrt/README.md)
 fuzz: ## run the scene parser's libFuzzer target for FUZZ_SECONDS (60)
 evaluate: ## does the method pay on SCENE=my.scene? pilot, POV-Ray and converged references, grid, verdict -> OUT/report.md (experiments/evaluate.mk)
-sweep-slurm: ## a Slurm job array of make targets: TASKS=FILE or SWEEP=TARGET -> SLURM_DIR/sweep.sbatch
+sweep-slurm: ## a study target's renders on Slurm through Snakemake: SWEEP=TARGET (= make TARGET CLUSTER=slurm)
 help: ## this list
 	@awk -F':.*## ' '/^[a-z][a-z-]*:.*## / { printf "  make %-17s %s\n", $$1, $$2 }' $(firstword $(MAKEFILE_LIST))
 clean: ## remove the build (not results/ or reference/)
@@ -161,7 +161,6 @@ include experiments/beyond.mk
 include experiments/reproducibility.mk
 include experiments/findings.mk
 include experiments/bench.mk
-include experiments/slurm.mk
 include experiments/evaluate.mk
 include reference/reference.mk
 include tests/fuzz/fuzz.mk

@@ -135,15 +135,6 @@ REP_RULES ?= every1 every2 every8 every16 shared count1100000
 # make bench
 BENCH_BIN := $(BUILD)/bench/bench
 
-# make sweep-slurm (experiments/slurm.mk): the tasks, from a file of make
-# targets (TASKS) or from a target's prerequisites (SWEEP); where the task
-# list, the sbatch script and the logs go; extra #SBATCH options (words
-# without spaces, e.g. "--time=2:00:00 --cpus-per-task=1 --partition=short")
-TASKS ?=
-SWEEP ?=
-SLURM_DIR ?= $(BUILD)/slurm
-SBATCH_OPTS ?=
-
 # make reproducibility (experiments/reproducibility.mk): the Table-1 grid
 # twice, runs A and B interleaved pair by pair, at SIZE (default
 # REPRO_SIZE_DEFAULT), SEEDS seeds (default REPRO_SEEDS_DEFAULT), against the POV-Ray reference of that

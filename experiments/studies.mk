@@ -31,10 +31,6 @@ $(eval $(call study,table1))
 RUNROOT := $(table1_RUNROOT)
 RUN_FILES := $(table1_RUN_FILES)
 
-list-runs:
-	@printf '%s\n' $(RUN_FILES)
-reproduce-runs: $(table1_RUN_FILES)
-
 # ---- rep-study: each rule of REP_RULES a variant of Table 1 (precomputed,
 # paper estimate), compared with Table 1's conventional renders
 # a rule's render options: everyK, countN, shared

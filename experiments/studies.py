@@ -175,3 +175,30 @@ def load(sid, given, path=CONFIG):
     knobs.update({name: v for name, v in given.items() if name in knobs})
     knobs.update(decl.get("fixed") or {})
     return Study(sid, decl, knobs)
+
+
+def main(argv=None):
+    """python3 -m experiments.studies list-runs STUDY [NAME=VALUE ...]: every
+    render's record path of STUDY with those knobs (VALUE as make's front
+    door passes it: a YAML string), one per line, in the study's run order.
+    Exit 2 with the reason for a knob or study that cannot run."""
+    import sys
+    args = sys.argv[1:] if argv is None else argv
+    if len(args) < 2 or args[0] != "list-runs":
+        print("usage: python3 -m experiments.studies list-runs STUDY [NAME=VALUE ...]", file=sys.stderr)
+        return 2
+    given = {}
+    for a in args[2:]:
+        name, _, value = a.partition("=")
+        given[name] = knob_text(yaml.safe_load(value)) if value else ""
+    try:
+        study = load(args[1], given)
+    except StudyError as e:
+        print(f"studies: {e}", file=sys.stderr)
+        return 2
+    print("\n".join(study.run_files))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
