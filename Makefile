@@ -157,8 +157,6 @@ include experiments/config.mk
 include experiments/study.mk
 include experiments/studies.mk
 include experiments/snakemake.mk
-include experiments/beyond.mk
-include experiments/reproducibility.mk
 include experiments/findings.mk
 include experiments/bench.mk
 include experiments/evaluate.mk

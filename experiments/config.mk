@@ -60,8 +60,6 @@ CELLS_CSV = $(TABLE1_DIR)/cells$(TAG_SUFFIX).csv
 EQUAL_ERROR = $(TABLE1_DIR)/equal-error$(TAG_SUFFIX)
 REP_DIR = $(RESULTS)/rep-study
 REP_STUDY = $(REP_DIR)/rep-study
-RES_DIR = $(RESULTS)/resolution
-SCENES_DIR = $(RESULTS)/scenes
 STABILITY_DIR = $(RESULTS)/stability
 FIGURES = $(RESULTS)/figures
 
@@ -86,15 +84,7 @@ config_renamed := REPEATS=SEEDS SEED_LIST=SEEDS WIDTH=SIZE HEIGHT=SIZE EE_TIME=T
 $(foreach r,$(config_renamed),$(if $(filter command line environment,$(origin $(word 1,$(subst =, ,$(r))))),\
   $(error $(word 1,$(subst =, ,$(r))) is gone: every study target reads $(word 2,$(subst =, ,$(r))) (e.g. make scenes SIZE=128x96 SEEDS=2))))
 
-# make resolution: every size of RES_SIZES (SIZE given on the command line:
-# that size only), cheapest settings per relMSE target of RES_TARGETS, against
-# our converged reference per size (RES_REF=ours) or the POV-Ray one where
-# reference/ has one (RES_REF=pov)
-RES_SIZES ?= 256x192 512x384 1024x768
-RES_TARGETS ?= 0.05 0.03 0.02 0.015 0.01 0.0075
-RES_REF ?= ours
-
-# our converged reference (make resolution, scenes, evaluate;
+# our converged reference (make evaluate; the studies: studies.yaml;
 # experiments/analysis/reference.py): method-neutral, the corrected estimate
 # with direct light by CONV_REF_DIRECT at CONV_REF_PHOTONS photons (empty:
 # CONV_REF_FACTOR times the grid's largest P_e), n = CONV_REF_NN, the mean of
@@ -111,42 +101,13 @@ CONV_REF_SEEDS ?= 1000001 1000002 1000003 1000004
 CONV_REF_DIRECT ?= shadow-rays
 CONV_REF_MARGIN ?= 0.1
 
-# make scenes: every scene's grid at a smaller size, against our own
-# converged render of it; SCENES_CELL is the (P_e, n) of the difference images
-SCENES ?= $(filter-out scenes/furnace.scene,$(wildcard scenes/*.scene))
-SCENES_CELL ?= p100000-n50
 
-# the studies' own defaults of the common knobs: SIZE, SEEDS, SCENE, PHOTONS
-# and NNS given on the command line apply to every study target
-# (`make scenes SIZE=128x96`); without them each study uses these
-scenes_size_default := 512x384
-scenes_seeds_default := 3
-# rep-study: 3 seeds per rule (the slopes are fitted over every seed's
-# render, and a rule's cost varies little from seed to seed): about 10 minutes
-rep_seeds := 3
 
-# make rep-study: the representative rules run besides the renderer's
-# default (everyK: --rep-every K; countN: --rep-count N; shared: --rep-tree
-# shared), each a variant of Table 1 (experiments/studies.mk).
-# count1100000: the fixed count that fits the paper's slopes (rep-study.md)
-REP_RULES ?= every1 every2 every8 every16 shared count1100000
 
 
 # make bench
 BENCH_BIN := $(BUILD)/bench/bench
 
-# make reproducibility (experiments/reproducibility.mk): the Table-1 grid
-# twice, runs A and B interleaved pair by pair, at SIZE (default
-# REPRO_SIZE_DEFAULT), SEEDS seeds (default REPRO_SEEDS_DEFAULT), against the POV-Ray reference of that
-# size or else the converged reference (CONV_REF_*); REPRO_TASKSET: a CPU list
-# every render is pinned to with taskset (default: the last CPU, e.g. 1 on 2
-# cores; empty: none); REPRO_GOAL_PP: the goal for the median
-# |ratio A - ratio B| over the cells, in percentage points
-REPRO_DIR = $(RESULTS)/reproducibility
-REPRO_SIZE_DEFAULT := 512x384
-REPRO_SEEDS_DEFAULT := 10
-REPRO_TASKSET ?= $(shell n=$$(nproc 2>/dev/null || echo 1); echo $$((n - 1)))
-REPRO_GOAL_PP ?= 3
 
 # make bench (experiments/bench.mk): the scaling section (bench-scaling:
 # emitted photon counts and threads; 50k..20M takes about 3 minutes on two

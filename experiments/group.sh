@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# group.sh: every render of one (cell, seed) of a group of studies back to
-# back: the recipe of one make target with all the group's records as its
-# targets (experiments/beyond.mk: the conventional render, the paper's rule
-# and each variant of the same seed), so that their time ratios are paired
-# samples of one machine state. pair.sh is the two-member case of a grid.
+# group.sh: every render of one (cell, seed) of a group back to back: the
+# recipe of one make target with all the group's records as its targets, so
+# that their time ratios are paired samples of one machine state; pair.sh,
+# the two-member case of a grid, runs it for make's reproduce-runs
+# (experiments/study.mk). The studies on Snakemake use experiments/launch.py,
+# which does the same.
 #
 #   group.sh ESTIMATE-pPHOTONS-nNN/seedK RUNROOT METHOD ARGS [RUNROOT METHOD ARGS ...]
 #

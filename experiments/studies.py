@@ -1,7 +1,9 @@
 """studies.py: a study of experiments/studies.yaml with the knobs of one
-command line applied and checked: its grid, run layout, reference, analysis
-files and the command lines of its renders and analysis steps. The
-Snakefile (experiments/Snakefile) builds its rules from one Study.
+command line applied and checked: its grids (Grid: one grid of renders with
+its run layout, reference, analysis files and render command lines), in
+blocks (studies.yaml grids:: one grid per word of a knob, per case, or
+both), and its report's files. The Snakefile (experiments/Snakefile) builds
+its rules from one Study.
 
     study = studies.load("table1", {"SIZE": "64x48", "SEEDS": "2"})
 
@@ -10,6 +12,8 @@ own value; a retired knob name is refused with the name that replaced it;
 SIZE and SEEDS are checked before anything renders.
 """
 
+import glob
+import itertools
 import os
 import re
 import shlex
@@ -93,55 +97,58 @@ def pov_reference(size, scene, fast=False, top="."):
     return os.path.join(d, others[0]) if others else ""
 
 
-class Study:
-    """One study with its knobs applied (attributes named after the knobs,
-    lower case) and everything derived from them."""
+class Grid:
+    """One grid of renders of a study (every P_e x n x method x estimate x
+    seed on one scene at one size) with its run layout, reference and
+    analysis files; attributes named after the knobs, lower case. NAME: the
+    grid's name in its files' {grid} (a study of one grid: "")."""
 
-    def __init__(self, sid, decl, knobs):
-        self.id, self.target = sid, decl["target"]
-        k = {name: knob_text(v) for name, v in knobs.items()}
+    def __init__(self, study, decl, k, name="", files=None, conv=None):
+        self.study, self.name = study, name
         self.knobs = k
         self.results, self.pm, self.python = k["RESULTS"], k["PM"], k["PYTHON"]
         self.scene, self.size, self.subpixels = k["SCENE"], k["SIZE"], int(k["SUBPIXELS"])
         self.width, self.height = parse_size(self.size)
-        # a study of one render names the knobs of its P_e, n and seed (grid:)
-        grid = decl.get("grid") or {}
-        self.seeds = parse_seed(k[grid["seed"]], grid["seed"]) if "seed" in grid else parse_seeds(k["SEEDS"])
-        self.photons, self.nns = k[grid.get("photons", "PHOTONS")].split(), k[grid.get("nns", "NNS")].split()
+        # a study of one render names the knobs of its P_e, n and seed (render_knobs:)
+        rk = decl.get("render_knobs") or {}
+        self.seeds = parse_seed(k[rk["SEED"]], rk["SEED"]) if "SEED" in rk else parse_seeds(k["SEEDS"])
+        self.photons, self.nns = k[rk.get("PHOTONS", "PHOTONS")].split(), k[rk.get("NNS", "NNS")].split()
         self.dump_reps = bool(decl.get("dump_reps", False))
         self.methods, self.estimates = k["METHODS"].split(), k["ESTIMATES"].split()
         self.threads = k["THREADS"]
         self.threads_arg = self.threads or "0"
         self.tag, self.pm_args = k["TAG"], k["PM_ARGS"]
-        name = os.path.splitext(os.path.basename(self.scene))[0]
-        self.root = (os.path.join(self.results, decl["root"].format(name=name, size=self.size, subpixels=self.subpixels))
+        scene_name = os.path.splitext(os.path.basename(self.scene))[0]
+        self.root = (os.path.join(self.results, decl["root"].format(name=scene_name, size=self.size,
+                                                                    subpixels=self.subpixels))
                      if decl.get("root") else
                      layout.run_root(self.results, self.scene, self.size, self.subpixels, self.threads, self.tag))
-        self.timed = 1 if decl.get("timed", True) else 0
-        self.conv_root = k["CONV_RUNROOT"] or self.root
+        # the conventional renders compared with: CONV_RUNROOT, the grid CONV's, or its own
+        self.conv_root = k["CONV_RUNROOT"] or (conv.root if conv else self.root)
+        self.conv_files = conv.run_files if conv else []
         self.run_names = layout.run_names(self.photons, self.nns, self.methods, self.estimates, self.seeds)
         self.run_files = [layout.record_path(self.root, n) for n in self.run_names]
         # both methods: the two renders of one (cell, seed) are one job, back to back
         self.paired = sorted(set(self.methods) & {"conventional", "precomputed"}) == ["conventional", "precomputed"]
         self.ref, self.ref_fast = k["REF"], k["REF_FAST"]
-        if decl.get("reference") == "pov" and not self.ref:
+        self.ref_converged = False  # the reference is ours (study.converged_ref), made by rules/reference.smk
+        kind = reference_kind(decl.get("reference"), k)
+        if kind in ("pov", "pov_or_converged") and not self.ref:
             self.ref = pov_reference(self.size, self.scene)
             self.ref_fast = pov_reference(self.size, self.scene, fast=True) if decl.get("pov_floor", True) else ""
-        self.no_ref = decl.get("no_reference", "no reference").format(scene=self.scene, size=self.size, name=name)
-        self.figures = k.get("FIGURES") or os.path.join(self.results, "figures")
-        tag = f"-{self.tag}" if self.tag else ""
-        self.files = {}
-        for key, f in decl["files"].items():
-            f = f.format(tag=tag, figures=self.figures)
-            self.files[key] = f if f.startswith(self.figures) else os.path.join(self.results, f)
+        if kind == "converged" or (kind == "pov_or_converged" and not self.ref):
+            self.ref, self.ref_fast = study.converged_ref(self.scene, self.size, self.seeds), ""
+            self.ref_converged = True
+        self.no_ref = decl.get("no_reference", "no reference").format(scene=self.scene, size=self.size, name=scene_name)
+        self.files = {key: f.format(grid=name) for key, f in (files or study.files).items()}
 
     def check_reference(self):
-        """Refuses a study whose analysis has no reference (before any render)."""
+        """Refuses a grid whose analysis has no reference (before any render)."""
         if not self.ref:
-            raise StudyError(f"{self.target}: {self.no_ref}")
+            raise StudyError(f"{self.study.target}: {self.no_ref}")
 
     def position(self, name):
-        """The place (1..N) of the render NAME in the study's run list."""
+        """The place (1..N) of the render NAME in the grid's run list."""
         return self.run_names.index(name) + 1
 
     def launch_command(self, root, methods, estimate, photons, nn, seed):
@@ -155,6 +162,189 @@ class Study:
             name = f"{layout.cell_name(m, estimate, photons, nn)}/seed{seed}"
             words += ["--member", root, m, self.pm_args, self.position(name)]
         return shell_words(words + (["--dump-reps"] if self.dump_reps else []))
+
+
+def reference_kind(decl_ref, knobs):
+    """A study's kind of reference: pov (REF, else the POV-Ray one),
+    converged (ours), pov_or_converged (the POV-Ray one where there is one,
+    else ours), or None; a mapping {KNOB: {value: kind}} picks it by a knob."""
+    if not isinstance(decl_ref, dict):
+        return decl_ref
+    (knob, kinds), = decl_ref.items()
+    value = knob_text(knobs[knob])
+    if value not in kinds:
+        raise StudyError(f"{knob}={value}: {' or '.join(kinds)}")
+    return kinds[value]
+
+
+def knob_words(k, knob, exclude=()):
+    """The words of the knob KNOB's value, a word with * a glob (sorted, less EXCLUDE)."""
+    out = []
+    for w in k[knob].split():
+        out += [f for f in sorted(glob.glob(w)) if f not in exclude] if "*" in w else [w]
+    return out
+
+
+def grid_values(block, k, given):
+    """The values of a block's knob OVER: one grid per word, given to the
+    grid as the knob KNOB; KNOB given alone, without OVER: that value only.
+    A block without OVER: one value, ""."""
+    if not block.get("over"):
+        return [""]
+    if block["knob"] in given and block["over"] not in given:
+        return [k[block["knob"]]]
+    if not k[block["over"]] and block.get("over_default"):
+        return default_words(block["over_default"], k)
+    return knob_words(k, block["over"], block.get("exclude") or [])
+
+
+def default_words(spec, k):
+    """The words of OVER_DEFAULT (for an empty OVER): each item a word, or
+    {each: KNOB, words: [..]}: those words with {} the KNOB's each word."""
+    out = []
+    for item in spec:
+        if isinstance(item, dict):
+            out += [w.format(x) for x in k[item["each"]].split() for w in item["words"]]
+        else:
+            out.append(item)
+    return out
+
+
+def block_cases(block, k):
+    """The cases of a block (studies.yaml cases:): [(name, knob settings)],
+    the union of the products of the listed knobs' words (only: the scenes
+    of that name), sorted by the block's SORT; a block without cases: one
+    case without settings."""
+    if not block.get("cases"):
+        return [("", {})]
+    cases = {}
+    for entry in block["cases"]:
+        axes = [(knob, knob_words(k, src, block.get("exclude") or [])) for knob, src in entry.items() if knob != "only"]
+        for combo in itertools.product(*[words for _, words in axes]):
+            st = dict(zip([knob for knob, _ in axes], combo))
+            name = os.path.splitext(os.path.basename(st.get("SCENE", k["SCENE"])))[0]
+            if entry.get("only") in (None, name):
+                fmt = dict(k, **st, name=name)
+                cases[block["sort"].format(**fmt)] = (block["case_name"].format(**fmt), st)
+    return [cases[key] for key in sorted(cases)]
+
+
+def grid_name(block, case, value):
+    """A grid's name in its files' {grid}: its case's name and its value
+    (the scene's name for SCENE) joined by -, or the block's name."""
+    if block.get("over"):
+        value = os.path.splitext(os.path.basename(value))[0] if block.get("knob") == "SCENE" else value
+    return "-".join(x for x in (case, value) if x) or block.get("name", "")
+
+
+def value_args(block, value, target, k):
+    """The renderer options of a grid's VALUE by the block's ARGS table
+    (regex: options, {0}.. its groups, {KNOB} a knob's value); a value no
+    regex matches is refused."""
+    for regex, options in (block.get("args") or {}).items():
+        m = re.fullmatch(regex, value)
+        if m:
+            return options.format(*m.groups(), **k)
+    if block.get("args"):
+        raise StudyError(f"{target}: " + block.get("bad_value", "'{value}': no options for it").format(value=value))
+    return ""
+
+
+class Study:
+    """One study with its knobs applied: its grids (Grid) and its report's
+    files. A study of one grid reads as that grid too (study.root,
+    study.run_files, ...)."""
+
+    def __init__(self, sid, decl, knobs, given=()):
+        self.id, self.target, self.decl = sid, decl["target"], decl
+        k = {name: knob_text(v) for name, v in knobs.items()}
+        self.knobs = k
+        self.results, self.pm, self.python = k["RESULTS"], k["PM"], k["PYTHON"]
+        self.timed = 1 if decl.get("timed", True) else 0
+        # REPRO_TASKSET (interleaved studies): a CPU list, "last" (this
+        # machine's last CPU) or empty (not pinned)
+        self.taskset = k.get("REPRO_TASKSET", "")
+        if self.taskset == "last":
+            self.taskset = str(len(os.sched_getaffinity(0)) - 1)
+        self.figures = k.get("FIGURES") or os.path.join(self.results, "figures")
+        self.files = self.block_files(decl["files"])
+        self.ref_scenes = {}  # name -> scene file of every converged reference
+        self.ref_seeds = set()  # the seeds of every grid judged against one
+        # the blocks of grids (studies.yaml grids:, default one grid of the
+        # study's own knobs): (block name, its files with {grid}, its grids)
+        self.blocks, by_block = [], {}
+        for b in decl.get("grids") or [{}]:
+            files = self.block_files(b["files"]) if b.get("files") else self.files
+            grids = []
+            for case, settings in block_cases(b, k):
+                for value in grid_values(b, k, given):
+                    kk = dict(k)
+                    kk.update({n: knob_text(v) for n, v in (b.get("knobs") or {}).items() if n not in given})
+                    kk.update(settings)
+                    if b.get("over"):
+                        kk[b["knob"]] = value
+                    conv = by_block[b["conv"]][len(grids) // len(grid_values(b, k, given))] if b.get("conv") else None
+                    args = value_args(b, value, self.target, kk)
+                    kk.update({n: knob_text(v).format(value=value, args=args) for n, v in (b.get("fixed") or {}).items()})
+                    grids.append(Grid(self, decl, kk, grid_name(b, case, value), files, conv))
+            by_block[b.get("name", "")] = grids
+            self.blocks.append((b.get("name", ""), files, grids))
+        self.grids = [g for _, _, gs in self.blocks for g in gs]
+        self.by_name = {g.name: g for g in self.grids}
+        self.by_root = {g.root: g for g in self.grids}
+        self.run_files = [f for g in self.grids for f in g.run_files]
+
+    def block_files(self, files):
+        """FILES (key: path under RESULTS or in FIGURES) with {tag} and
+        {figures} filled in; {grid} stays for the rules' wildcard."""
+        tag = f"-{self.knobs['TAG']}" if self.knobs["TAG"] else ""
+        out = {}
+        for key, f in files.items():
+            f = f.format(tag=tag, figures=self.figures, grid="{grid}")
+            out[key] = f if f.startswith(self.figures) else os.path.join(self.results, f)
+        return out
+
+    def __getattr__(self, attr):
+        """A study of one grid: the grid's attribute."""
+        grids = self.__dict__.get("grids")
+        if grids and len(grids) == 1 and not attr.startswith("_"):
+            return getattr(grids[0], attr)
+        raise AttributeError(attr)
+
+    def grid(self, wildcards, block=0):
+        """The grid of a rule's job on the block BLOCK (index): by its {grid}
+        wildcard, else the block's only one."""
+        grids = self.blocks[block][2]
+        return grids[0] if len(grids) == 1 else self.by_name[wildcards.get("grid", "")]
+
+    def conv_ref_photons(self):
+        """P_e of our converged reference: CONV_REF_PHOTONS, or CONV_REF_FACTOR
+        times the largest P_e of the study's PHOTONS."""
+        k = self.knobs
+        if k["CONV_REF_PHOTONS"]:
+            return k["CONV_REF_PHOTONS"]
+        p = max(float(x) for x in k["PHOTONS"].split()) * float(k["CONV_REF_FACTOR"])
+        return str(int(p)) if p == int(p) else "%.6g" % p
+
+    def conv_ref_seeds(self):
+        return self.knobs["CONV_REF_SEEDS"].split()
+
+    def converged_ref(self, scene, size, grid_seeds=()):
+        """Our converged reference of SCENE at SIZE (rules/reference.smk makes
+        it); GRID_SEEDS, the seeds of the grid it judges, are refused among
+        CONV_REF_SEEDS (before any render)."""
+        k = self.knobs
+        both = sorted(set(map(int, grid_seeds)) & {int(s) for s in self.conv_ref_seeds() if s.isdigit()})
+        if both:
+            raise StudyError(f"{self.target}: CONV_REF_SEEDS={k['CONV_REF_SEEDS']}: seed(s) {both} are the grid's: "
+                             "the reference would share photon paths with the renders it judges")
+        name = os.path.splitext(os.path.basename(scene))[0]
+        if self.ref_scenes.setdefault(name, scene) != scene:
+            raise StudyError(f"{self.target}: two scenes named {name} ({self.ref_scenes[name]}, {scene}): "
+                             "their converged references would share one file")
+        self.ref_seeds.update(grid_seeds)
+        return layout.converged_ref(self.results, scene, size, self.conv_ref_photons(), k["CONV_REF_NN"],
+                                    k["CONV_REF_DIRECT"], k["SUBPIXELS"], self.conv_ref_seeds())
 
 
 def shell_words(words):
@@ -174,7 +364,10 @@ def load(sid, given, path=CONFIG):
     knobs.update(decl.get("knobs") or {})
     knobs.update({name: v for name, v in given.items() if name in knobs})
     knobs.update(decl.get("fixed") or {})
-    return Study(sid, decl, knobs)
+    refused = decl.get("refused") or {}
+    if set(refused.get("knobs", [])) & set(given):
+        raise StudyError(f"{decl['target']}: {refused['why']}")
+    return Study(sid, decl, knobs, given)
 
 
 def main(argv=None):

@@ -67,7 +67,8 @@ by_pos = sorted(recs, key=lambda f: json.load(open(f))["pair_pos"])
 t = [os.stat(f).st_mtime_ns for f in by_pos]
 assert t == sorted(t), t
 P2
-# group.sh alone: a member that fails, or a group interrupted, leaves none of its records
+# the launcher's group alone (experiments/launch.py, the command of the rule
+# group): a member that fails, or a group interrupted, leaves none of its records
 G=$TMP/g
 mkdir -p "$G"
 cat > "$TMP/pm-fail" <<EOF
@@ -81,6 +82,35 @@ case " \$* " in *" --rep-eval lazy "*) touch "$G/slow-started"; sleep 30 ;; esac
 exec $PWD/$PM "\$@"
 EOF
 chmod +x "$TMP/pm-fail" "$TMP/pm-slow"
+# launch PM SEED: one group of three members of one (cell, seed) at 8x6
+launch() {
+  "$PY" -m experiments.launch --pm "$1" --scene scenes/cornell.scene --width 8 --height 6 --subpixels 1 --threads 1 \
+    --of 3 --stem "paper-p500-n5/seed$2" --member "$G/a" conventional "" 1 --member "$G/a" precomputed "" 2 \
+    --member "$G/b" precomputed "--rep-eval lazy" 3
+}
+export -f launch
+export G PY
+check "launch.py group: all three records after a good group" bash -c "launch '$PWD/$PM' 1 > /dev/null &&
+  ls $G/a/conventional-paper-p500-n5/seed1.run.json $G/a/precomputed-paper-p500-n5/seed1.run.json $G/b/precomputed-paper-p500-n5/seed1.run.json"
+check "launch.py group: a member that fails exits 1 and no record of the group stays (the ones made before it too)" bash -c "
+  launch '$TMP/pm-fail' 1 > /dev/null 2>&1; rc=\$?; [ \$rc -eq 1 ] && ! ls $G/a/*/*.run.json $G/b/*/*.run.json 2>/dev/null"
+check "negative control: the same failure at an even seed (lazy first) also leaves no record" bash -c "
+  launch '$TMP/pm-fail' 2 > /dev/null 2>&1; rc=\$?; [ \$rc -eq 1 ] && ! ls $G/a/*/seed2.run.json $G/b/*/seed2.run.json 2>/dev/null"
+rm -f "$G/slow-started"
+setsid bash -c "launch '$TMP/pm-slow' 3" >/dev/null 2>&1 &
+gpid=$!
+for _ in $(seq 1 100); do [ -e "$G/slow-started" ] && break; sleep 0.1; done
+kill -TERM -- -"$gpid" 2>/dev/null; wait "$gpid" 2>/dev/null
+check "launch.py group killed during its third render leaves no record of the group (two were finished)" bash -c '
+  [ -e '"$G"'/slow-started ] && ! ls '"$G"'/a/*/seed3.run.json '"$G"'/b/*/seed3.run.json 2>/dev/null'
+check "launch.py refuses a member that is not ROOT METHOD ARGS K" expect_exit 2 'expected 4 arguments' \
+  "$PY" -m experiments.launch --pm "$PM" --scene scenes/cornell.scene --width 8 --height 6 --subpixels 1 --of 1 \
+  --stem paper-p500-n5/seed1 --member "$G/a" conventional
+
+# experiments/group.sh, which experiments/pair.sh runs for make's
+# reproduce-runs (experiments/study.mk), the same: a member that fails, or a
+# group interrupted, leaves none of its records
+rm -rf "$G"/*
 genv=(SCENE=scenes/cornell.scene WIDTH=8 HEIGHT=6 SUBPIXELS=1 THREADS_ARG=1 PYTHON="$PY")
 members=("$G/a" conventional "" "$G/a" precomputed "" "$G/b" precomputed "--rep-eval lazy")
 check "group.sh: all three records after a good group" bash -c '

@@ -26,11 +26,11 @@ for t in $targets; do
     check "make -n reproducibility at 512x384: the converged reference, pinned renders, the reference named to the report" bash -c "
       out=\$(make -n reproducibility RESULTS=$R 2>&1) &&
       grep -q 'analysis.reference build .*--width 512 --height 384' <<< \"\$out\" &&
-      grep -q 'taskset -c [0-9]* bash experiments/pair.sh' <<< \"\$out\" &&
-      grep -q -- '--ref \"$R/runs/cornell-convref-[^\"]*/512x384.exr\" --equal-error-a' <<< \"\$out\""
+      grep -q 'taskset -c [0-9]* [^ ]*python3 -m experiments.launch ' <<< \"\$out\" &&
+      grep -q -- '--ref $R/runs/cornell-convref-[^ ]*/512x384.exr --equal-error-a' <<< \"\$out\""
     check "control: make -n reproducibility SIZE=256x192 judges against POV-Ray, renders no converged reference" bash -c "
       out=\$(make -n reproducibility SIZE=256x192 RESULTS=$R 2>&1) &&
-      grep -q -- '--ref \"reference/cornell/cornell-reference-256x192.exr\"' <<< \"\$out\" &&
+      grep -q -- '--ref reference/cornell/cornell-reference-256x192.exr ' <<< \"\$out\" &&
       ! grep -q 'analysis.reference build' <<< \"\$out\""
     continue
   fi
@@ -44,7 +44,8 @@ check "make -n wrote nothing under RESULTS" test ! -e "$R"
 dry() { make -n "$@" RESULTS="$R" 2>&1; }
 check "scenes SIZE=40x30 SEEDS=1: renders at 40x30, seed 1 only" \
   bash -c "out=\$(make -n scenes SIZE=40x30 SEEDS=1 SCENES=scenes/cornell.scene RESULTS=$R PHOTONS=2000 NNS=10 2>&1) &&
-           grep -q 'WIDTH=40 HEIGHT=30' <<< \"\$out\" && grep -q 'pair.sh .*cornell-40x30-s2-t1 paper-p2000-n10/seed1' <<< \"\$out\" &&
+           grep -q -- '--width 40 --height 30 ' <<< \"\$out\" &&
+           grep -q -- '--stem paper-p2000-n10/seed1 --member [^ ]*runs/cornell-40x30-s2-t1 ' <<< \"\$out\" &&
            ! grep -q 'seed2' <<< \"\$out\""
 check "caustic SIZE=40x30 SEEDS=2 NNS=10: the caustic scene at 40x30" \
   bash -c "dry() { make -n caustic SIZE=40x30 SEEDS=2 NNS=10 PHOTONS=2000 REF=reference/caustic/caustic-reference-128x96.exr RESULTS=$R 2>&1; };

@@ -330,7 +330,7 @@ def figure(table, path, note):
 
 def main():
     """Command line: --case ID SCENE SIZE REF ... --variant ID NAME ARGS RUNS_CSV ...; see
-    experiments/beyond.mk."""
+    experiments/rules/beyond.smk."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--case", nargs=4, action="append", default=[], metavar=("ID", "SCENE", "SIZE", "REF"))
     ap.add_argument("--variant", nargs=4, action="append", default=[], metavar=("ID", "NAME", "ARGS", "RUNS_CSV"))
@@ -385,7 +385,7 @@ def write_md(table, cases, args):
            "reps_evaluated / representatives (both pooled over the variant's renders). Error ratio: the variant's "
            "mean relMSE over the conventional one's at the same cells and seeds. All the renders of one (cell, seed) "
            "of a case, the conventional, the paper's rule and every variant, ran back to back in one group "
-           "(`experiments/group.sh`, in the order given at odd seeds and reversed at even ones), so each time "
+           "(`experiments/launch.py`, in the order given at odd seeds and reversed at even ones), so each time "
            "ratio is a paired sample of one machine state.", "",
            "| case | variant | target relMSE | speed-up [95%] | fallback | evaluated | precompute | eye pass | error ratio |",
            "|---|---|---:|---:|---:|---:|---:|---:|---:|"]

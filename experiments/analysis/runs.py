@@ -49,6 +49,18 @@ def run_root(results, scene, size, subpixels, threads, tag=""):
     return os.path.join(results, "runs", f"{name}-{size}-s{subpixels}-{threads_label(threads)}" + (f"-{tag}" if tag else ""))
 
 
+def converged_ref(results, scene, size, photons, nn, direct, subpixels, seeds):
+    """Our converged reference of SCENE at SIZE (WxH), rendered by
+    experiments/analysis/reference.py: RESULTS/runs/<scene>-convref-p<P>-n<n>-
+    <direct>-s<S>-seeds<a_b_..>/<W>x<H>.exr, the JSON of its measured error
+    beside it and its renders in <W>x<H>/. SEEDS: a list, or the text of the
+    seeds part as it stands (a rule's wildcard)."""
+    name = os.path.splitext(os.path.basename(scene))[0]
+    seeds = seeds if isinstance(seeds, str) else "_".join(map(str, seeds))
+    return os.path.join(results, "runs", f"{name}-convref-p{photons}-n{nn}-{direct}-s{subpixels}-seeds{seeds}",
+                        f"{size}.exr")
+
+
 def run_names(photons, nns, methods, estimates, seeds):
     """Every render of a grid as CELL/seed<k>, seeds outermost (a partial run
     has every cell at the first seeds, and slow phases of a shared machine
