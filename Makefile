@@ -75,7 +75,7 @@ reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one
 reference-pbrt: ## re-render the pbrt-v3 references (needs pbrt: PBRT=path; reference/pbrt/README.md)
 fuzz: ## run the scene parser's libFuzzer target for FUZZ_SECONDS (60)
-evaluate: ## does the method pay on SCENE=my.scene? pilot, POV-Ray and converged references, grid, verdict -> OUT/report.md (experiments/evaluate.mk)
+evaluate: ## does the method pay on SCENE=my.scene? pilot, POV-Ray and converged references, grid, verdict -> OUT/report.md (Snakemake: studies.yaml, rules/evaluate.smk)
 sweep-slurm: ## a study target's renders on Slurm through Snakemake: SWEEP=TARGET (= make TARGET CLUSTER=slurm)
 help: ## this list
 	@awk -F':.*## ' '/^[a-z][a-z-]*:.*## / { printf "  make %-17s %s\n", $$1, $$2 }' $(firstword $(MAKEFILE_LIST))
@@ -154,11 +154,8 @@ unit-tests: $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 # ---- rules of the experiment, benchmark, reference and fuzz targets ----
 # experiments/config.mk holds every variable they share (read first).
 include experiments/config.mk
-include experiments/study.mk
-include experiments/studies.mk
 include experiments/snakemake.mk
 include experiments/findings.mk
 include experiments/bench.mk
-include experiments/evaluate.mk
 include reference/reference.mk
 include tests/fuzz/fuzz.mk

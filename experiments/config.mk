@@ -1,6 +1,6 @@
 # config.mk: every variable the experiment targets share, in one place
-# (included by the top Makefile before experiments/study.mk and
-# experiments/studies.mk). Each can be set on the command line, e.g.
+# (included by the top Makefile before experiments/snakemake.mk).
+# Each can be set on the command line, e.g.
 # `make reproduce-table SIZE=256x192 SEEDS=3`. One name per knob: SIZE,
 # SEEDS, SCENE, PHOTONS, NNS, REF mean the same for every study target; a
 # name a target does not read is refused (below), never silently ignored.
@@ -67,9 +67,6 @@ FIGURES = $(RESULTS)/figures
 T_ARG = $(if $(strip $(THREADS)),$(strip $(THREADS)),0)
 T_LABEL = $(if $(strip $(THREADS)),t$(strip $(THREADS)),tall)
 SCENE_NAME = $(basename $(notdir $(SCENE)))
-# make names a render's files after its scene: a path with a space would
-# split into two targets
-$(if $(word 2,$(SCENE)),$(error SCENE=$(SCENE): a path with a space cannot name make targets; link or copy the scene to a path without spaces))
 WIDTH = $(call size_w,$(SIZE))
 HEIGHT = $(call size_h,$(SIZE))
 REF_FILE = $(or $(REF),$(shell bash experiments/findref.sh $(SIZE) $(SCENE)))

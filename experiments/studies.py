@@ -65,6 +65,14 @@ def parse_seeds(seeds):
     return list(range(1, int(seeds) + 1))
 
 
+def scene_key(scene):
+    """The first 12 hex digits of the SHA-256 of SCENE's content: a scene's
+    name in the paths of a study of that one scene (evaluate)."""
+    import hashlib
+    with open(scene, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()[:12]
+
+
 def parse_seed(seed, knob):
     """The one seed of KNOB=SEED, checked."""
     if not re.fullmatch(r"[0-9]+", seed) or int(seed) == 0:
@@ -103,7 +111,7 @@ class Grid:
     analysis files; attributes named after the knobs, lower case. NAME: the
     grid's name in its files' {grid} (a study of one grid: "")."""
 
-    def __init__(self, study, decl, k, name="", files=None, conv=None):
+    def __init__(self, study, decl, k, name="", files=None, conv=None, root=None):
         self.study, self.name = study, name
         self.knobs = k
         self.results, self.pm, self.python = k["RESULTS"], k["PM"], k["PYTHON"]
@@ -119,9 +127,13 @@ class Grid:
         self.threads_arg = self.threads or "0"
         self.tag, self.pm_args = k["TAG"], k["PM_ARGS"]
         scene_name = os.path.splitext(os.path.basename(self.scene))[0]
-        self.root = (os.path.join(self.results, decl["root"].format(name=scene_name, size=self.size,
-                                                                    subpixels=self.subpixels))
-                     if decl.get("root") else
+        root = root or decl.get("root")
+        if root:
+            root = root.format(name=scene_name, size=self.size, subpixels=self.subpixels, out=study.out,
+                               value=k.get("VALUE", ""), key=scene_key(self.scene) if "{key}" in root else "",
+                               threads=layout.threads_label(self.threads))
+        self.root = ((root if study.out and root.startswith(study.out) else os.path.join(self.results, root))
+                     if root else
                      layout.run_root(self.results, self.scene, self.size, self.subpixels, self.threads, self.tag))
         # the conventional renders compared with: CONV_RUNROOT, the grid CONV's, or its own
         self.conv_root = k["CONV_RUNROOT"] or (conv.root if conv else self.root)
@@ -267,7 +279,12 @@ class Study:
         if self.taskset == "last":
             self.taskset = str(len(os.sched_getaffinity(0)) - 1)
         self.figures = k.get("FIGURES") or os.path.join(self.results, "figures")
+        # a study whose files live in a directory of their own (studies.yaml
+        # out: under RESULTS, {name} the scene's name), unless OUT is given
+        scene_name = os.path.splitext(os.path.basename(k["SCENE"]))[0]
+        self.out = (k.get("OUT") or os.path.join(self.results, decl["out"].format(name=scene_name))) if decl.get("out") else ""
         self.files = self.block_files(decl["files"])
+        self.render_after = []  # files every render of the study waits for (evaluate: the references' check)
         self.ref_scenes = {}  # name -> scene file of every converged reference
         self.ref_seeds = set()  # the seeds of every grid judged against one
         # the blocks of grids (studies.yaml grids:, default one grid of the
@@ -286,7 +303,8 @@ class Study:
                     conv = by_block[b["conv"]][len(grids) // len(grid_values(b, k, given))] if b.get("conv") else None
                     args = value_args(b, value, self.target, kk)
                     kk.update({n: knob_text(v).format(value=value, args=args) for n, v in (b.get("fixed") or {}).items()})
-                    grids.append(Grid(self, decl, kk, grid_name(b, case, value), files, conv))
+                    kk["VALUE"] = value
+                    grids.append(Grid(self, decl, kk, grid_name(b, case, value), files, conv, b.get("root")))
             by_block[b.get("name", "")] = grids
             self.blocks.append((b.get("name", ""), files, grids))
         self.grids = [g for _, _, gs in self.blocks for g in gs]
@@ -300,8 +318,9 @@ class Study:
         tag = f"-{self.knobs['TAG']}" if self.knobs["TAG"] else ""
         out = {}
         for key, f in files.items():
-            f = f.format(tag=tag, figures=self.figures, grid="{grid}")
-            out[key] = f if f.startswith(self.figures) else os.path.join(self.results, f)
+            f = f.format(tag=tag, figures=self.figures, grid="{grid}", out=self.out)
+            mine = f.startswith(self.figures) or (self.out and f.startswith(self.out))
+            out[key] = f if mine else os.path.join(self.results, f)
         return out
 
     def __getattr__(self, attr):
@@ -365,8 +384,14 @@ def load(sid, given, path=CONFIG):
     knobs.update({name: v for name, v in given.items() if name in knobs})
     knobs.update(decl.get("fixed") or {})
     refused = decl.get("refused") or {}
-    if set(refused.get("knobs", [])) & set(given):
-        raise StudyError(f"{decl['target']}: {refused['why']}")
+    bad = sorted(set(refused.get("knobs", [])) & set(given), key=refused.get("knobs", []).index)
+    if bad:
+        raise StudyError(f"{decl['target']}: {refused['why']}".replace("{knob}", bad[0]))
+    for knob, why in (decl.get("required") or {}).items():
+        if knob not in given:
+            raise StudyError(f"{decl['target']}: {why}")
+        if not os.path.isfile(knob_text(given[knob])):
+            raise StudyError(f"{decl['target']}: {knob}={knob_text(given[knob])}: no such file")
     return Study(sid, decl, knobs, given)
 
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""evaluate.py: the stages of `make evaluate` (experiments/evaluate.mk) that
+"""evaluate.py: the stages of `make evaluate` (experiments/rules/evaluate.smk) that
 are not renders of the grid: does the method pay on one scene?
 
 Owns the pilot's verdict on whether a study of the scene means anything,
