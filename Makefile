@@ -54,9 +54,9 @@ test: all unit-tests $(BUILD)/san/photonmap $(DEPS_TEST) $(DEPS_CLUSTER) ## ever
 check: all $(BUILD)/unit-tests $(DEPS_TEST) ## the fast tier: unit tests, command line, hostile input, refusals, pytest tests/ (under 3 min)
 	bash tests/run.sh --fast
 reproduce-table: ## Table 1 over SEEDS seeds, both estimates -> results/table1/ (Snakemake: experiments/studies.yaml, experiments/rules/table1.smk)
-reproduce-runs: ## only the renders of reproduce-table, one make target each (make -j; resumes)
-list-runs: ## print the target of every render of reproduce-table, one per line (for a job array)
-figures: ## Figures 2 and 3 at 1:1, error maps, trade-off, time ratio and phases -> results/figures/ (after reproduce-table)
+reproduce-runs: ## only the renders of reproduce-table (Snakemake; resumes)
+list-runs: ## print the record path of every render of reproduce-table, one per line
+figures: ## Figures 2 and 3 at 1:1, error maps, trade-off, time ratio and phases -> results/figures/ (after reproduce-table; Snakemake: studies.yaml, rules/figures.smk)
 rep-study: ## representative rules (REP_RULES) against the paper's cost pattern -> results/rep-study/, figures/rep-study.png
 caustic: ## the Fig. 3 cells on the caustic scene, caustic-window error over seeds -> results/caustic/, figures/caustic.png (Snakemake: studies.yaml, rules/caustic.smk)
 resolution: ## cheapest settings per output size -> results/resolution/
@@ -76,8 +76,8 @@ reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one
 reference-pbrt: ## re-render the pbrt-v3 references (needs pbrt: PBRT=path; reference/pbrt/README.md)
 fuzz: ## run the scene parser's libFuzzer target for FUZZ_SECONDS (60)
-evaluate: ## does the method pay on SCENE=my.scene? pilot, POV-Ray and converged references, grid, verdict -> OUT/report.md (experiments/evaluate.mk)
-sweep-slurm: ## a Slurm job array of make targets: TASKS=FILE or SWEEP=TARGET -> SLURM_DIR/sweep.sbatch
+evaluate: ## does the method pay on SCENE=my.scene? pilot, POV-Ray and converged references, grid, verdict -> OUT/report.md (Snakemake: studies.yaml, rules/evaluate.smk)
+sweep-slurm: ## a study target's renders on Slurm through Snakemake: SWEEP=TARGET (= make TARGET CLUSTER=slurm)
 help: ## this list
 	@awk -F':.*## ' '/^[a-z][a-z-]*:.*## / { printf "  make %-17s %s\n", $$1, $$2 }' $(firstword $(MAKEFILE_LIST))
 clean: ## remove the build (not results/ or reference/)
@@ -155,13 +155,8 @@ unit-tests: $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 # ---- rules of the experiment, benchmark, reference and fuzz targets ----
 # experiments/config.mk holds every variable they share (read first).
 include experiments/config.mk
-include experiments/study.mk
-include experiments/studies.mk
 include experiments/snakemake.mk
-include experiments/figures.mk
 include experiments/findings.mk
 include experiments/bench.mk
-include experiments/slurm.mk
-include experiments/evaluate.mk
 include reference/reference.mk
 include tests/fuzz/fuzz.mk

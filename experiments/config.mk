@@ -1,6 +1,6 @@
 # config.mk: every variable the experiment targets share, in one place
-# (included by the top Makefile before experiments/study.mk and
-# experiments/studies.mk). Each can be set on the command line, e.g.
+# (included by the top Makefile before experiments/snakemake.mk).
+# Each can be set on the command line, e.g.
 # `make reproduce-table SIZE=256x192 SEEDS=3`. One name per knob: SIZE,
 # SEEDS, SCENE, PHOTONS, NNS, REF mean the same for every study target; a
 # name a target does not read is refused (below), never silently ignored.
@@ -67,9 +67,6 @@ FIGURES = $(RESULTS)/figures
 T_ARG = $(if $(strip $(THREADS)),$(strip $(THREADS)),0)
 T_LABEL = $(if $(strip $(THREADS)),t$(strip $(THREADS)),tall)
 SCENE_NAME = $(basename $(notdir $(SCENE)))
-# make names a render's files after its scene: a path with a space would
-# split into two targets
-$(if $(word 2,$(SCENE)),$(error SCENE=$(SCENE): a path with a space cannot name make targets; link or copy the scene to a path without spaces))
 WIDTH = $(call size_w,$(SIZE))
 HEIGHT = $(call size_h,$(SIZE))
 REF_FILE = $(or $(REF),$(shell bash experiments/findref.sh $(SIZE) $(SCENE)))
@@ -103,45 +100,11 @@ CONV_REF_MARGIN ?= 0.1
 
 
 
-# make figures (experiments/figures.mk): drawn from the grid's TABLE.csv,
-# RUNS_CSV and CELLS_CSV (their size, seeds, reference) and the renders
-# RUNS_CSV names. FIG3_CELLS: the cells of Figure 3 as P_e:n, the first
-# FIG3_PAPER_CELLS of them the paper's, the rest controls; FIG_SEED: the
-# seed whose images are shown; FIG3_CROP: the 1:1 crop WxH+X+Y, given for
-# FIG3_CROP_AT and scaled to the grid's size; FIG_ERROR_BLOCK: the error
-# maps' block size in pixels; FIG_REF: the reference (empty: the one in
-# CELLS_CSV). The time shown is TIME.
-FIG3_CELLS ?= 50000:10 100000:100 500000:100 50000:100 500000:10
-FIG3_PAPER_CELLS ?= 3
-FIG_SEED ?= 1
-FIG3_CROP ?= 384x288+150+440
-FIG3_CROP_AT ?= 1024x768
-FIG_ERROR_BLOCK ?= 2
-FIG_REF ?=
-# Figure 2: one precomputed render of SCENE at WIDTHxHEIGHT with
-# --dump-reps (P_e FIG2_PHOTONS, n FIG2_NN, seed FIG_SEED); the plane drawn
-# (FIG2_PLANE: the normal axis, at that coordinate's minimum: z = the back
-# wall, y = the floor) and the window on it (u0 u1 v0 v1, u and v the other
-# two axes in x, y, z order)
-FIG2_PHOTONS ?= 50000
-FIG2_NN ?= 10
-FIG2_PLANE ?= z
-FIG2_WINDOW ?= -0.4 0.2 1.0 1.45
-FIG2_DIR = $(RESULTS)/runs/fig2-$(SCENE_NAME)-$(SIZE)-s$(SUBPIXELS)-p$(FIG2_PHOTONS)-n$(FIG2_NN)-seed$(FIG_SEED)
-
 
 
 # make bench
 BENCH_BIN := $(BUILD)/bench/bench
 
-# make sweep-slurm (experiments/slurm.mk): the tasks, from a file of make
-# targets (TASKS) or from a target's prerequisites (SWEEP); where the task
-# list, the sbatch script and the logs go; extra #SBATCH options (words
-# without spaces, e.g. "--time=2:00:00 --cpus-per-task=1 --partition=short")
-TASKS ?=
-SWEEP ?=
-SLURM_DIR ?= $(BUILD)/slurm
-SBATCH_OPTS ?=
 
 # make bench (experiments/bench.mk): the scaling section (bench-scaling:
 # emitted photon counts and threads; 50k..20M takes about 3 minutes on two

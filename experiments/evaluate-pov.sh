@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # evaluate-pov.sh: one POV-Ray reference of a user's scene for `make
-# evaluate` (experiments/evaluate.mk), by the rule of the committed ones
+# evaluate` (experiments/rules/evaluate.smk), by the rule of the committed ones
 # (reference/reference.mk): export-pov at 2W x 2H, POV-Ray single-threaded
 # without antialiasing, oiiotool's 2x2 box filter down to W x H. Cached:
 # the key is the SHA-256 of the exported SDL without its comment lines

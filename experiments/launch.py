@@ -6,7 +6,7 @@ command line (command) and makes one render's files in the run layout
 
     python3 -m experiments.launch --pm PM --scene SCENE --width W --height H \\
         --subpixels S --threads T --repeats R --of N --stem ESTIMATE-pP-nN/seedK \\
-        --member ROOT METHOD "EXTRA ARGS" K [--member ...]
+        --member ROOT METHOD "EXTRA ARGS" K [--member ...] [--dump-reps]
 
 renders every member (the render ROOT/METHOD-ESTIMATE-pP-nN/seedK with the
 extra renderer options EXTRA ARGS, run K of the study's N) back to back,
@@ -23,7 +23,9 @@ fails or the group is interrupted the records this group made are removed
 again: a group is finished only when every member's record exists.
 
 One render writes, in ROOT/CELL/: seedK.exr (the image), seedK.stats.json
-(the renderer's --stats), seedK.err (its stderr) and, last, seedK.run.json:
+(the renderer's --stats), seedK.err (its stderr), with --dump-reps
+seedK.reps.csv (the representatives, renderer's --dump-reps) and, last,
+seedK.run.json:
 exit status, user/system CPU seconds from /usr/bin/time -f "%U %S", the
 1-minute load average when the render started, its place in the group, the
 command, and for a refused render (exit 2: the renderer rejects the
@@ -60,16 +62,18 @@ def check_repeats(repeats):
 
 
 def command(pm, scene, method, estimate, photons, nn, seed, width, height, subpixels, threads, extra, out_base,
-            repeats):
+            repeats, dump_reps=False):
     """The renderer's command line of one render, as a list of words:
-    the image to OUT_BASE.exr and the stats to OUT_BASE.json, timed with
+    the image to OUT_BASE.exr, the stats to OUT_BASE.json and, with
+    DUMP_REPS, the representatives to OUT_BASE.reps.csv; timed with
     --repeats REPEATS."""
     if estimate not in ESTIMATE_ARGS:
         raise LaunchError(f"estimate '{estimate}' is neither paper nor corrected")
     return ([pm, "render", scene, "--method", method, "--photons", str(photons), "--nn", str(nn), "--seed", str(seed),
              "--width", str(width), "--height", str(height), "--subpixels", str(subpixels), "--threads", str(threads),
              "--repeats", check_repeats(repeats)]
-            + extra.split() + ESTIMATE_ARGS[estimate] + ["-o", out_base + ".exr", "--stats", out_base + ".json", "--quiet"])
+            + extra.split() + ESTIMATE_ARGS[estimate] + ["-o", out_base + ".exr", "--stats", out_base + ".json", "--quiet"]
+            + (["--dump-reps", out_base + ".reps.csv"] if dump_reps else []))
 
 
 def json_str(text):
@@ -112,11 +116,11 @@ def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k):
     base = layout.run_base(root, method, estimate, photons, nn, seed)
     os.makedirs(os.path.dirname(base), exist_ok=True)
     remove_tmp(base)
-    for ext in (".exr", ".stats.json", ".err"):
+    for ext in (".exr", ".stats.json", ".err", ".reps.csv"):
         if os.path.exists(base + ext):
             os.remove(base + ext)
     cmd = command(s.pm, s.scene, method, estimate, photons, nn, seed, s.width, s.height, s.subpixels, s.threads,
-                  extra, base + ".tmp", s.repeats)
+                  extra, base + ".tmp", s.repeats, s.dump_reps)
     with open("/proc/loadavg", encoding="ascii") as f:
         load = f.read().split()[0]
     with open(base + ".tmp.err", "wb") as err:
@@ -129,6 +133,8 @@ def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k):
         os.replace(base + ".tmp.exr", base + ".exr")
         os.replace(base + ".tmp.json", base + ".stats.json")
         os.replace(base + ".tmp.err", base + ".err")
+        if s.dump_reps:
+            os.replace(base + ".tmp.reps.csv", base + ".reps.csv")
         os.remove(base + ".tmp.time")
         cpu = "%.2f" % (float(user) + float(sys_s))
         write_record(base, 0, user, sys_s, cpu, load, pair_pos, "", cmd)
@@ -184,6 +190,7 @@ def main(argv=None):
                     help="--repeats of the renderer: auto, or a count (1: a single timed run); a study's TIME_REPEATS")
     ap.add_argument("--of", type=int, required=True, help="the number of renders of the study (progress lines)")
     ap.add_argument("--stem", required=True, help="ESTIMATE-pPHOTONS-nNN/seedK")
+    ap.add_argument("--dump-reps", action="store_true", help="each render's representatives to seedK.reps.csv")
     ap.add_argument("--member", nargs=4, action="append", required=True, metavar=("ROOT", "METHOD", "ARGS", "K"))
     s = ap.parse_args(argv)
     try:

@@ -22,8 +22,11 @@ SMK_ENV_KNOBS := SCENE SIZE SEEDS PHOTONS NNS METHODS ESTIMATES SUBPIXELS THREAD
   REF REF_FAST RESULTS EE_TARGETS TIME BOOTSTRAP BOOTSTRAP_SEED PYTHON \
   CONV_REF_PHOTONS CONV_REF_FACTOR CONV_REF_NN CONV_REF_SEEDS CONV_REF_DIRECT RES_SIZES RES_TARGETS RES_REF \
   SCENES SCENES_CELL FIGURES REP_RULES BEYOND_SIZES BEYOND_TAUS BEYOND_GATE BEYOND_VARIANTS \
-  REPRO_TASKSET REPRO_GOAL_PP
-SMK_OWN_VARS := SNAKEMAKE CORES TIMED_AT_ONCE SNAKEFLAGS CLUSTER GROUP_RENDERS SLURM_JOBS SLURM_DIR SBATCH_OPTS
+  REPRO_TASKSET REPRO_GOAL_PP FIG3_CELLS FIG3_PAPER_CELLS FIG_SEED FIG3_CROP FIG3_CROP_AT FIG_ERROR_BLOCK FIG_REF \
+  FIG2_PHOTONS FIG2_NN FIG2_PLANE FIG2_WINDOW EVAL_VARIANTS EVAL_CACHE EVAL_POV_SCENE OUT
+SMK_OWN_VARS := SNAKEMAKE CORES TIMED_AT_ONCE SNAKEFLAGS CLUSTER GROUP_RENDERS SLURM_JOBS SLURM_DIR SBATCH_OPTS SWEEP
+# shell_quote TEXT: TEXT as one single-quoted shell word
+shell_quote = '$(subst ','\'',$(1))'
 # yaml_quote TEXT: TEXT as a single-quoted YAML string (Snakemake's --config
 # would otherwise read 1e5 as a number and "a: b" as a mapping)
 yaml_quote = '$(subst ','',$(1))'
@@ -43,6 +46,8 @@ smk_dry = $(if $(findstring n,$(firstword -$(MAKEFLAGS))),-n -p)
 CLUSTER ?=
 GROUP_RENDERS ?= 8
 SLURM_JOBS ?= 100
+SLURM_DIR ?= $(BUILD)/slurm
+SBATCH_OPTS ?=
 smk_slurm = --cluster $(call shell_quote,sbatch --parsable --output=$(abspath $(SLURM_DIR))/logs/%j.out $(SBATCH_OPTS)) \
   --cluster-status experiments/slurm/status.sh --cluster-cancel scancel --jobs $(SLURM_JOBS) \
   --group-components renders=$(GROUP_RENDERS) --latency-wait 30
@@ -58,9 +63,14 @@ smk = $(smk_logs)$(SNAKEMAKE) -s experiments/Snakefile $(smk_where) \
   --config STUDY=$(1) $(smk_config) $(if $(3),--forcerun $(3)) -- $(2)
 
 # the study targets: STUDY (studies.yaml), its report rule, its first analysis rule
-.PHONY: reproduce-table caustic estimator-bias estimator-bias-runs resolution resolution-runs scenes scenes-runs rep-study rep-study-runs beyond beyond-runs reproducibility reproducibility-runs
+.PHONY: reproduce-table reproduce-runs list-runs caustic estimator-bias estimator-bias-runs figures sweep-slurm evaluate evaluate-references resolution resolution-runs scenes scenes-runs rep-study rep-study-runs beyond beyond-runs reproducibility reproducibility-runs
 reproduce-table: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,table1,table1,collect)
+# Table 1's renders only; every render's record path, one per line
+reproduce-runs: $(BUILD)/photonmap | $(DEPS_TEST)
+	+@$(call smk,table1,runs)
+list-runs: | $(DEPS_TEST)
+	@$(PYTHON) -m experiments.studies list-runs table1 $(smk_config)
 caustic: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,caustic,caustic,collect)
 estimator-bias: $(BUILD)/photonmap | $(DEPS_TEST)
@@ -96,3 +106,19 @@ reproducibility: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,reproducibility,reproducibility,collect)
 reproducibility-runs: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,reproducibility,runs)
+figures: $(BUILD)/photonmap | $(DEPS_TEST)
+	+@$(call smk,figures,figures)
+# make evaluate SCENE=my.scene (rules/evaluate.smk); evaluate-references: its stages 1-3
+evaluate: $(BUILD)/photonmap | $(DEPS_TEST)
+	+@$(call smk,evaluate,evaluate,collect collect_variant)
+evaluate-references: $(BUILD)/photonmap | $(DEPS_TEST)
+	+@$(call smk,evaluate,evaluate_references)
+
+# `make sweep-slurm SWEEP=TARGET [knobs]`: the study target TARGET (one of
+# SMK_TARGETS) with CLUSTER=slurm: Snakemake submits its renders to Slurm
+SMK_TARGETS := reproduce-table reproduce-runs caustic estimator-bias estimator-bias-runs figures resolution \
+  resolution-runs scenes scenes-runs rep-study rep-study-runs beyond beyond-runs reproducibility reproducibility-runs evaluate evaluate-references
+sweep-slurm:
+	$(if $(strip $(SWEEP)),,$(error sweep-slurm: give SWEEP=TARGET, a study target ($(SMK_TARGETS))))
+	$(if $(filter-out $(SMK_TARGETS),$(SWEEP))$(word 2,$(SWEEP)),$(error sweep-slurm: SWEEP=$(SWEEP): not one study target ($(SMK_TARGETS))))
+	+@$(MAKE) --no-print-directory $(SWEEP) CLUSTER=slurm

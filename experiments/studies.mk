@@ -1,10 +1,8 @@
 # studies.mk: Table 1 declared for the make mechanism of experiments/study.mk
-# (one make target per render, one analysis call): make reproduce-runs and
-# list-runs, and the variables figures.mk and evaluate.mk read. Knobs and
-# defaults: experiments/config.mk. Every study target runs on Snakemake
-# (experiments/studies.yaml, experiments/snakemake.mk).
-#
-#   make -j2 reproduce-runs      # only the renders, two at a time
+# (one make target per render, one analysis call), which only evaluate.mk
+# still uses (its own grids; nothing reads table1's variables). Knobs and
+# defaults: experiments/config.mk. Every other study target runs on
+# Snakemake (experiments/studies.yaml, experiments/snakemake.mk).
 
 # ---- Table 1: the paper's grid on SCENE at SIZE (a variant: TAG, PM_ARGS, CONV_RUNROOT)
 table1_SCENE = $(SCENE)
@@ -28,7 +26,3 @@ $(eval $(call study,table1))
 # the names the other files use
 RUNROOT := $(table1_RUNROOT)
 RUN_FILES := $(table1_RUN_FILES)
-
-list-runs:
-	@printf '%s\n' $(RUN_FILES)
-reproduce-runs: $(table1_RUN_FILES)

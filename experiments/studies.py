@@ -73,6 +73,21 @@ def parse_time_repeats(text):
     raise StudyError(f"TIME_REPEATS={text}: auto or a positive number of timed runs per render (1: a single timed run)")
 
 
+def scene_key(scene):
+    """The first 12 hex digits of the SHA-256 of SCENE's content: a scene's
+    name in the paths of a study of that one scene (evaluate)."""
+    import hashlib
+    with open(scene, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()[:12]
+
+
+def parse_seed(seed, knob):
+    """The one seed of KNOB=SEED, checked."""
+    if not re.fullmatch(r"[0-9]+", seed) or int(seed) == 0:
+        raise StudyError(f"{knob}={seed}: a positive seed")
+    return [int(seed)]
+
+
 def pov_reference(size, scene, fast=False, top="."):
     """The POV-Ray reference EXR of SCENE at SIZE in reference/<scene>/, or
     "". Prefers, for the per-pixel metrics, the one rendered with the
@@ -104,19 +119,29 @@ class Grid:
     analysis files; attributes named after the knobs, lower case. NAME: the
     grid's name in its files' {grid} (a study of one grid: "")."""
 
-    def __init__(self, study, decl, k, name="", files=None, conv=None):
+    def __init__(self, study, decl, k, name="", files=None, conv=None, root=None):
         self.study, self.name = study, name
         self.knobs = k
         self.results, self.pm, self.python = k["RESULTS"], k["PM"], k["PYTHON"]
         self.scene, self.size, self.subpixels = k["SCENE"], k["SIZE"], int(k["SUBPIXELS"])
         self.width, self.height = parse_size(self.size)
-        self.seeds = parse_seeds(k["SEEDS"])
-        self.photons, self.nns = k["PHOTONS"].split(), k["NNS"].split()
+        # a study of one render names the knobs of its P_e, n and seed (render_knobs:)
+        rk = decl.get("render_knobs") or {}
+        self.seeds = parse_seed(k[rk["SEED"]], rk["SEED"]) if "SEED" in rk else parse_seeds(k["SEEDS"])
+        self.photons, self.nns = k[rk.get("PHOTONS", "PHOTONS")].split(), k[rk.get("NNS", "NNS")].split()
+        self.dump_reps = bool(decl.get("dump_reps", False))
         self.methods, self.estimates = k["METHODS"].split(), k["ESTIMATES"].split()
         self.threads = k["THREADS"]
         self.threads_arg = self.threads or "0"
         self.tag, self.pm_args = k["TAG"], k["PM_ARGS"]
-        self.root = (os.path.join(self.results, decl["root"]) if decl.get("root") else
+        scene_name = os.path.splitext(os.path.basename(self.scene))[0]
+        root = root or decl.get("root")
+        if root:
+            root = root.format(name=scene_name, size=self.size, subpixels=self.subpixels, out=study.out,
+                               value=k.get("VALUE", ""), key=scene_key(self.scene) if "{key}" in root else "",
+                               threads=layout.threads_label(self.threads))
+        self.root = ((root if study.out and root.startswith(study.out) else os.path.join(self.results, root))
+                     if root else
                      layout.run_root(self.results, self.scene, self.size, self.subpixels, self.threads, self.tag))
         # a study whose times are not compared renders once
         self.time_repeats = parse_time_repeats(k["TIME_REPEATS"]) if decl.get("timed", True) else "1"
@@ -136,7 +161,6 @@ class Grid:
         if kind == "converged" or (kind == "pov_or_converged" and not self.ref):
             self.ref, self.ref_fast = study.converged_ref(self.scene, self.size, self.seeds), ""
             self.ref_converged = True
-        scene_name = os.path.splitext(os.path.basename(self.scene))[0]
         self.no_ref = decl.get("no_reference", "no reference").format(scene=self.scene, size=self.size, name=scene_name)
         self.files = {key: f.format(grid=name) for key, f in (files or study.files).items()}
 
@@ -160,7 +184,7 @@ class Grid:
         for m in methods:
             name = f"{layout.cell_name(m, estimate, photons, nn)}/seed{seed}"
             words += ["--member", root, m, self.pm_args, self.position(name)]
-        return shell_words(words)
+        return shell_words(words + (["--dump-reps"] if self.dump_reps else []))
 
 
 def reference_kind(decl_ref, knobs):
@@ -266,7 +290,12 @@ class Study:
         if self.taskset == "last":
             self.taskset = str(len(os.sched_getaffinity(0)) - 1)
         self.figures = k.get("FIGURES") or os.path.join(self.results, "figures")
+        # a study whose files live in a directory of their own (studies.yaml
+        # out: under RESULTS, {name} the scene's name), unless OUT is given
+        scene_name = os.path.splitext(os.path.basename(k["SCENE"]))[0]
+        self.out = (k.get("OUT") or os.path.join(self.results, decl["out"].format(name=scene_name))) if decl.get("out") else ""
         self.files = self.block_files(decl["files"])
+        self.render_after = []  # files every render of the study waits for (evaluate: the references' check)
         self.ref_scenes = {}  # name -> scene file of every converged reference
         self.ref_seeds = set()  # the seeds of every grid judged against one
         # the blocks of grids (studies.yaml grids:, default one grid of the
@@ -285,7 +314,8 @@ class Study:
                     conv = by_block[b["conv"]][len(grids) // len(grid_values(b, k, given))] if b.get("conv") else None
                     args = value_args(b, value, self.target, kk)
                     kk.update({n: knob_text(v).format(value=value, args=args) for n, v in (b.get("fixed") or {}).items()})
-                    grids.append(Grid(self, decl, kk, grid_name(b, case, value), files, conv))
+                    kk["VALUE"] = value
+                    grids.append(Grid(self, decl, kk, grid_name(b, case, value), files, conv, b.get("root")))
             by_block[b.get("name", "")] = grids
             self.blocks.append((b.get("name", ""), files, grids))
         self.grids = [g for _, _, gs in self.blocks for g in gs]
@@ -299,8 +329,9 @@ class Study:
         tag = f"-{self.knobs['TAG']}" if self.knobs["TAG"] else ""
         out = {}
         for key, f in files.items():
-            f = f.format(tag=tag, figures=self.figures, grid="{grid}")
-            out[key] = f if f.startswith(self.figures) else os.path.join(self.results, f)
+            f = f.format(tag=tag, figures=self.figures, grid="{grid}", out=self.out)
+            mine = f.startswith(self.figures) or (self.out and f.startswith(self.out))
+            out[key] = f if mine else os.path.join(self.results, f)
         return out
 
     def __getattr__(self, attr):
@@ -364,6 +395,39 @@ def load(sid, given, path=CONFIG):
     knobs.update({name: v for name, v in given.items() if name in knobs})
     knobs.update(decl.get("fixed") or {})
     refused = decl.get("refused") or {}
-    if set(refused.get("knobs", [])) & set(given):
-        raise StudyError(f"{decl['target']}: {refused['why']}")
+    bad = sorted(set(refused.get("knobs", [])) & set(given), key=refused.get("knobs", []).index)
+    if bad:
+        raise StudyError(f"{decl['target']}: {refused['why']}".replace("{knob}", bad[0]))
+    for knob, why in (decl.get("required") or {}).items():
+        if knob not in given:
+            raise StudyError(f"{decl['target']}: {why}")
+        if not os.path.isfile(knob_text(given[knob])):
+            raise StudyError(f"{decl['target']}: {knob}={knob_text(given[knob])}: no such file")
     return Study(sid, decl, knobs, given)
+
+
+def main(argv=None):
+    """python3 -m experiments.studies list-runs STUDY [NAME=VALUE ...]: every
+    render's record path of STUDY with those knobs (VALUE as make's front
+    door passes it: a YAML string), one per line, in the study's run order.
+    Exit 2 with the reason for a knob or study that cannot run."""
+    import sys
+    args = sys.argv[1:] if argv is None else argv
+    if len(args) < 2 or args[0] != "list-runs":
+        print("usage: python3 -m experiments.studies list-runs STUDY [NAME=VALUE ...]", file=sys.stderr)
+        return 2
+    given = {}
+    for a in args[2:]:
+        name, _, value = a.partition("=")
+        given[name] = knob_text(yaml.safe_load(value)) if value else ""
+    try:
+        study = load(args[1], given)
+    except StudyError as e:
+        print(f"studies: {e}", file=sys.stderr)
+        return 2
+    print("\n".join(study.run_files))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -426,3 +426,35 @@ cli_pbrt_args cli_pbrt_defaults(void)
     a.pbrt = pbrt_defaults();
     return a;
 }
+
+/* ---- info ---- */
+
+#define IN(field) offsetof(cli_info_args, field)
+static const cli_option info_options[] = {
+    {.name = "--json", .kind = CLI_FLAG, .offset = IN(json), .flag_value = 1,
+     .help = "the facts as one JSON object on standard output (the one format; required)"},
+    {.name = "--width", .kind = CLI_U32, .metavar = "W", .offset = IN(width), .ulo = 1, .uhi = CONFIG_MAX_SIDE,
+     .help = "the image width whose camera basis the JSON gives (render's --width)"},
+    {.name = "--height", .kind = CLI_U32, .metavar = "H", .offset = IN(height), .ulo = 1, .uhi = CONFIG_MAX_SIDE,
+     .help = "the image height whose camera basis the JSON gives (render's --height)"},
+};
+#undef IN
+
+const cli_command cli_info = {.name = "info",
+                              .summary = "prints SCENE's facts, read by the renderer's parser: camera and its basis, "
+                                         "light, materials, shapes with their lines, bounds",
+                              .positional = "SCENE",
+                              .positional_what = "scene file",
+                              .positional_offset = offsetof(cli_info_args, scene),
+                              .options = info_options,
+                              .noptions = sizeof info_options / sizeof info_options[0]};
+
+cli_info_args cli_info_defaults(void)
+{
+    cli_info_args a;
+    memset(&a, 0, sizeof a);
+    config_render c = config_defaults();
+    a.width = c.width;
+    a.height = c.height;
+    return a;
+}

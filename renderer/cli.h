@@ -1,5 +1,5 @@
 /* cli: the option table of each subcommand (render, export-pov,
- * export-pbrt) and the one parser they drive. A table row names an option,
+ * export-pbrt, info) and the one parser they drive. A table row names an option,
  * its kind and range, the field of the subcommand's argument struct it
  * fills, and its help line; the same table parses argv, reports range
  * errors and prints the usage text with every default and range. */
@@ -98,15 +98,24 @@ typedef struct {
     const char *scene, *out;
 } cli_pbrt_args;
 
+/* `photonmap info`'s arguments. */
+typedef struct {
+    const char *scene;
+    int json;              /* --json: the one output format, required */
+    uint32_t width, height; /* the image size of the camera basis */
+} cli_info_args;
+
 /* The subcommands' tables. */
 extern const cli_command cli_render;
 extern const cli_command cli_export_pov;
 extern const cli_command cli_export_pbrt;
+extern const cli_command cli_info;
 
 /* Each subcommand's arguments holding the defaults; never fail. */
 cli_render_args cli_render_defaults(void);
 cli_pov_args cli_pov_defaults(void);
 cli_pbrt_args cli_pbrt_defaults(void);
+cli_info_args cli_info_defaults(void);
 
 /* Settles the settings whose default depends on others: with --gather and
  * no --direct, direct light comes by shadow rays. Never fails. */

@@ -1,5 +1,6 @@
 /* main: the command line. `photonmap render SCENE [options]` renders,
- * `export-pov` writes POV-Ray SDL, `export-pbrt` a pbrt-v3 scene; each
+ * `export-pov` writes POV-Ray SDL, `export-pbrt` a pbrt-v3 scene, `info`
+ * the scene's facts as JSON; each
  * subcommand's option table lives in cli. main chains the steps, writes
  * every output file and exits with pm_status_exit of the first failure:
  * 0 success, 1 runtime failure (I/O, memory), 2 user input error. */
@@ -17,6 +18,7 @@
 #include "cli.h"
 #include "config.h"
 #include "image.h"
+#include "info.h"
 #include "outfile.h"
 #include "parallel.h"
 #include "pbrt.h"
@@ -411,6 +413,30 @@ static pm_status cmd_export_pbrt(int argc, char **argv)
     return exit_code;
 }
 
+/* ---- info ---- */
+
+/* `photonmap info`. Returns the first failure's status (printed): a scene
+ * the parser refuses is PM_ERR_INPUT with render's file:line:col message. */
+static pm_status cmd_info(int argc, char **argv)
+{
+    cli_info_args a = cli_info_defaults();
+    pm_status rc = cli_parse(&cli_info, argc, argv, 2, &a, NULL);
+    if (rc != PM_OK)
+        return rc;
+    if (!a.json)
+        return cli_error(&cli_info, "info writes JSON only: give --json");
+    scene *sc = NULL;
+    if ((rc = load_scene(a.scene, &sc)) != PM_OK)
+        return rc;
+    rc = info_write_json(stdout, sc, a.scene, a.width, a.height);
+    if (rc == PM_OK && fflush(stdout))
+        rc = PM_ERR_IO;
+    if (rc != PM_OK)
+        fprintf(stderr, "photonmap: writing standard output: %s\n", strerror(errno));
+    scene_free(sc);
+    return rc;
+}
+
 /* ---- the program ---- */
 
 static void print_usage(FILE *f)
@@ -423,6 +449,9 @@ static void print_usage(FILE *f)
     cli_pbrt_args b = cli_pbrt_defaults();
     fputc('\n', f);
     cli_usage(f, &cli_export_pbrt, &b);
+    cli_info_args i = cli_info_defaults();
+    fputc('\n', f);
+    cli_usage(f, &cli_info, &i);
 }
 
 int main(int argc, char **argv)
@@ -437,6 +466,8 @@ int main(int argc, char **argv)
         return pm_status_exit(cmd_export_pov(argc, argv));
     if (!strcmp(argv[1], "export-pbrt"))
         return pm_status_exit(cmd_export_pbrt(argc, argv));
-    fprintf(stderr, "photonmap: unknown command '%s' (expected render, export-pov or export-pbrt; see photonmap --help)\n", argv[1]);
+    if (!strcmp(argv[1], "info"))
+        return pm_status_exit(cmd_info(argc, argv));
+    fprintf(stderr, "photonmap: unknown command '%s' (expected render, export-pov, export-pbrt or info; see photonmap --help)\n", argv[1]);
     return pm_status_exit(PM_ERR_INPUT);
 }

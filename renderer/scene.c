@@ -42,8 +42,7 @@ typedef struct {
     int ntok;
     scene *sc;
     int camera_line, light_line;
-    size_t cap_materials, cap_shapes;
-    int *material_line; /* line each material was defined on */
+    size_t cap_materials, cap_shapes, cap_shape_lines;
     int *name_index;    /* hash table of material indices (-1: empty), name_cap slots */
     size_t name_cap;    /* 0 or a power of two */
 } parser;
@@ -389,7 +388,7 @@ static pm_status parse_material(parser *p)
     int prev = find_material(p, 1);
     if (prev >= 0)
         return perr(p, p->tok[1].col, "material '%s' already defined on line %d", tok_str(p, 1, buf, sizeof buf),
-                    p->material_line[prev]);
+                    p->sc->material_lines[prev]);
     if (sc->nmaterials >= SCENE_MAX_ITEMS)
         return perr(p, p->tok[0].col, "too many materials (at most %d)", SCENE_MAX_ITEMS);
     const material_spec *ms = NULL;
@@ -417,12 +416,12 @@ static pm_status parse_material(parser *p)
         (rc = names_reserve(p)) != PM_OK)
         return rc;
     if (p->cap_materials != cap) {
-        int *q = realloc(p->material_line, p->cap_materials * sizeof(int));
+        int *q = realloc(p->sc->material_lines, p->cap_materials * sizeof(int));
         if (!q)
             return PM_ERR_NOMEM;
-        p->material_line = q;
+        p->sc->material_lines = q;
     }
-    p->material_line[sc->nmaterials] = p->line;
+    p->sc->material_lines[sc->nmaterials] = p->line;
     size_t slot = name_slot(p, 1); /* the empty slot for this name */
     sc->materials[sc->nmaterials] = m;
     p->name_index[slot] = (int)sc->nmaterials++;
@@ -447,6 +446,9 @@ static pm_status add_shape(parser *p, shape s)
     pm_status rc;
     if ((rc = grow((void **)&p->sc->shapes, &p->cap_shapes, p->sc->nshapes, sizeof(shape))) != PM_OK)
         return rc;
+    if ((rc = grow((void **)&p->sc->shape_lines, &p->cap_shape_lines, p->sc->nshapes, sizeof(int))) != PM_OK)
+        return rc;
+    p->sc->shape_lines[p->sc->nshapes] = p->line;
     p->sc->shapes[p->sc->nshapes++] = s;
     return PM_OK;
 }
@@ -558,7 +560,6 @@ pm_status scene_parse_buffer(const char *name, const char *text, size_t len, sce
     }
     if (rc == PM_ERR_NOMEM)
         snprintf(err, errlen, "%s: out of memory while parsing", name);
-    free(p.material_line);
     free(p.name_index);
     if (rc != PM_OK) {
         scene_free(p.sc);
@@ -646,6 +647,8 @@ void scene_free(scene *s)
     bvh_free(s->accel);
     free(s->materials);
     free(s->shapes);
+    free(s->material_lines);
+    free(s->shape_lines);
     free(s);
 }
 

@@ -33,6 +33,8 @@ typedef struct {
     size_t nmaterials;
     shape *shapes;
     size_t nshapes;
+    int *material_lines;       /* the scene file's line of each material, or NULL (a scene not parsed) */
+    int *shape_lines;          /* the scene file's line of each shape, or NULL (a scene not parsed) */
     vec3 bounds_lo, bounds_hi; /* of all shapes and the light */
     double scale;              /* bounding-box diagonal: the unit for epsilons and radii */
     bvh *accel;                /* the shapes' BVH, or NULL: rays test every shape (scene_set_accel; the

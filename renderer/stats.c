@@ -6,10 +6,7 @@
 
 #include "utf8.h"
 
-/* Writes s as a JSON string: valid UTF-8 as is, control characters
- * escaped, and each byte that is not valid UTF-8 (a path may hold any bytes)
- * as U+FFFD, so the file always parses. */
-static void json_string(FILE *f, const char *s)
+void stats_json_string(FILE *f, const char *s)
 {
     const unsigned char *p = (const unsigned char *)s;
     size_t n = strlen(s);
@@ -95,15 +92,15 @@ static void write_repeats(FILE *f, const stats_run *st)
 static void write_provenance(FILE *f, const provenance_info *p, unsigned threads)
 {
     fputs("  \"provenance\": {\"commit\": ", f);
-    json_string(f, p->commit ? p->commit : "unknown");
+    stats_json_string(f, p->commit ? p->commit : "unknown");
     fputs(", \"tree\": ", f);
-    json_string(f, p->tree ? p->tree : "unknown");
+    stats_json_string(f, p->tree ? p->tree : "unknown");
     fputs(", \"compiler\": ", f);
-    json_string(f, p->compiler ? p->compiler : "unknown");
+    stats_json_string(f, p->compiler ? p->compiler : "unknown");
     fputs(", \"flags\": ", f);
-    json_string(f, p->flags ? p->flags : "unknown");
+    stats_json_string(f, p->flags ? p->flags : "unknown");
     fputs(", \"cpu\": ", f);
-    json_string(f, p->cpu[0] ? p->cpu : "unknown");
+    stats_json_string(f, p->cpu[0] ? p->cpu : "unknown");
     fprintf(f, ", \"threads\": %u, \"loadavg\": [", threads);
     for (int i = 0; i < 3; i++) {
         if (p->commit && p->loadavg[i] >= 0.0)
@@ -120,11 +117,11 @@ pm_status stats_write_json(FILE *f, const char *scene_path, const config_render 
     fprintf(f, "{\n  \"status\": \"%s\",\n", refused ? "refused" : "ok");
     if (refused) {
         fputs("  \"reason\": ", f);
-        json_string(f, refused);
+        stats_json_string(f, refused);
         fputs(",\n", f);
     }
     fputs("  \"scene\": ", f);
-    json_string(f, scene_path);
+    stats_json_string(f, scene_path);
     fprintf(f, ",\n  \"method\": \"%s\",\n", config_method_name(cfg->method));
     fprintf(f, "  \"direct\": \"%s\",\n", config_direct_name(cfg->direct));
     fprintf(f, "  \"estimate\": \"%s\",\n", cfg->bias_correction ? "corrected" : "paper");

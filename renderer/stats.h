@@ -65,5 +65,9 @@ typedef struct {
  * image). Returns PM_OK, or PM_ERR_IO on a write error. */
 pm_status stats_write_json(FILE *f, const char *scene_path, const config_render *cfg, unsigned threads,
                            const stats_run *st, const char *refused);
+/* Writes s as a JSON string: valid UTF-8 as is, control characters
+ * escaped, and each byte that is not valid UTF-8 (a path may hold any bytes)
+ * as U+FFFD, so the file always parses. Errors stay in f's error flag. */
+void stats_json_string(FILE *f, const char *s);
 
 #endif

@@ -45,9 +45,9 @@ check "figures: exit 0, every PNG written" \
              [ -s $R/figures/\$f.png ] || { echo \"\$f.png missing\"; exit 1; }; done"
 check "figures: the PNGs are images with content" pngs_ok "$R"/figures/{fig3,fig3-errors,fig2,tradeoff,ratio-vs-n,phases}.png
 check "figures: Figure 2's render dumped its representatives (one line each)" \
-  bash -c "d=\$(ls -d $R/runs/fig2-cornell-64x48-s2-p4000-n10-seed1) &&
-           reps=\$(sed -n 's/.*\"representatives\": \\([0-9]*\\),/\\1/p' \$d/stats.json) &&
-           [ \$((\$(wc -l < \$d/reps.csv) - 1)) -eq \"\$reps\" ] && [ -s \$d/image.exr ]"
+  bash -c "b=$R/runs/fig2-cornell-64x48-s2/precomputed-paper-p4000-n10/seed1 &&
+           reps=\$(sed -n 's/.*\"representatives\": \\([0-9]*\\),/\\1/p' \$b.stats.json) &&
+           [ \$((\$(wc -l < \$b.reps.csv) - 1)) -eq \"\$reps\" ] && [ -s \$b.exr ] && [ -s \$b.run.json ]"
 check "figures: no temporary file left" bash -c "! ls $R/figures/ | grep -q tmp"
 
 make -s figures "${ARGS[@]}" "FIG3_CELLS=2000:10 8000:10" > "$TMP/badcell.log" 2>&1; rc=$?

@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
-# slurm.test.sh: `make sweep-slurm` end to end (experiments/README.md).
-# A tiny sweep (4 renders of reproduce-table at 16x12) is written as a Slurm
-# job array, submitted with `sbatch --wait` to a private single-node Slurm
-# cluster that this script starts itself (munged, slurmctld and slurmd as
-# root, on free ports, everything under a temporary directory) and stops at
-# the end; what the array wrote must equal what plain `make` writes (images
-# bit for bit, stats but for their times). Without root or without the
-# Slurm binaries (scripts/install-deps.sh installs them), or with
-# PM_SLURM=emulate, the array's tasks are run here one by one with
-# SLURM_ARRAY_TASK_ID set instead, and the first check's name says so.
+# slurm.test.sh: `make sweep-slurm SWEEP=TARGET` end to end
+# (experiments/README.md): the study target's renders submitted through
+# Snakemake (sbatch --parsable, experiments/slurm/status.sh on
+# squeue/scontrol, no sacct) to a private single-node Slurm cluster that this
+# script starts itself (munged, slurmctld and slurmd as root, on free ports,
+# everything under a temporary directory) and stops at the end; what Slurm
+# wrote must equal what plain `make` writes (images bit for bit, stats but
+# for their times). Without root or without the Slurm binaries
+# (scripts/install-deps.sh installs them), or with PM_SLURM=emulate, only
+# the checks that need no cluster run (the refusals, the dry run) and the
+# first check's name says so.
 set -u
 cd "$(dirname "$0")/.."
 . tests/lib.sh
@@ -101,26 +102,10 @@ if [ "${PM_SLURM:-auto}" != emulate ] && [ "$(id -u)" -eq 0 ] &&
   MODE=slurm
 fi
 
-# run_array DIR: runs DIR/sweep.sbatch as the array it declares (sbatch
-# --wait on the cluster, or each task here); the job's exit status.
-run_array() {
-  local d=$1 n
-  if [ "$MODE" = slurm ]; then
-    timeout 300 sbatch --wait --quiet "$d/sweep.sbatch"
-  else
-    n=$(wc -l < "$d/tasks")
-    local rc=0
-    for i in $(seq 1 "$n"); do
-      SLURM_ARRAY_TASK_ID=$i SLURM_ARRAY_JOB_ID=0 bash "$d/sweep.sbatch" > "$d/logs/0_$i.out" 2>&1 || rc=1
-    done
-    return $rc
-  fi
-}
-
 # same_results A B: the renders make wrote under A and under B agree: the
 # same files, images bit for bit, stats JSON but for its times and its
 # provenance (the load average at the start), run records
-# (experiments/run.sh) in their exit status.
+# (experiments/launch.py) in their exit status.
 same_results() {
   local a=$1/$CELLS b=$2/$CELLS f
   [ -d "$a" ] && [ -d "$b" ] || { echo "missing $a or $b"; return 1; }
@@ -138,23 +123,14 @@ same_results() {
 # --- what plain make writes ---------------------------------------------------
 make -s reproduce-runs "${VARS[@]}" RESULTS="$TMP/make" > "$TMP/make.log" 2>&1 || cat "$TMP/make.log"
 
-# --- the job files ------------------------------------------------------------
-JOB=$TMP/job
-make -s sweep-slurm SWEEP=reproduce-runs "${VARS[@]}" RESULTS="$TMP/slurm" SLURM_DIR="$JOB" \
-  SBATCH_OPTS="--time=10 --cpus-per-task=1" > "$TMP/gen.log" 2>&1
-tasks_are_cells() {
-  grep -q "2 tasks in .*submit with: sbatch .*sweep.sbatch" "$TMP/gen.log" &&
-  diff <(sort "$JOB/tasks") <(cd "$TMP/make" && find "$PWD/$CELLS" -name '*.run.json' -path '*/precomputed-*' |
-                              sed "s|^$TMP/make|$TMP/slurm|" | sort)
-}
-check "sweep-slurm SWEEP=reproduce-runs: one task per pair of renders (make's prerequisites, a pair's once)" tasks_are_cells
-sbatch_ok() {
-  local s=$JOB/sweep.sbatch
-  bash -n "$s" && grep -qx '#SBATCH --array=1-2' "$s" && grep -qx '#SBATCH --time=10' "$s" &&
-  grep -qx '#SBATCH --cpus-per-task=1' "$s" && grep -q "^#SBATCH --output=$JOB/logs/%A_%a.out" "$s" &&
-  diff <(printf '%s\n' ESTIMATES=paper "NNS=10 20" PHOTONS=2000 "RESULTS=$TMP/slurm" SEEDS=1 SIZE=16x12) "$JOB/make-vars"
-}
-check "sweep-slurm writes the sbatch array script and the make variables" sbatch_ok
+# --- refusals and the dry run (no cluster needed) ---------------------------------
+check "sweep-slurm without SWEEP fails" expect_exit 2 "give SWEEP=TARGET" make -s sweep-slurm
+check "sweep-slurm SWEEP=unknown target fails" expect_exit 2 "SWEEP=no-such-sweep: not one study target" \
+  make -s sweep-slurm SWEEP=no-such-sweep
+check "make -n sweep-slurm SWEEP=reproduce-runs: the engine's dry run on Slurm, writes nothing" \
+  bash -c "make -n sweep-slurm SWEEP=reproduce-runs ${VARS[*]@Q} RESULTS=$TMP/dry SLURM_DIR=$TMP/dryjob > $TMP/dry.log 2>&1 &&
+           grep -q 'pair' $TMP/dry.log && [ ! -e $TMP/dry ] && [ ! -e $TMP/dryjob ]"
+[ "$MODE" = slurm ] || check "no Slurm here (PM_SLURM=${PM_SLURM:-auto}, uid $(id -u)): the cluster checks are SKIPPED" true
 
 # --- run it -------------------------------------------------------------------
 CLUSTER_UP=1
@@ -164,44 +140,42 @@ if [ "$MODE" = slurm ]; then
   [ $CLUSTER_UP -eq 1 ] || cat "$TMP/cluster.log"
   check "a private single-node Slurm starts ($(sinfo --version 2>/dev/null), $(($(date +%s) - t0)) s)" test $CLUSTER_UP -eq 1
 fi
-if [ $CLUSTER_UP -eq 1 ]; then
+if [ "$MODE" = slurm ] && [ $CLUSTER_UP -eq 1 ]; then
+  JOB=$TMP/job
   t0=$(date +%s)
-  run_array "$JOB" > "$TMP/run.log" 2>&1
+  timeout 600 make -s sweep-slurm SWEEP=reproduce-runs "${VARS[@]}" RESULTS="$TMP/slurm" SLURM_DIR="$JOB" \
+    GROUP_RENDERS=2 SBATCH_OPTS="--time=10 --cpus-per-task=1" > "$TMP/run.log" 2>&1
   rc=$?
-  label=$([ "$MODE" = slurm ] && echo "on Slurm (sbatch --wait)" || echo "EMULATED (SLURM_ARRAY_TASK_ID, no Slurm: PM_SLURM=${PM_SLURM:-auto}, uid $(id -u))")
-  check "the job array runs $label in $(($(date +%s) - t0)) s" test $rc -eq 0
-  check "every task logged its make command" \
-    bash -c "[ \$(grep -l '^sweep task [1-2]/2 on .*: make ESTIMATES=paper NNS=10 20 PHOTONS=2000 RESULTS=.* SEEDS=1 SIZE=16x12 /' $JOB/logs/*.out | wc -l) -eq 2 ]"
-  check "the array wrote what plain make writes" same_results "$TMP/make" "$TMP/slurm"
-  # after the array, make finds every cell done: the analysis runs on them
+  [ $rc -eq 0 ] || tail -n 30 "$TMP/run.log"
+  check "sweep-slurm SWEEP=reproduce-runs: Snakemake runs the renders on Slurm in $(($(date +%s) - t0)) s" test $rc -eq 0
+  check "sweep-slurm: the two pairs of renders went to Slurm as one grouped job, each render logged" \
+    bash -c "[ \$(grep -l '^run ' '$JOB/logs/'*.out | wc -l) -eq 1 ] && [ \$(grep -h '^run ' '$JOB/logs/'*.out | wc -l) -eq 4 ]"
+  check "sweep-slurm: Slurm wrote what plain make writes" same_results "$TMP/make" "$TMP/slurm"
+  # after Slurm, make finds every render done
   rerun_nothing() {
     make -s reproduce-runs "${VARS[@]}" RESULTS="$TMP/slurm" > "$TMP/rerun.log" 2>&1 && ! grep -q '^run ' "$TMP/rerun.log"
   }
-  check "make finds the array's cells up to date" rerun_nothing
+  check "make finds Slurm's renders up to date" rerun_nothing
 
-  # the studies on the workflow engine: Snakemake submits the renders to
-  # Slurm itself (sbatch --parsable, experiments/slurm/status.sh on
-  # squeue/scontrol, no sacct), the short renders grouped into one job
-  if [ "$MODE" = slurm ]; then
-    t0=$(date +%s)
-    timeout 600 make -s reproduce-table "${VARS[@]}" RESULTS="$TMP/engine" CLUSTER=slurm GROUP_RENDERS=2 \
-      SLURM_DIR="$TMP/ejob" SBATCH_OPTS="--time=10" REF="$TMP/make/$CELLS/conventional-paper-p2000-n10/seed1.exr" \
-      > "$TMP/engine.log" 2>&1
-    rc=$?
-    [ $rc -eq 0 ] || tail -n 30 "$TMP/engine.log"
-    check "make reproduce-table CLUSTER=slurm: Snakemake runs it on Slurm in $(($(date +%s) - t0)) s" \
-      bash -c "[ $rc -eq 0 ] && [ -s '$TMP/engine/table1/table1.md' ]"
-    check "CLUSTER=slurm: the two pairs of renders went to Slurm as one grouped job, each job logged" \
-      bash -c "[ \$(grep -l '^run ' '$TMP/ejob/logs/'*.out | wc -l) -eq 1 ] &&
-               [ \$(grep -h '^run ' '$TMP/ejob/logs/'*.out | wc -l) -eq 4 ]"
-    check "CLUSTER=slurm: the engine wrote what plain make writes" same_results "$TMP/make" "$TMP/engine"
-  fi
+  # the analysis too: reproduce-table with CLUSTER=slurm
+  t0=$(date +%s)
+  timeout 600 make -s reproduce-table "${VARS[@]}" RESULTS="$TMP/engine" CLUSTER=slurm GROUP_RENDERS=2 \
+    SLURM_DIR="$TMP/ejob" SBATCH_OPTS="--time=10" REF="$TMP/make/$CELLS/conventional-paper-p2000-n10/seed1.exr" \
+    > "$TMP/engine.log" 2>&1
+  rc=$?
+  [ $rc -eq 0 ] || tail -n 30 "$TMP/engine.log"
+  check "make reproduce-table CLUSTER=slurm: Snakemake runs it on Slurm in $(($(date +%s) - t0)) s" \
+    bash -c "[ $rc -eq 0 ] && [ -s '$TMP/engine/table1/table1.md' ]"
+  check "CLUSTER=slurm: the engine wrote what plain make writes" same_results "$TMP/make" "$TMP/engine"
 
-  # negative controls: a failing task fails the job; a differing image is seen
-  printf '# a task that cannot be made\nno-such-target\n' > "$TMP/bad-tasks"
-  make -s sweep-slurm TASKS="$TMP/bad-tasks" SLURM_DIR="$TMP/badjob" > /dev/null 2>&1
-  job_fails() { ! run_array "$1" > /dev/null 2>&1; }
-  check "control: a job with a failing task fails" job_fails "$TMP/badjob"
+  # negative controls: a failing render fails the sweep; a differing image is seen
+  printf '#!/bin/sh\nexit 1\n' > "$TMP/failing-pm" && chmod +x "$TMP/failing-pm"
+  fails() {
+    ! timeout 600 make -s sweep-slurm SWEEP=reproduce-runs "${VARS[@]}" PM="$TMP/failing-pm" RESULTS="$TMP/bad" \
+      SLURM_DIR="$TMP/badjob" SBATCH_OPTS="--time=10" > "$TMP/bad.log" 2>&1 &&
+    ! find "$TMP/bad" -name '*.run.json' 2>/dev/null | grep -q .
+  }
+  check "control: a failing render fails the sweep and records nothing" fails
   cp -r "$TMP/slurm" "$TMP/altered"
   oiiotool "$TMP/altered/$CELLS/precomputed-paper-p2000-n20/seed1.exr" --mulc 0.999 -o "$TMP/altered/$CELLS/precomputed-paper-p2000-n20/seed1.exr"
   differ() { ! same_results "$@" > /dev/null 2>&1; }
@@ -211,33 +185,4 @@ if [ $CLUSTER_UP -eq 1 ]; then
 fi
 stop_cluster
 
-# --- the task file and its errors -----------------------------------------------
-printf '# two targets\n\n  build/photonmap\t\nbuild/obj/image.o\n' > "$TMP/tasks.txt"
-tasks_file() {
-  make -s sweep-slurm TASKS="$TMP/tasks.txt" SLURM_DIR="$TMP/tjob" > /dev/null &&
-  diff <(printf 'build/photonmap\nbuild/obj/image.o\n') "$TMP/tjob/tasks" && grep -qx '#SBATCH --array=1-2' "$TMP/tjob/sweep.sbatch" &&
-  [ ! -s "$TMP/tjob/make-vars" ]
-}
-check "sweep-slurm TASKS=FILE: comments and blanks skipped, no variables" tasks_file
-check "sweep-slurm without TASKS or SWEEP fails" expect_exit 2 "give TASKS=FILE .* or SWEEP=TARGET" \
-  make -s sweep-slurm SLURM_DIR="$TMP/e1"
-check "sweep-slurm with both fails" expect_exit 2 "give TASKS or SWEEP, not both" \
-  make -s sweep-slurm TASKS="$TMP/tasks.txt" SWEEP=reproduce-runs SLURM_DIR="$TMP/e2"
-check "sweep-slurm SWEEP=unknown target fails" expect_exit 2 "SWEEP=no-such-sweep: no such make target" \
-  make -s sweep-slurm SWEEP=no-such-sweep SLURM_DIR="$TMP/e3"
-check "sweep-slurm SWEEP=a target without prerequisites fails" expect_exit 2 "has no prerequisites" \
-  make -s sweep-slurm SWEEP=sweep-slurm-nothing SLURM_DIR="$TMP/e4"
-printf 'a b\n' > "$TMP/spaces.txt"
-check "sweep-slurm: a line with two words fails, naming file:line" expect_exit 2 "spaces.txt:1: one make target per line" \
-  make -s sweep-slurm TASKS="$TMP/spaces.txt" SLURM_DIR="$TMP/e5"
-printf 'build/photonmap\r\n\r\nbuild/obj/image.o\r\n' > "$TMP/crlf.txt"
-check "sweep-slurm: a task file with CRLF line ends gives the same tasks" bash -c "
-  make -s sweep-slurm TASKS='$TMP/crlf.txt' SLURM_DIR='$TMP/e7' > /dev/null &&
-  diff <(printf 'build/photonmap\nbuild/obj/image.o\n') '$TMP/e7/tasks'"
-printf 'build/photonmap\nno-such-target\n' > "$TMP/missing.txt"
-check "sweep-slurm: a task make has no rule for fails, naming it, and writes no job" bash -c "
-  ! make -s sweep-slurm TASKS='$TMP/missing.txt' SLURM_DIR='$TMP/e8' > '$TMP/e8.log' 2>&1 &&
-  grep -q 'no make rule for: no-such-target' '$TMP/e8.log' && [ ! -e '$TMP/e8/sweep.sbatch' ]"
-: > "$TMP/empty.txt"
-check "sweep-slurm: an empty task file fails" expect_exit 2 "no targets" make -s sweep-slurm TASKS="$TMP/empty.txt" SLURM_DIR="$TMP/e6"
 finish

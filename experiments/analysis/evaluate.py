@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""evaluate.py: the stages of `make evaluate` (experiments/evaluate.mk) that
+"""evaluate.py: the stages of `make evaluate` (experiments/rules/evaluate.smk) that
 are not renders of the grid: does the method pay on one scene?
 
 Owns the pilot's verdict on whether a study of the scene means anything,
@@ -11,7 +11,7 @@ message when the study is meaningless or an input is wrong, 1 on a failure):
   pilot --pm PM --scene S --size WxH --photons P --nn N --out DIR
       one render at the grid's middle setting; DIR/pilot.json holds the
       stats, the warnings and the verdict (ok, warn, stop: exit 2)
-  thickness --scene S --out FILE.json
+  thickness [--pm PM] --scene S --out FILE.json
       the largest of 1e-3 ... 1e-7 (of the scene's diagonal, the committed
       references' ladder, reference/README.md) at which no rectangle's box
       (behind its lit face) enters another shape; exit 2, naming the two
@@ -26,7 +26,6 @@ import argparse
 import json
 import math
 import os
-import re
 import subprocess
 import sys
 
@@ -35,6 +34,7 @@ import numpy as np
 from experiments.analysis import equal_error
 from experiments.analysis import metrics
 from experiments.analysis import reference as refmod
+from experiments.analysis import scene_info
 
 # the pilot's limits: share of photons escaping (the renderer warns above
 # 1%: config.h), eye samples ending at the depth limit (warns above 10%),
@@ -135,46 +135,22 @@ def cmd_pilot(a):
 
 
 # ---- stage 2: the rectangle thickness of the POV-Ray export
-def parse_scene(path):
-    """(light position, [shapes]) of a .scene file: each shape a dict with
-    its kind, line and geometry (the renderer has already validated it)."""
-    light, shapes = None, []
-    with open(path, encoding="utf-8") as fh:
-        for ln, raw in enumerate(fh, 1):
-            words = raw.split("#", 1)[0].split()
-            if not words:
-                continue
-            kv = {}
-            i = 1 if words[0] != "light" else 2
-            while i < len(words):
-                key = words[i]
-                j = i + 1
-                while j < len(words) and re.fullmatch(r"[-+0-9.eE]+", words[j]):
-                    j += 1
-                kv[key] = words[i + 1:j] if j > i + 1 else words[i + 1:i + 2]
-                i = j if j > i + 1 else i + 2
-            num = lambda k: np.array([float(v) for v in kv[k]])
-            if words[0] == "light":
-                light = num("position")
-            elif words[0] == "rect":
-                shapes.append({"kind": "rect", "line": ln, "corner": num("corner"), "e1": num("edge1"),
-                               "e2": num("edge2")})
-            elif words[0] == "sphere":
-                shapes.append({"kind": "sphere", "line": ln, "center": num("center"), "radius": float(kv["radius"][0])})
-    return light, shapes
-
-
-def diagonal(light, shapes):
-    """The scene's diagonal as the renderer computes it (bounds of the light and every shape)."""
-    pts = [light]
-    for s in shapes:
+def read_scene(a):
+    """(light position, [shapes], diagonal) of the scene as the renderer reads
+    it (`photonmap info --json`, scene_info.py): each shape a dict with its
+    kind, line and geometry (corner, e1, e2 or center, radius)."""
+    try:
+        info = scene_info.load(a.scene, a.pm)
+    except scene_info.SceneInfoError as e:
+        die(f"{a.scene}: {e}")
+    shapes = []
+    for s in scene_info.shapes(info):
         if s["kind"] == "rect":
-            c = s["corner"]
-            pts += [c, c + s["e1"], c + s["e2"], c + s["e1"] + s["e2"]]
+            shapes.append({"kind": "rect", "line": s["line"], "corner": s["corner"], "e1": s["edge1"],
+                           "e2": s["edge2"]})
         else:
-            pts += [s["center"] - s["radius"], s["center"] + s["radius"]]
-    p = np.array(pts)
-    return float(np.linalg.norm(p.max(axis=0) - p.min(axis=0)))
+            shapes.append({"kind": "sphere", "line": s["line"], "center": s["center"], "radius": s["radius"]})
+    return scene_info.light_position(info), shapes, float(info["bounds"]["diagonal"])
 
 
 def clip(poly, n, d):
@@ -221,10 +197,9 @@ def box_hits(a, b, depth, eps, edge):
     return dist < b["radius"] - eps
 
 
-def choose_thickness(light, shapes):
+def choose_thickness(light, shapes, diag):
     """(thickness, None) the largest of THICKNESS_LADDER at which no box
-    enters another shape, or (None, reason)."""
-    diag = diagonal(light, shapes)
+    enters another shape of a scene of diagonal DIAG, or (None, reason)."""
     eps = 1e-9 * diag
     edge = EDGE_TOL * diag
     rects = [dict(s, light=light) for s in shapes if s["kind"] == "rect"]
@@ -250,8 +225,7 @@ def choose_thickness(light, shapes):
 
 def cmd_thickness(a):
     """Stage 2's thickness (module docstring)."""
-    light, shapes = parse_scene(a.scene)
-    t, why = choose_thickness(light, shapes)
+    t, why = choose_thickness(*read_scene(a))
     if t is None:
         write_json(a.out + ".refused.json", {"reason": why})
         die(f"{a.scene}: no POV-Ray reference: {why}")
@@ -546,6 +520,7 @@ def main(argv=None):
     t = sub.add_parser("thickness")
     t.add_argument("--scene", required=True)
     t.add_argument("--out", required=True)
+    t.add_argument("--pm", default=scene_info.DEFAULT_PM, help="the renderer, for the scene (photonmap info)")
     c = sub.add_parser("crosscheck")
     for k in ("--ref", "--pov-ref", "--pov-fast", "--out"):
         c.add_argument(k, required=True)

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""figures.py: the figures of `make figures` (experiments/figures.mk).
+"""figures.py: the figures of `make figures` (experiments/rules/figures.smk).
 
 Owns drawing, from the analysis layer's files and the renders they name:
   fig3.png          the paper's Figure 3 at 1:1: for each (P_e, n) cell a
@@ -37,6 +37,7 @@ import pandas as pd
 from experiments.analysis import metrics
 from experiments.analysis import plotting
 from experiments.analysis import report
+from experiments.analysis import scene_info
 from experiments.analysis import stats
 from experiments.analysis.plotting import kilo, plt
 from experiments.analysis.report import fmt, isnum
@@ -300,36 +301,14 @@ def fig3_errors(args):
 
 # ---- Figure 2: the representatives and the cells they make
 
-def read_camera(scene_path):
-    """The scene file's camera: (position, look_at, up, hfov_deg)."""
+def scene_facts(args, width, height):
+    """The scene's facts with the camera basis of a WIDTH x HEIGHT image
+    (`photonmap info --json`, scene_info.py); exits with the renderer's
+    message when it refuses the scene."""
     try:
-        with open(scene_path, encoding="utf-8", errors="replace") as f:
-            for line in f:
-                line = line.split("#", 1)[0]
-                if line.split()[:1] == ["camera"]:
-                    w = line.split()
-                    get = lambda k, n: [float(v) for v in w[w.index(k) + 1:w.index(k) + 1 + n]]  # noqa: E731
-                    return (np.array(get("position", 3)), np.array(get("look_at", 3)), np.array(get("up", 3)),
-                            get("fov", 1)[0])
-    except (OSError, ValueError, IndexError) as e:
-        report.die(WHERE, f"{scene_path}: cannot read the camera: {e}")
-    report.die(WHERE, f"{scene_path}: no camera statement")
-
-
-def project(camera, pts, width, height):
-    """Pixel coordinates (x, y) of world points PTS (N, 3) through the
-    renderer's pinhole camera (render_camera_make / render_camera_at)."""
-    pos, look, up, hfov = camera
-    fwd = (look - pos) / np.linalg.norm(look - pos)
-    right = np.cross(fwd, up)
-    right /= np.linalg.norm(right)
-    upv = np.cross(right, fwd)
-    hw = math.tan(math.radians(hfov) / 2)
-    d = np.asarray(pts, dtype=float) - pos
-    z = d @ fwd
-    u = ((d @ right) / z / hw + 1) / 2
-    v = (1 - (d @ upv) / z / (hw * height / width)) / 2
-    return u * width, v * height
+        return scene_info.load(args.scene, args.pm, width, height)
+    except scene_info.SceneInfoError as e:
+        report.die(WHERE, f"{args.scene}: cannot read the camera: {e}")
 
 
 def fig2(args):
@@ -342,11 +321,11 @@ def fig2(args):
     enlarged without smoothing."""
     from scipy.spatial import cKDTree
 
-    d = args.fig2_dir
-    reps = read_csv(os.path.join(d, "reps.csv"), ["x", "y", "z", "nx", "ny", "nz", "e_r", "e_g", "e_b"],
+    d = args.fig2_run
+    reps = read_csv(d + ".reps.csv", ["x", "y", "z", "nx", "ny", "nz", "e_r", "e_g", "e_b"],
                     "the representatives of the Fig. 2 run (--dump-reps)")
-    img = read_image(os.path.join(d, "image.exr"), "the Fig. 2 run's image")
-    st = pd.read_json(os.path.join(d, "stats.json"), typ="series")
+    img = read_image(d + ".exr", "the Fig. 2 run's image")
+    st = pd.read_json(d + ".stats.json", typ="series")
     H, W = img.shape[:2]
     axis = args.fig2_plane
     if axis not in ("x", "y", "z"):
@@ -358,7 +337,7 @@ def fig2(args):
         report.die(WHERE, f"FIG2_WINDOW '{args.fig2_window}': expected four numbers u0 u1 v0 v1")
     facing = reps[reps["n" + axis] > args.normal_cos]
     if facing.empty:
-        report.die(WHERE, f"{d}/reps.csv: no representative faces +{axis}")
+        report.die(WHERE, f"{d}.reps.csv: no representative faces +{axis}")
     at = float(facing[axis].min())
     wall = facing[np.abs(facing[axis] - at) <= 1e-6 * max(1.0, abs(at))]
     e = plotting.luminance(wall[["e_r", "e_g", "e_b"]].to_numpy())
@@ -382,7 +361,7 @@ def fig2(args):
     corners[:, ia] = at
     corners[:, iu] = [u0, u1, u1, u0]
     corners[:, iv] = [v0, v0, v1, v1]
-    px, py = project(read_camera(args.scene), corners, W, H)
+    px, py = scene_info.project(scene_facts(args, W, H), corners)
     cx0, cx1 = max(0, int(px.min()) - 4), min(W, int(math.ceil(px.max())) + 4)
     cy0, cy1 = max(0, int(py.min()) - 4), min(H, int(math.ceil(py.max())) + 4)
     if cx1 - cx0 < 2 or cy1 - cy0 < 2:
@@ -391,7 +370,7 @@ def fig2(args):
     rule = (f"a fixed count of {st['rep_count']}" if st.get("rep_count", 0) else
             "every stored photon" if int(st["rep_every"]) == 1 else
             f"every {plotting.ordinal(st['rep_every'])} stored photon")
-    foot = (f"Data: {d}/ (reps.csv from `photonmap render --dump-reps`, image.exr and stats.json of the same render): "
+    foot = (f"Data: {d}.* (.reps.csv from `photonmap render --dump-reps`, .exr and .stats.json of the same render): "
             f"{st['scene']}, precomputed method, P_e = {kilo(st['photons_emitted'])}, n = {st['nn']}, seed "
             f"{st['seed']}, {W}x{H}, {int(st['representatives'])} representatives ({rule}), {len(wall)} on the plane "
             f"{axis} = {at:g}, {int(inwin.sum())} in the window {u} in [{u0:g}, {u1:g}], {v} in [{v0:g}, {v1:g}]. "
@@ -692,7 +671,7 @@ FIGURES = {"fig3": fig3, "fig3-errors": fig3_errors, "fig2": fig2, "tradeoff": t
 
 
 def main():
-    """Command line: see the module docstring and experiments/figures.mk."""
+    """Command line: see the module docstring and experiments/rules/figures.smk."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--table", required=True, help="table1.csv of the FIG_SIZE grid")
     ap.add_argument("--runs", required=True, help="runs.csv of the same grid")
@@ -705,13 +684,15 @@ def main():
     ap.add_argument("--crop", default="384x288+150+440", help="Fig. 3 crop WxH+X+Y, given at --crop-at")
     ap.add_argument("--crop-at", default="1024x768")
     ap.add_argument("--error-block", type=int, default=2)
-    ap.add_argument("--fig2-dir", default="", help="the Fig. 2 run: reps.csv, image.exr, stats.json")
+    ap.add_argument("--fig2-run", default="", help="the Fig. 2 render's files without their extensions (the run "
+                    "layout's CELL/seedK): .reps.csv, .exr, .stats.json")
     ap.add_argument("--fig2-plane", default="z", help="the plane of Fig. 2: normal +x, +y or +z, at the lowest "
                     "such coordinate (z: the back wall, y: the floor)")
     ap.add_argument("--fig2-window", default="-0.4 0.2 1.0 1.45",
                     help="window 'u0 u1 v0 v1' on that plane (u, v: the other two axes in x, y, z order)")
     ap.add_argument("--normal-cos", type=float, default=0.9)
     ap.add_argument("--scene", default="scenes/cornell.scene")
+    ap.add_argument("--pm", default=scene_info.DEFAULT_PM, help="the renderer, for the scene's camera (photonmap info)")
     ap.add_argument("--rep-study-cells", default="", help="rep-study-cells.csv (optional)")
     ap.add_argument("--time", default="cpu_s", choices=sorted(report.TIME_LABEL))
     ap.add_argument("--out", required=True, help="output directory")
@@ -735,8 +716,8 @@ def main():
     for n in names:
         if n not in FIGURES:
             report.die(WHERE, f"unknown figure '{n}' (one of {', '.join(FIGURES)})")
-        if n == "fig2" and not args.fig2_dir:
-            report.die(WHERE, "fig2 needs --fig2-dir")
+        if n == "fig2" and not args.fig2_run:
+            report.die(WHERE, "fig2 needs --fig2-run")
         FIGURES[n](args)
 
 

@@ -941,6 +941,13 @@ def read_readme(path):
     return text, at
 
 
+def committed_results(results, readme):
+    """True when RESULTS is the results/ directory beside README (the
+    committed results, which README's findings summary is written from)."""
+    mine = os.path.join(os.path.dirname(os.path.abspath(readme)), "results")
+    return os.path.realpath(results) == os.path.realpath(mine)
+
+
 def main(argv=None):
     """Entry point; exits 1 when the output cannot be written."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
@@ -950,9 +957,13 @@ def main(argv=None):
                     "section from the results files (between its markers)")
     ap.add_argument("--check-readme", metavar="README", help="exit 1 when README's summary block is not the one the "
                     "results files give now, or a number of its findings section appears in no results file")
+    ap.add_argument("--readme", metavar="README", help="--write-readme then --check-readme README when --results "
+                    "is the committed results/ beside README; other results leave README alone")
     for k in ("runs", "table", "cells", "equal_error", "bias", "caustic", "scenes", "stability", "repro", "rep", "beyond"):
         ap.add_argument("--" + k.replace("_", "-"), default=None, help=f"override the {k} file")
     args = ap.parse_args(argv)
+    if args.readme and committed_results(args.results, args.readme):
+        args.write_readme = args.check_readme = args.readme
     d = paths(args.results)
     for k in d:
         v = getattr(args, k, None)

@@ -6,8 +6,8 @@ Snakemake rules (experiments/Snakefile), the render launcher
 A study's renders live under a run root (RESULTS/runs/<scene>-<W>x<H>-s<S>-
 t<T>[-TAG], run_root below), one directory per cell
 <method>-<estimate>-p<P_e>-n<n>, one set of files per seed: seed<k>.exr,
-seed<k>.stats.json, seed<k>.err and, written last by the launcher,
-seed<k>.run.json. experiments/README.md ("The run layout") states the same.
+seed<k>.stats.json, seed<k>.err (seed<k>.reps.csv for a study that dumps
+the representatives) and, written last by the launcher, seed<k>.run.json. experiments/README.md ("The run layout") states the same.
 
 The one rule of a record's status: exit 0 is "ok", exit 2 is "refused" (the
 renderer rejected the combination: not applicable), no record is "missing";

@@ -36,6 +36,8 @@ rule pair:
     output:
         "{root}/conventional-{estimate}-p{photons}-n{nn}/seed{seed}.run.json",
         "{root}/precomputed-{estimate}-p{photons}-n{nn}/seed{seed}.run.json",
+    input:
+        lambda wc: STUDY.render_after,
     wildcard_constraints:
         root=PAIRED,
     resources:
@@ -49,6 +51,8 @@ rule pair:
 rule render:
     output:
         "{root}/{method}-{estimate}-p{photons}-n{nn}/seed{seed}.run.json",
+    input:
+        lambda wc: STUDY.render_after,
     wildcard_constraints:
         root=SINGLE,
         method="conventional|precomputed",
