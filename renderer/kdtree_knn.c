@@ -8,6 +8,7 @@
 #include <string.h>
 
 #define KD_MAX_BUF_K (1u << 24) /* kd_query: larger k (16M) takes the heap in the output, no buffer */
+#define KD_PACKET_SPREAD 4.0f   /* a packet's squared box diagonal at most this many squared start radii */
 
 /* ---- k nearest: without a buffer ----
  * When no candidate buffer is at hand (k beyond KD_MAX_BUF_K, or no memory
@@ -273,11 +274,27 @@ void kd_query_knn_packet(const kd_tree *t, kd_query *s, const float (*q)[3], uin
             found[j] = kd_query_knn(t, s, q[j], k, max_d2, idx[j], d2[j], &r2[j]);
         return;
     }
+    float start = start_radius(s, kk, max_d2);
+    /* queries spread wider than the search radius share little of the walk
+     * and widen it for all: those go one by one */
+    float w2 = 0.0f;
+    for (int a = 0; a < 3; a++) {
+        float lo = q[0][a], hi = q[0][a];
+        for (uint32_t j = 1; j < m; j++) {
+            lo = q[j][a] < lo ? q[j][a] : lo;
+            hi = q[j][a] > hi ? q[j][a] : hi;
+        }
+        w2 += (hi - lo) * (hi - lo);
+    }
+    if (!(w2 <= KD_PACKET_SPREAD * start)) {
+        for (uint32_t j = 0; j < m; j++)
+            found[j] = kd_query_knn(t, s, q[j], k, max_d2, idx[j], d2[j], &r2[j]);
+        return;
+    }
     const kd_ops *ops = ops_of(s);
     uint64_t *bufs[KD_PACKET];
     float r[KD_PACKET];
     uint32_t n[KD_PACKET];
-    float start = start_radius(s, kk, max_d2);
     for (uint32_t j = 0; j < m; j++) {
         bufs[j] = s->pbuf + j * ((size_t)s->cap + KD_CHUNK);
         r[j] = start;
