@@ -45,15 +45,18 @@ def icount(prefix, before_csv):
     d = d.merge(before, on=["photons", "k", "order"], how="left")
     d = d.sort_values(["photons", "k", "order"], ascending=[True, True, False])
     fl = "flann" in d.columns
+    modes = [(w, n) for w, n in [("ourspacket", "ours, packets of 4"), ("oursstateless", "ours, stateless")]
+             if w in d.columns]
     print("| P_e | k | order | before (instr/query) | ours now | nanoflann | now / before | nanoflann / ours |"
-          + (" FLANN knnSearch | FLANN / ours |" if fl else ""))
-    print("|---:|---:|---|---:|---:|---:|---:|---:|" + ("---:|---:|" if fl else ""))
+          + (" FLANN knnSearch | FLANN / ours |" if fl else "") + "".join(f" {n} |" for _, n in modes))
+    print("|---:|---:|---|---:|---:|---:|---:|---:|" + ("---:|---:|" if fl else "") + "---:|" * len(modes))
     for _, r in d.iterrows():
         b = r["ours_instr_per_query"]
         bs = "n/a" if pd.isna(b) else f"{b:.0f}"
         ratio = "n/a" if pd.isna(b) else f"{r['ours'] / b:.2f}"
         print(f"| {r['photons']} | {r['k']} | {r['order']} | {bs} | {r['ours']:.0f} | {r['nano']:.0f} | {ratio} | "
-              f"{r['nano'] / r['ours']:.2f} |" + (f" {r['flann']:.0f} | {r['flann'] / r['ours']:.2f} |" if fl else ""))
+              f"{r['nano'] / r['ours']:.2f} |" + (f" {r['flann']:.0f} | {r['flann'] / r['ours']:.2f} |" if fl else "")
+              + "".join(" n/a |" if pd.isna(r[w]) else f" {r[w]:.0f} |" for w, _ in modes))
 
 
 def heavy(rows_file):
