@@ -43,7 +43,8 @@ bench-scaling: $(BUILD)/photonmap
 	SCALING_PHOTONS="$(SCALING_PHOTONS)" SCALING_THREADS="$(SCALING_THREADS)" PYTHON="$(PYTHON)" \
 	  bash experiments/bench/scaling.sh $(BUILD)/photonmap
 # `make bench-peers`: the kNN against FLANN, cKDTree and nanoflann alone, both
-# query streams, k = 10 and 100, written to results/bench/peers.md.
+# query streams, k = 1, 10 and 100 (ours also by packets of four and stateless),
+# written to results/bench/peers.md.
 .PHONY: bench-peers
 bench-peers: bench-bin
 	bash experiments/bench/run.sh --peers

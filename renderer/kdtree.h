@@ -74,6 +74,8 @@ typedef struct {
  * radius, which starts the next search (it changes cost, never results). */
 typedef struct {
     uint64_t *buf;     /* candidates: squared distance bits << 32 | index */
+    uint64_t *pbuf;    /* packets: KD_PACKET candidate regions of cap + KD_CHUNK keys (NULL until the first) */
+    uint32_t pcap;     /* the cap pbuf was made for */
     uint32_t cap;      /* candidates one pass may hold (buf is three such regions, with slack) */
     uint32_t hint_k;   /* k of the last query; 0: no guess yet */
     float hint_r2;     /* its k-th squared distance (its cap if it found fewer) */
@@ -101,6 +103,17 @@ kd_simd kd_query_simd(kd_query *s, kd_simd want);
  * (0 if none). Never fails. */
 uint32_t kd_query_knn(const kd_tree *t, kd_query *s, const float q[3], uint32_t k, float max_d2, uint32_t *idx,
                       float *d2, float *r2);
+
+/* Queries a packet serves with one traversal at most. */
+#define KD_PACKET 4u
+
+/* kd_query_knn for the m <= KD_PACKET queries q[0..m) with one traversal
+ * of the tree: query j's answer to idx[j]/d2[j] (k entries each), its
+ * count to found[j] and its largest squared distance to r2[j], the same
+ * sets as kd_query_knn gives (unordered). Coherent queries (the subpixel
+ * samples of a pixel) share the walk. Never fails. */
+void kd_query_knn_packet(const kd_tree *t, kd_query *s, const float (*q)[3], uint32_t m, uint32_t k, float max_d2,
+                         uint32_t *const *idx, float *const *d2, uint32_t *found, float *r2);
 
 /* Predicate for kd_nearest_if: nonzero when leaf-order point i qualifies. */
 typedef int (*kd_pred)(uint32_t i, const void *ctx);

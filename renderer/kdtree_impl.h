@@ -118,6 +118,33 @@ static inline int pop(kd_frame *stack, int *sp, float bound, uint32_t *node, flo
     return 0;
 }
 
+/* ---- packets ----
+ * A cell of the packet traversal: its node and its box (the tree's bounds
+ * cut by the splits above it). */
+typedef struct {
+    uint32_t node;
+    float lo[3], hi[3];
+} kd_pcell;
+
+/* Squared distance from the box [blo, bhi] to the cell c. */
+static inline float pcell_gap(const kd_pcell *c, const float blo[3], const float bhi[3])
+{
+    float d = 0.0f;
+    for (int a = 0; a < 3; a++) {
+        float g = c->lo[a] - bhi[a], g2 = blo[a] - c->hi[a];
+        g = g > g2 ? g : g2;
+        g = g > 0.0f ? g : 0.0f;
+        d += g * g;
+    }
+    return d;
+}
+
+/* Squared distance from the point q to the cell c. */
+static inline float pcell_dist(const kd_pcell *c, const float q[3])
+{
+    return pcell_gap(c, q, q);
+}
+
 /* ---- k nearest: keys ----
  * A candidate is one 64-bit key, its squared distance's bits above its
  * leaf-order index: non-negative floats order as their bit patterns, so keys
@@ -229,6 +256,23 @@ uint32_t kd_gather_avx2(const kd_tree *t, const float q[3], uint32_t k, uint64_t
                         kd_work *w);
 uint32_t kd_gather_small_avx2(const kd_tree *t, const float q[3], uint32_t k, uint64_t *buf, uint32_t cap,
                               float *r2p, kd_work *w);
+#endif
+
+/* kdtree_simd.c: one packet pass over m <= KD_PACKET queries
+ * (kdtree_packet.inc says what it does): query j's keys to bufs[j], their
+ * count to np[j], its radius r2p[j] lowered to the one it ended with; the
+ * _small ones keep each buffer sorted and at most k long (k <=
+ * KD_SMALL_K). Adds the nodes and points visited to *w; cap >= k + 2
+ * KD_CHUNK. */
+void kd_packet_base(const kd_tree *t, const float (*q)[3], uint32_t m, uint32_t k, uint64_t *const *bufs,
+                    uint32_t cap, float *r2p, uint32_t *np, kd_work *w);
+void kd_packet_small_base(const kd_tree *t, const float (*q)[3], uint32_t m, uint32_t k, uint64_t *const *bufs,
+                          uint32_t cap, float *r2p, uint32_t *np, kd_work *w);
+#if KD_HAVE_AVX2
+void kd_packet_avx2(const kd_tree *t, const float (*q)[3], uint32_t m, uint32_t k, uint64_t *const *bufs,
+                    uint32_t cap, float *r2p, uint32_t *np, kd_work *w);
+void kd_packet_small_avx2(const kd_tree *t, const float (*q)[3], uint32_t m, uint32_t k, uint64_t *const *bufs,
+                          uint32_t cap, float *r2p, uint32_t *np, kd_work *w);
 #endif
 
 /* kdtree_select.c: reorders the n distinct keys a[0..n) so that a[k-1] is

@@ -123,6 +123,22 @@ static float output_base(const uint64_t *keys, uint32_t n, uint32_t *idx, float 
 
 const kd_ops kd_ops_base = {split3_base, smallest_base, output_base};
 
+#define KD_GATHER_NAME kd_packet_base
+#define KD_GATHER_ATTR 
+#define KD_GATHER_Q kd_qbase
+#define KD_GATHER_QINIT KD_QBASE_INIT
+#define KD_GATHER_CHUNK chunk_base
+#define KD_GATHER_SHRINK 0
+#include "kdtree_packet.inc"
+
+#define KD_GATHER_NAME kd_packet_small_base
+#define KD_GATHER_ATTR 
+#define KD_GATHER_Q kd_qbase
+#define KD_GATHER_QINIT KD_QBASE_INIT
+#define KD_GATHER_CHUNK chunk_small_base
+#define KD_GATHER_SHRINK 1
+#include "kdtree_packet.inc"
+
 /* ---- AVX2 leaf scans ---- */
 #if KD_HAVE_AVX2
 typedef struct {
@@ -219,6 +235,22 @@ __attribute__((target("avx2"))) static inline uint32_t chunk_small_avx2(const fl
 #define KD_GATHER_CHUNK chunk_small_avx2
 #define KD_GATHER_SHRINK 1
 #include "kdtree_gather.inc"
+
+#define KD_GATHER_NAME kd_packet_avx2
+#define KD_GATHER_ATTR __attribute__((target("avx2")))
+#define KD_GATHER_Q kd_qavx2
+#define KD_GATHER_QINIT KD_QAVX2_INIT
+#define KD_GATHER_CHUNK chunk_avx2
+#define KD_GATHER_SHRINK 0
+#include "kdtree_packet.inc"
+
+#define KD_GATHER_NAME kd_packet_small_avx2
+#define KD_GATHER_ATTR __attribute__((target("avx2")))
+#define KD_GATHER_Q kd_qavx2
+#define KD_GATHER_QINIT KD_QAVX2_INIT
+#define KD_GATHER_CHUNK chunk_small_avx2
+#define KD_GATHER_SHRINK 1
+#include "kdtree_packet.inc"
 
 /* split3 with AVX2: four keys per step, each part left-packed by kd_pack4. */
 __attribute__((target("avx2"))) static void split3_avx2(const uint64_t *src, uint32_t n, uint64_t p1, uint64_t p2,

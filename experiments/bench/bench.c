@@ -12,7 +12,9 @@
  * --peers DIR: instead of the tables, the kNN against every peer on the
  * largest of --sizes, on two query streams: pixel centres in tile order
  * ("tiles") and the eye pass's own, four subpixel samples per pixel of a
- * quarter as many pixels ("subpixels"): ours, nanoflann, FLANN (flann.cpp: its
+ * quarter as many pixels ("subpixels"): ours (state carried from query to
+ * query; also by packets of four consecutive queries, kd_query_knn_packet,
+ * and stateless, each search from the cap), nanoflann, FLANN (flann.cpp: its
  * knnSearch and its radiusSearch) and scipy's cKDTree (ckdtree.py, a co-process run with interpreter P,
  * default /usr/bin/python3, talking through pipes; DIR holds the files it
  * reads and writes). Each rep times the five on the same queries one after
@@ -23,7 +25,9 @@
  * --ks: the k of the kNN tables (default 1,10,20,50,100); --knn-only: the
  * kNN tables alone (no build, lookup or eye-pass timings), for a quick
  * side-by-side reading of one cell.
- * --icount: few queries per cell (ours, nanoflann and FLANN's knnSearch),
+ * --icount: few queries per cell (ours, ours by packets of four, ours
+ * stateless, nanoflann and FLANN's knnSearch; the orders tiles, shuffled and
+ * the subpixel stream, whole pixels sampled),
  * each cell's loop bracketed by callgrind
  * client requests (run under valgrind --tool=callgrind --instr-atstart=no);
  * run.sh turns the dumps into instructions per query. */
@@ -192,6 +196,62 @@ static uint64_t ours_knn_batch(const kd_tree *t, const float *q, uint32_t nq, ui
     return total;
 }
 
+/* ours_knn_batch by packets of KD_PACKET consecutive queries
+ * (kd_query_knn_packet), the state carried from packet to packet; the
+ * answers of the last packet to idx/d2 (KD_PACKET x MAXK). */
+static uint64_t ours_knn_packets(const kd_tree *t, const float *q, uint32_t nq, uint32_t k, float max_d2,
+                                 uint32_t *idx, float *d2, double *r2sum)
+{
+    kd_query st;
+    if (kd_query_init(&st, k) != PM_OK) {
+        fprintf(stderr, "bench: out of memory\n");
+        exit(1);
+    }
+    uint32_t *ip[KD_PACKET];
+    float *dp[KD_PACKET];
+    for (uint32_t j = 0; j < KD_PACKET; j++) {
+        ip[j] = idx + j * (size_t)MAXK;
+        dp[j] = d2 + j * (size_t)MAXK;
+    }
+    uint64_t total = 0;
+    double s = 0.0;
+    for (uint32_t i = 0; i < nq; i += KD_PACKET) {
+        uint32_t m = nq - i < KD_PACKET ? nq - i : KD_PACKET, f[KD_PACKET];
+        float r2[KD_PACKET];
+        kd_query_knn_packet(t, &st, (const float(*)[3])(q + 3 * (size_t)i), m, k, max_d2, ip, dp, f, r2);
+        for (uint32_t j = 0; j < m; j++) {
+            total += f[j];
+            s += r2[j];
+        }
+    }
+    kd_query_free(&st);
+    *r2sum += s;
+    return total;
+}
+
+/* ours_knn_batch with no state between queries: each starts from the cap,
+ * as a peer's single query does. */
+static uint64_t ours_knn_stateless(const kd_tree *t, const float *q, uint32_t nq, uint32_t k, float max_d2,
+                                   uint32_t *idx, float *d2, double *r2sum)
+{
+    kd_query st;
+    if (kd_query_init(&st, k) != PM_OK) {
+        fprintf(stderr, "bench: out of memory\n");
+        exit(1);
+    }
+    uint64_t total = 0;
+    double s = 0.0;
+    for (uint32_t i = 0; i < nq; i++) {
+        float r2;
+        kd_query_forget(&st);
+        total += kd_query_knn(t, &st, q + 3 * (size_t)i, k, max_d2, idx, d2, &r2);
+        s += r2;
+    }
+    kd_query_free(&st);
+    *r2sum += s;
+    return total;
+}
+
 static uint64_t lookup_batch(const reps_set *r, const photons_map *m, const qset *q, uint32_t nq,
                              const est_gather *g, double *esum)
 {
@@ -216,9 +276,10 @@ static uint64_t lookup_batch(const reps_set *r, const photons_map *m, const qset
 
 /* Our neighbours of each query as input indices (perm: leaf order ->
  * input), UINT32_MAX after the last found, the state carried from query to
- * query as in ours_knn_batch; returns the total. */
+ * query as in ours_knn_batch (or dropped before each, `stateless`); returns
+ * the total. */
 static uint64_t ours_collect(const kd_tree *t, const uint32_t *perm, const float *q, uint32_t nq, uint32_t k,
-                             float max_d2, uint32_t *out)
+                             float max_d2, int stateless, uint32_t *out)
 {
     kd_query st;
     if (kd_query_init(&st, k) != PM_OK) {
@@ -230,10 +291,42 @@ static uint64_t ours_collect(const kd_tree *t, const uint32_t *perm, const float
     for (uint32_t i = 0; i < nq; i++) {
         float r2;
         uint32_t *o = out + (size_t)i * k;
+        if (stateless)
+            kd_query_forget(&st);
         uint32_t f = kd_query_knn(t, &st, q + 3 * (size_t)i, k, max_d2, o, d2, &r2);
         for (uint32_t j = 0; j < k; j++)
             o[j] = j < f ? perm[o[j]] : UINT32_MAX;
         total += f;
+    }
+    kd_query_free(&st);
+    return total;
+}
+
+/* ours_collect by packets of KD_PACKET consecutive queries. */
+static uint64_t ours_collect_packets(const kd_tree *t, const uint32_t *perm, const float *q, uint32_t nq, uint32_t k,
+                                     float max_d2, uint32_t *out)
+{
+    kd_query st;
+    if (kd_query_init(&st, k) != PM_OK) {
+        fprintf(stderr, "bench: out of memory\n");
+        exit(1);
+    }
+    static float d2s[KD_PACKET][MAXK];
+    uint64_t total = 0;
+    for (uint32_t i = 0; i < nq; i += KD_PACKET) {
+        uint32_t m = nq - i < KD_PACKET ? nq - i : KD_PACKET, f[KD_PACKET];
+        uint32_t *ip[KD_PACKET];
+        float *dp[KD_PACKET], r2[KD_PACKET];
+        for (uint32_t j = 0; j < KD_PACKET; j++) {
+            ip[j] = out + (size_t)(i + (j < m ? j : 0)) * k;
+            dp[j] = d2s[j];
+        }
+        kd_query_knn_packet(t, &st, (const float(*)[3])(q + 3 * (size_t)i), m, k, max_d2, ip, dp, f, r2);
+        for (uint32_t j = 0; j < m; j++) {
+            for (uint32_t c = 0; c < k; c++)
+                ip[j][c] = c < f[j] ? perm[ip[j][c]] : UINT32_MAX;
+            total += f[j];
+        }
     }
     kd_query_free(&st);
     return total;
@@ -459,7 +552,7 @@ static int negative_control(const float *pts, uint32_t n, const float *q, uint32
 }
 
 #define BRUTE_EVERY 509u /* ours is checked against brute force on every this-th query */
-#define NWHO 5             /* ours and the peers */
+#define NWHO 7             /* ours, the peers, ours by packets and ours without state */
 
 /* The peers comparison on the map's points `pos` and the queries q (map
  * frame) of the stream named `order`: CSV rows on stdout (see report.py peers). Returns
@@ -501,15 +594,15 @@ static int run_peers(const char *dir, const char *python, const char *order, uin
         exit(1);
     }
     int bad = 0;
-    const char *who[NWHO] = {"ours", "nanoflann", "flann-knn", "flann-radius", "ckdtree"};
-    uint32_t idx[MAXK];
-    float d2[MAXK];
+    const char *who[NWHO] = {"ours", "nanoflann", "flann-knn", "flann-radius", "ckdtree", "ours-packets", "ours-stateless"};
+    static uint32_t idx[KD_PACKET * MAXK];
+    static float d2[KD_PACKET * MAXK];
     for (int ki = 0; ki < nks; ki++) {
         uint32_t k = ks[ki];
         /* the answers, untimed, each checked: ours against brute force on a
          * sample, every peer against ours on all queries */
         uint64_t found[NWHO] = {0}, cnt[NWHO][3] = {{0}};
-        found[0] = ours_collect(&ours, perm, q, nq, k, cap, ref);
+        found[0] = ours_collect(&ours, perm, q, nq, k, cap, 0, ref);
         if (ki == 0 && negative_control(pos, n, q, k, (double)cap, ref)) {
             fprintf(stderr, "bench: --peers: the neighbour-set check let a wrong answer through\n");
             exit(1);
@@ -535,6 +628,10 @@ static int run_peers(const char *dir, const char *python, const char *order, uin
             break;
         }
         check_sets("ckdtree", pos, q, nq, k, cap, ref, got, cnt[4]);
+        found[5] = ours_collect_packets(&ours, perm, q, nq, k, cap, got);
+        check_sets("ours-packets", pos, q, nq, k, cap, ref, got, cnt[5]);
+        found[6] = ours_collect(&ours, perm, q, nq, k, cap, 1, got);
+        check_sets("ours-stateless", pos, q, nq, k, cap, ref, got, cnt[6]);
         for (int w = 0; w < NWHO; w++) {
             printf("%u,%u,%u,%u,%s,%s,check,0,%llu,%llu,%llu,%llu\n", pe, n, w ? nq : nb, k, order, who[w],
                    (unsigned long long)found[w], (unsigned long long)cnt[w][0], (unsigned long long)cnt[w][1],
@@ -546,11 +643,16 @@ static int run_peers(const char *dir, const char *python, const char *order, uin
         for (int r = 0; r < reps; r++) {
             double s[NWHO];
             uint64_t f[NWHO];
-            for (int j = 0; j < 4; j++) {
-                int w = (j + r) % 4;
+            static const int inproc[6] = {0, 1, 2, 3, 5, 6};
+            for (int j = 0; j < 6; j++) {
+                int w = inproc[(j + r) % 6];
                 double r2 = 0, t0 = now_s();
                 if (w == 0)
                     f[0] = ours_knn_batch(&ours, q, nq, k, cap, idx, d2, &r2);
+                else if (w == 5)
+                    f[5] = ours_knn_packets(&ours, q, nq, k, cap, idx, d2, &r2);
+                else if (w == 6)
+                    f[6] = ours_knn_stateless(&ours, q, nq, k, cap, idx, d2, &r2);
                 else if (w == 1)
                     f[1] = nano_knn_batch(nano, q, nq, k, cap, idx, d2, &r2);
                 else
@@ -686,11 +788,27 @@ int main(int argc, char **argv)
         scene_free(sc);
         return rc;
     }
-    const qset *orders[2] = {&tiles, &shuf};
-    const char *order_name[2] = {"tiles", "shuffled"};
+    /* --icount also counts the eye pass's own stream: four subpixel samples
+     * per pixel of a quarter as many pixels, sampled in runs of 256
+     * consecutive queries (a packet and the state need neighbours in the
+     * stream; the tiles and shuffled samples take every m-th query) */
+    qset subq = {0, NULL, NULL};
+    if (icount) {
+        subq = eye_points(sc, qw / 2, qh / 2, 2);
+        uint32_t runs = subq.n / 256, m = runs / 32 ? runs / 32 : 1, j = 0;
+        for (uint32_t g = 0; g < runs; g += m)
+            for (uint32_t e = 0; e < 256; e++, j++)
+                memmove(subq.p + 3 * j, subq.p + 3 * ((size_t)256 * g + e), 3 * sizeof(float));
+        subq.n = j;
+    }
+    const int nord = icount ? 3 : 2;
+    const qset *orders[3] = {&tiles, &shuf, &subq};
+    const char *order_name[3] = {"tiles", "shuffled", "subpixels"};
     uint32_t nq = tiles.n;
     uint32_t idx[MAXK];
     float d2[MAXK];
+    static uint32_t pidx[KD_PACKET * MAXK];
+    static float pd2[KD_PACKET * MAXK];
 
     if (!icount) {
         printf("## kNN queries per second, one thread\n\n");
@@ -726,8 +844,8 @@ int main(int argc, char **argv)
         double max_r = render_max_radius(sc, &cfg, &map);
         est_gather gather = est_gather_make(&map, cfg.nn, max_r, 0);
         float max_d2 = (float)gather.max_r2;
-        qset mq[2];
-        for (int o = 0; o < 2; o++) {
+        qset mq[3];
+        for (int o = 0; o < nord; o++) {
             mq[o].n = orders[o]->n;
             mq[o].p = malloc(sizeof(float) * 3 * mq[o].n);
             mq[o].nr = NULL;
@@ -742,14 +860,23 @@ int main(int argc, char **argv)
             CALLGRIND_START_INSTRUMENTATION;
         for (int ki = 0; ki < nks; ki++) {
             uint32_t k = ks[ki];
-            for (int o = 0; o < 2; o++) {
+            for (int o = 0; o < nord; o++) {
                 const float *q = mq[o].p;
                 if (icount) {
+                    nq = mq[o].n;
                     char label[96];
                     double s = 0;
                     CALLGRIND_ZERO_STATS;
                     ours_knn_batch(&map.tree, q, nq, k, max_d2, idx, d2, &s);
                     snprintf(label, sizeof label, "ours %u %u %s %u", sizes[si], k, order_name[o], nq);
+                    CALLGRIND_DUMP_STATS_AT(label);
+                    if (o == 2) { /* packets only where the stream is contiguous */
+                        ours_knn_packets(&map.tree, q, nq, k, max_d2, pidx, pd2, &s);
+                        snprintf(label, sizeof label, "ourspacket %u %u %s %u", sizes[si], k, order_name[o], nq);
+                        CALLGRIND_DUMP_STATS_AT(label);
+                    }
+                    ours_knn_stateless(&map.tree, q, nq, k, max_d2, idx, d2, &s);
+                    snprintf(label, sizeof label, "oursstateless %u %u %s %u", sizes[si], k, order_name[o], nq);
                     CALLGRIND_DUMP_STATS_AT(label);
                     nano_knn_batch(nano, q, nq, k, max_d2, idx, d2, &s);
                     snprintf(label, sizeof label, "nano %u %u %s %u", sizes[si], k, order_name[o], nq);
@@ -810,6 +937,8 @@ int main(int argc, char **argv)
         free(pos);
         free(mq[0].p);
         free(mq[1].p);
+        if (nord > 2)
+            free(mq[2].p);
 
         if (!icount && !knn_only) {
             /* representatives: precompute with the defaults, then the lookup */
@@ -913,7 +1042,7 @@ int main(int argc, char **argv)
                (size_t)PHOTONS_BYTES_PER_STORED, sizeof(photons_record), 3 * sizeof(float),
                0.0 + (double)(sizeof(float) + 1 + sizeof(uint32_t)) / KD_DEFAULT_LEAF);
     }
-    free(tiles.p), free(tiles.nr), free(shuf.p), free(shuf.nr);
+    free(tiles.p), free(tiles.nr), free(shuf.p), free(shuf.nr), free(subq.p), free(subq.nr);
     scene_free(sc);
     return 0;
 }

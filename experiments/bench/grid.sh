@@ -4,19 +4,27 @@
 # paper's estimate, seed 1, no image written), timed render by render; prints
 # one line per render and last the line `make bench` quotes:
 #   grid: N s, conventional N s, precomputed N s (CPU N s)
-# where N s are the renderers' own wall-clock totals (time_s.total) summed,
-# and CPU the user+system seconds of the processes (/usr/bin/time).
+# where N s are the renderers' own wall-clock totals (time_s.total: with
+# --repeats, each render's minimum over its repeats) summed, and CPU the
+# user+system seconds of the processes (/usr/bin/time, all repeats).
 #   grid.sh [PM]
+# Environment: GRID_REPEATS (--repeats of each render, default 3; 1 for
+# single runs), GRID_PHOTONS (default "50000 100000 500000"), GRID_WIDTH and
+# GRID_HEIGHT (default 1024 and 768): a tiny instance checks the script.
 set -euo pipefail
 PM=${1:-build/photonmap}
 PYTHON=${PYTHON:-/usr/bin/python3}
+REPEATS=${GRID_REPEATS:-3}
+PHOTONS=${GRID_PHOTONS:-50000 100000 500000}
+WIDTH=${GRID_WIDTH:-1024}
+HEIGHT=${GRID_HEIGHT:-768}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-for p in 50000 100000 500000; do
+for p in $PHOTONS; do
   for n in 10 20 50 100; do
     for m in conventional precomputed; do
       /usr/bin/time -f "%U %S" -o "$tmp/t" "$PM" render scenes/cornell.scene --method "$m" --photons "$p" --nn "$n" \
-        --threads 1 --quiet --stats "$tmp/s.json"
+        --width "$WIDTH" --height "$HEIGHT" --threads 1 --repeats "$REPEATS" --quiet --stats "$tmp/s.json"
       "$PYTHON" - "$tmp/s.json" "$tmp/t" "$m" "$p" "$n" <<'PY'
 import json, sys
 t = json.load(open(sys.argv[1]))["time_s"]

@@ -45,15 +45,18 @@ def icount(prefix, before_csv):
     d = d.merge(before, on=["photons", "k", "order"], how="left")
     d = d.sort_values(["photons", "k", "order"], ascending=[True, True, False])
     fl = "flann" in d.columns
+    modes = [(w, n) for w, n in [("ourspacket", "ours, packets of 4"), ("oursstateless", "ours, stateless")]
+             if w in d.columns]
     print("| P_e | k | order | before (instr/query) | ours now | nanoflann | now / before | nanoflann / ours |"
-          + (" FLANN knnSearch | FLANN / ours |" if fl else ""))
-    print("|---:|---:|---|---:|---:|---:|---:|---:|" + ("---:|---:|" if fl else ""))
+          + (" FLANN knnSearch | FLANN / ours |" if fl else "") + "".join(f" {n} |" for _, n in modes))
+    print("|---:|---:|---|---:|---:|---:|---:|---:|" + ("---:|---:|" if fl else "") + "---:|" * len(modes))
     for _, r in d.iterrows():
         b = r["ours_instr_per_query"]
         bs = "n/a" if pd.isna(b) else f"{b:.0f}"
         ratio = "n/a" if pd.isna(b) else f"{r['ours'] / b:.2f}"
         print(f"| {r['photons']} | {r['k']} | {r['order']} | {bs} | {r['ours']:.0f} | {r['nano']:.0f} | {ratio} | "
-              f"{r['nano'] / r['ours']:.2f} |" + (f" {r['flann']:.0f} | {r['flann'] / r['ours']:.2f} |" if fl else ""))
+              f"{r['nano'] / r['ours']:.2f} |" + (f" {r['flann']:.0f} | {r['flann'] / r['ours']:.2f} |" if fl else "")
+              + "".join(" n/a |" if pd.isna(r[w]) else f" {r[w]:.0f} |" for w, _ in modes))
 
 
 def heavy(rows_file):
@@ -65,6 +68,11 @@ def heavy(rows_file):
 
 PEERS = [("flann-knn", "FLANN knnSearch"), ("flann-radius", "FLANN radiusSearch"), ("ckdtree", "cKDTree"),
          ("nanoflann", "nanoflann")]
+# ours in other modes (bench --peers): packets of four consecutive queries
+# (kd_query_knn_packet, state carried), and no state between queries (each
+# search starts from the cap, as a peer's single query does)
+OURS_MODES = [("ours-packets", "ours, packets of 4"), ("ours-stateless", "ours, stateless")]
+NAMES = dict(PEERS + OURS_MODES + [("ours", "ours")])
 
 
 def peer_medians(d):
@@ -88,18 +96,27 @@ def peers(csv):
     checks = d[d["rep"] == "check"]
     builds = d[(d["rep"] == "build") & (d["order"] == d["order"].iloc[0])].set_index("who")["seconds"]
     reps = runs["rep"].nunique()
+    modes = [(w, n) for w, n in OURS_MODES if w in set(runs["who"])]
     print("| P_e | stored | queries | k | ours (Mq/s) | " + " | ".join(f"{n} (Mq/s)" for _, n in PEERS) + " | "
-          + " | ".join(f"ours / {n}" for _, n in PEERS) + " | ours / strongest peer |")
-    print("|---:|---:|---|---:|---:|" + "---:|" * (2 * len(PEERS)) + "---:|")
+          + " | ".join(f"ours / {n}" for _, n in PEERS) + " | ours / strongest peer |"
+          + "".join(f" {n} / strongest peer |" for _, n in modes))
+    print("|---:|---:|---|---:|---:|" + "---:|" * (2 * len(PEERS)) + "---:|" + "---:|" * len(modes))
     for order, pe, stored, k, nq, med in peer_medians(d):
         rate = {w: nq / med[w] * 1e-6 for w in med}
         best = strongest_peer(med)
         print(f"| {pe} | {stored} | {order} | {k} | {rate['ours']:.3f} | "
               + " | ".join(f"{rate[w]:.3f}" for w, _ in PEERS) + " | "
               + " | ".join(f"{med[w] / med['ours']:.2f}" for w, _ in PEERS) + " | "
-              + f"{med[best] / med['ours']:.2f} ({dict(PEERS)[best]}) |")
+              + f"{med[best] / med['ours']:.2f} ({dict(PEERS)[best]}) |"
+              + "".join(f" {med[best] / med[w]:.2f} |" for w, _ in modes))
     print()
-    print(f"Median of {reps} runs per cell; in each run the five answer the same queries one after another "
+    print("Asymmetry: ours (the first ratio) keeps state between coherent queries (the last query's radius starts "
+          "the next search) and uses AVX2; FLANN's knnSearch and radiusSearch get the whole query matrix in one "
+          "call and cKDTree.query the whole array (workers=1), nanoflann single queries; none gets the previous "
+          "radius as a bound. \"ours, packets of 4\" serves four consecutive queries with one traversal; "
+          "\"ours, stateless\" starts every search from the cap, like a peer's single query.")
+    print()
+    print(f"Median of {reps} runs per cell; in each run all of them answer the same queries one after another "
           "(cKDTree timed by its own process around its one query call). Builds over the same points "
           "(one run, seconds): "
           + ", ".join(f"{n} {builds[w]:.3f}" for w, n in [("ours", "ours"), ("flann-knn", "FLANN"), ("ckdtree", "cKDTree"),
@@ -112,7 +129,7 @@ def peers(csv):
     print("|---|---:|---|---|---:|---:|---:|---:|---:|")
     bad = 0
     for _, r in checks.sort_values(["order", "k"], ascending=[False, True], kind="stable").iterrows():
-        name = "ours" if r["who"] == "ours" else dict(PEERS)[r["who"]]
+        name = NAMES[r["who"]]
         against = "brute force" if r["who"] == "ours" else "ours"
         bad += int(r["mismatches"])
         print(f"| {r['order']} | {int(r['k'])} | {name} | {against} | {int(r['queries'])} | {int(r['found'])} | {int(r['exact'])} | "

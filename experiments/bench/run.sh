@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # experiments/bench/run.sh (behind `make bench`): times the paper's whole grid
-# once (experiments/bench/grid.sh: the "grid:" line), runs build/bench/bench
+# (experiments/bench/grid.sh: the "grid:" line, each render's minimum over
+# GRID_REPEATS repeats, default 3), runs build/bench/bench
 # for the throughput tables, the same under callgrind for instructions per
 # query (beside those of the kd-tree before, icount-before.csv), a perf
 # profile of the renders, and the heaviest cells of the paper at full
@@ -17,8 +18,8 @@
 #   run.sh --quick   (`make bench-quick`, about a minute): only the peers
 #                    table at k = 10 and 100, 3 runs a cell, on stdout;
 #                    results/bench/bench.md is left as it is.
-#   run.sh --peers   (`make bench-peers`): only the peers section, k = 10
-#                    and 100, BENCH_REPS runs a cell, to results/bench/peers.md
+#   run.sh --peers   (`make bench-peers`): only the peers section, k =
+#                    BENCH_PEER_KS (1, 10, 100), BENCH_REPS runs a cell, to results/bench/peers.md
 #                    and its raw timings to peers.csv (the same section as in bench.md, for a loaded machine
 #                    where the whole benchmark does not fit).
 set -eu
@@ -30,6 +31,10 @@ if [ "${1:-}" = "--peers" ]; then PEERS_ONLY=1; fi
 REPS=${BENCH_REPS:-5}
 PEER_KS=${BENCH_PEER_KS:-1,10,100}
 HREPS=${BENCH_HEAVY_REPS:-3}
+# the peers' map (photons emitted) and extra bench arguments: a tiny
+# instance (BENCH_PEER_PHOTONS=20000 BENCH_PEER_ARGS="--qw 64 --qh 48") checks the pipeline
+PEER_PHOTONS=${BENCH_PEER_PHOTONS:-500000}
+PEER_ARGS=${BENCH_PEER_ARGS:-}
 OUT=results/bench/bench.md
 BIN=build/bench/bench
 tmp=$(mktemp -d)
@@ -40,13 +45,14 @@ PYTHON=${PYTHON:-/usr/bin/python3}
 
 peers() { # reps ks: the peers table (Markdown) on stdout
   mkdir -p "$tmp/peers"
-  "$BIN" --peers "$tmp/peers" --python "$PYTHON" --sizes 500000 --ks "$2" --reps "$1" > "$tmp/peers.csv"
+  # shellcheck disable=SC2086
+  "$BIN" --peers "$tmp/peers" --python "$PYTHON" --sizes "$PEER_PHOTONS" --ks "$2" --reps "$1" $PEER_ARGS > "$tmp/peers.csv"
   "$PYTHON" experiments/bench/report.py peers "$tmp/peers.csv"
 }
 peers_section() { # the Markdown section of the kNN against the peers ($tmp/peers.md, $load_peers)
-  echo "## kNN against the peers: FLANN, scipy's cKDTree, nanoflann (one thread, 500k map)"
+  echo "## kNN against the peers: FLANN, scipy's cKDTree, nanoflann (one thread, the map of $PEER_PHOTONS photons emitted)"
   echo
-  echo "The same points (the 500k map's, in its frame) on two query streams: \`tiles\`, the first diffuse hits"
+  echo "The same points (the map's, in its frame) on two query streams: \`tiles\`, the first diffuse hits"
   echo "through the pixel centres of a 320x240 view in 16x16-tile order; \`subpixels\`, the eye pass's own stream: the"
   echo "four subpixel samples of each pixel of a 160x120 view (the same points), in its order: tile by tile, pixel by pixel,"
   echo "subpixel rows, so that four queries in a row lie a fraction of a photon spacing apart. Radius cap"
@@ -71,9 +77,9 @@ if [ "$QUICK" = 1 ]; then
   exit 0
 fi
 if [ "$PEERS_ONLY" = 1 ]; then
-  echo "bench: the kNN against FLANN, cKDTree and nanoflann, k = 10 and 100 ($REPS runs per cell)" >&2
+  echo "bench: the kNN against FLANN, cKDTree and nanoflann, k = $PEER_KS ($REPS runs per cell)" >&2
   load_peers=$(cut -d' ' -f1-3 /proc/loadavg)
-  peers "$REPS" 10,100 > "$tmp/peers.md"
+  peers "$REPS" "$PEER_KS" > "$tmp/peers.md"
   {
     echo "# Benchmark: the kNN against the peers (\`make bench-peers\`)"
     echo
@@ -155,7 +161,7 @@ demote() { sed 's/^#/##/' "$1"; }
   echo
   echo "24 renders: P_e 50k/100k/500k x n 10/20/50/100 x both methods, 1024x768, 2x2 samples, the paper's estimate,"
   echo "seed 1, no image written (experiments/bench/grid.sh; load average $load_grid before it ran). Per render: method,"
-  echo "P_e, n, the renderer's wall-clock total, CPU seconds of the process, then trace, build, precompute and eye-pass"
+  echo "P_e, n, the renderer's wall-clock total (the minimum over its --repeats), CPU seconds of the process, then trace, build, precompute and eye-pass"
   echo "seconds:"
   echo
   echo '```'

@@ -670,3 +670,95 @@ void test_kdtree_stream_avx2(void)
     kd_query_free(&s);
     stream_matches_brute_force(KD_SIMD_AVX2);
 }
+
+/* Packets (kd_query_knn_packet): every neighbour set of every query of a
+ * packet against brute force, on both leaf scans, with the state carried
+ * from packet to packet as the eye pass does; packets of 1 to 4 queries,
+ * close together (subpixel samples), equal, or one far from the rest, a NaN
+ * among them, caps that cut answers short. */
+static int packet_round(const kd_tree *t, kd_query *s, const float *pts, const uint32_t *perm, uint32_t n,
+                        rng_stream *rs, uint32_t k, float cap, int kind)
+{
+    float q[KD_PACKET][3];
+    uint32_t idxs[KD_PACKET][128], found[KD_PACKET];
+    float d2s[KD_PACKET][128], r2[KD_PACKET];
+    uint32_t *idx[KD_PACKET] = {idxs[0], idxs[1], idxs[2], idxs[3]};
+    float *d2[KD_PACKET] = {d2s[0], d2s[1], d2s[2], d2s[3]};
+    uint32_t m = 1 + (uint32_t)(rng_next_double(rs) * KD_PACKET);
+    float c[3], spread = (float)(rng_next_double(rs) < 0.5 ? 0.01 : 0.2);
+    for (int a = 0; a < 3; a++)
+        c[a] = (float)(rng_next_double(rs) * 2.4 - 1.2);
+    if (kind == 3)
+        c[0] = c[0] * 10.0f + 12.0f, c[1] = c[1] * 10.0f + 12.0f, spread *= 10.0f;
+    int shape = (int)(rng_next_double(rs) * 4);
+    for (uint32_t j = 0; j < m; j++)
+        for (int a = 0; a < 3; a++)
+            q[j][a] = shape == 1 ? c[a] : c[a] + spread * (float)(rng_next_double(rs) - 0.5);
+    if (shape == 2 && m > 1)
+        q[m - 1][0] += 2.0f; /* one query far from the others */
+    int nan_at = shape == 3 && m > 1 ? (int)(m - 1) : -1;
+    if (nan_at >= 0)
+        q[nan_at][1] = NAN;
+    kd_query_knn_packet(t, s, (const float(*)[3])q, m, k, cap, idx, d2, found, r2);
+    int bad = 0;
+    for (uint32_t j = 0; j < m; j++) {
+        if ((int)j == nan_at) {
+            bad += found[j] != 0 || r2[j] != 0.0f;
+            continue;
+        }
+        kd_pair *all = brute_sorted(pts, perm, n, q[j]);
+        bad += !check_answer(all, n, k, cap, found[j], idx[j], d2[j], r2[j], "packet");
+        free(all);
+    }
+    return bad;
+}
+
+void test_kdtree_packet_matches_brute_force(void)
+{
+    const uint32_t n = 3000;
+    const uint32_t ks[] = {1, 2, 3, 10, 50, 100};
+    const float caps[] = {INFINITY, 0.05f};
+    int bad = 0;
+    for (int kind = 0; kind < 4; kind++) {
+        float *pts = point_set(kind, n, 41);
+        uint32_t *perm = malloc(sizeof(uint32_t) * n);
+        kd_tree t;
+        CHECK(kd_build(&t, pts, n, KD_DEFAULT_LEAF, perm, 1) == PM_OK);
+        for (kd_simd want = KD_SIMD_BASE; want <= KD_SIMD_AVX2; want++) {
+            kd_query s;
+            CHECK(kd_query_init(&s, 8) == PM_OK); /* grows for larger k */
+            kd_query_simd(&s, want);
+            rng_stream rs = rng_make(123, (uint64_t)kind);
+            for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ki++)
+                for (size_t ci = 0; ci < sizeof caps / sizeof caps[0]; ci++)
+                    for (int round = 0; round < 25; round++)
+                        bad += packet_round(&t, &s, pts, perm, n, &rs, ks[ki], caps[ci], kind);
+            kd_query_free(&s);
+        }
+        kd_free(&t);
+        free(perm);
+        free(pts);
+    }
+    /* a tree of one leaf and an empty tree */
+    float few[3 * 5] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
+    uint32_t perm5[5];
+    kd_tree t5, empty;
+    CHECK(kd_build(&t5, few, 5, KD_DEFAULT_LEAF, perm5, 1) == PM_OK);
+    CHECK(kd_build(&empty, NULL, 0, KD_DEFAULT_LEAF, NULL, 1) == PM_OK);
+    kd_query s;
+    CHECK(kd_query_init(&s, 4) == PM_OK);
+    rng_stream rs = rng_make(5, 5);
+    for (int round = 0; round < 20; round++)
+        bad += packet_round(&t5, &s, few, perm5, 5, &rs, 1 + (uint32_t)round % 7, INFINITY, 0);
+    float q[2][3] = {{0, 0, 0}, {1, 1, 1}};
+    uint32_t i0[4], i1[4], found[2] = {9, 9};
+    float e0[4], e1[4], r2[2] = {-1, -1};
+    uint32_t *idx[2] = {i0, i1};
+    float *d2[2] = {e0, e1};
+    kd_query_knn_packet(&empty, &s, (const float(*)[3])q, 2, 3, INFINITY, idx, d2, found, r2);
+    CHECK(found[0] == 0 && found[1] == 0 && r2[0] == 0.0f && r2[1] == 0.0f);
+    kd_query_free(&s);
+    kd_free(&t5);
+    kd_free(&empty);
+    CHECK_MSG(bad == 0, "%d packet answers differ from brute force", bad);
+}
