@@ -107,30 +107,6 @@ check "launch.py refuses a member that is not ROOT METHOD ARGS K" expect_exit 2 
   "$PY" -m experiments.launch --pm "$PM" --scene scenes/cornell.scene --width 8 --height 6 --subpixels 1 --of 1 \
   --stem paper-p500-n5/seed1 --member "$G/a" conventional
 
-# experiments/group.sh, which experiments/pair.sh runs for make's
-# reproduce-runs (experiments/study.mk), the same: a member that fails, or a
-# group interrupted, leaves none of its records
-rm -rf "$G"/*
-genv=(SCENE=scenes/cornell.scene WIDTH=8 HEIGHT=6 SUBPIXELS=1 THREADS_ARG=1 PYTHON="$PY")
-members=("$G/a" conventional "" "$G/a" precomputed "" "$G/b" precomputed "--rep-eval lazy")
-check "group.sh: all three records after a good group" bash -c '
-  env "$@" bash experiments/group.sh paper-p500-n5/seed1 '"$(printf '%q ' "${members[@]}")"' &&
-  ls '"$G"'/a/conventional-paper-p500-n5/seed1.run.json '"$G"'/a/precomputed-paper-p500-n5/seed1.run.json '"$G"'/b/precomputed-paper-p500-n5/seed1.run.json' _ PM="$PM" "${genv[@]}"
-check "group.sh: a member that fails exits 1 and no record of the group stays (the ones made before it too)" bash -c '
-  env "$@" bash experiments/group.sh paper-p500-n5/seed1 '"$(printf '%q ' "${members[@]}")"' 2>/dev/null; rc=$?
-  [ $rc -eq 1 ] && ! ls '"$G"'/a/*/*.run.json '"$G"'/b/*/*.run.json 2>/dev/null' _ PM="$TMP/pm-fail" "${genv[@]}"
-check "negative control: the same failure at an even seed (lazy first) also leaves no record" bash -c '
-  env "$@" bash experiments/group.sh paper-p500-n5/seed2 '"$(printf '%q ' "${members[@]}")"' 2>/dev/null; rc=$?
-  [ $rc -eq 1 ] && ! ls '"$G"'/a/*/seed2.run.json '"$G"'/b/*/seed2.run.json 2>/dev/null' _ PM="$TMP/pm-fail" "${genv[@]}"
-rm -f "$G/slow-started"
-env PM="$TMP/pm-slow" "${genv[@]}" setsid bash experiments/group.sh paper-p500-n5/seed3 "${members[@]}" >/dev/null 2>&1 &
-gpid=$!
-for _ in $(seq 1 100); do [ -e "$G/slow-started" ] && break; sleep 0.1; done
-kill -TERM -- -"$gpid" 2>/dev/null; wait "$gpid" 2>/dev/null
-check "group.sh killed during its third render leaves no record of the group (two were finished)" bash -c '
-  [ -e '"$G"'/slow-started ] && ! ls '"$G"'/a/*/seed3.run.json '"$G"'/b/*/seed3.run.json 2>/dev/null'
-check "group.sh refuses members that are not triples" expect_exit 1 'triples' bash experiments/group.sh paper-p500-n5/seed1 "$G/a" conventional
-
 S=$R/beyond/studies
 REF=$(ls "$R"/runs/cornell-convref-*/32x24.exr)
 run_py() { # PAPER_CSV LAZY_CSV [more args]: beyond.py on the case with these two variants

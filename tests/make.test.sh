@@ -82,20 +82,22 @@ check "reproduce-table's default reference and floor at 1024x768 are the 2x2 ren
   grep -q -- '--ref reference/cornell/cornell-reference-2x2-1024x768.exr ' <<< \"\$out\" &&
   grep -q -- '--ref-fast reference/cornell/cornell-fast-2x2-1024x768.exr ' <<< \"\$out\" &&
   ! grep -q 'cornell-reference-1024x768\|cornell-fast-1024x768' <<< \"\$out\""
-# findref.sh on a tree of empty files: the 2x2 pair wins over the one-sample
+# studies.pov_reference on a tree of empty files: the 2x2 pair wins over the one-sample
 # pair; control: with the one-sample pair alone it is found (the check above
 # tells them apart), and a pbrt or bounce-limited render is never a POV-Ray reference
 fr="$TMP/findref"; mkdir -p "$fr/a/reference/cornell" "$fr/b/reference/cornell" "$fr/c/reference/tworooms"
 for f in reference-1024x768 fast-1024x768 reference-2x2-1024x768 fast-2x2-1024x768; do : > "$fr/a/reference/cornell/cornell-$f.exr"; done
 for f in reference-1024x768 fast-1024x768; do : > "$fr/b/reference/cornell/cornell-$f.exr"; done
 : > "$fr/c/reference/tworooms/tworooms-pbrt-bdpt-256x192-seed1.exr"; : > "$fr/c/reference/tworooms/tworooms-b2-reference-256x192.exr"
-check "findref.sh prefers the 2x2 reference and pairs it with the 2x2 fast render" bash -c "cd $fr/a &&
-  [ \"\$(bash $PWD/experiments/findref.sh 1024x768)\" = reference/cornell/cornell-reference-2x2-1024x768.exr ] &&
-  [ \"\$(bash $PWD/experiments/findref.sh --fast 1024x768)\" = reference/cornell/cornell-fast-2x2-1024x768.exr ]"
-check "control: findref.sh without the 2x2 pair names the one-sample pair" bash -c "cd $fr/b &&
-  [ \"\$(bash $PWD/experiments/findref.sh 1024x768)\" = reference/cornell/cornell-reference-1024x768.exr ] &&
-  [ \"\$(bash $PWD/experiments/findref.sh --fast 1024x768)\" = reference/cornell/cornell-fast-1024x768.exr ]"
-check "findref.sh never names a pbrt or bounce-limited render" bash -c "cd $fr/c && [ -z \"\$(bash $PWD/experiments/findref.sh 256x192 scenes/tworooms.scene)\" ]"
+# povref TOP SIZE SCENE [fast]: the reference studies.pov_reference names in TOP
+povref() { "${PYTHON:-/usr/bin/python3}" -c "import sys; from experiments.studies import pov_reference as p; print(p(sys.argv[2], sys.argv[3], fast=len(sys.argv) > 4, top=sys.argv[1]))" "$@"; }
+check "pov_reference prefers the 2x2 reference and pairs it with the 2x2 fast render" \
+  test "$(povref $fr/a 1024x768 scenes/cornell.scene)|$(povref $fr/a 1024x768 scenes/cornell.scene fast)" = \
+  "reference/cornell/cornell-reference-2x2-1024x768.exr|reference/cornell/cornell-fast-2x2-1024x768.exr"
+check "control: pov_reference without the 2x2 pair names the one-sample pair" \
+  test "$(povref $fr/b 1024x768 scenes/cornell.scene)|$(povref $fr/b 1024x768 scenes/cornell.scene fast)" = \
+  "reference/cornell/cornell-reference-1024x768.exr|reference/cornell/cornell-fast-1024x768.exr"
+check "pov_reference never names a pbrt or bounce-limited render" test -z "$(povref $fr/c 256x192 scenes/tworooms.scene)"
 
 # a scene without a reference: stop before rendering, say what to give
 cp scenes/cornell.scene "$TMP/my.scene"
