@@ -67,7 +67,6 @@ estimator-bias: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,bias,bias,bias)
 estimator-bias-runs: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,bias,runs)
-
 gather: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,gather,gather,collect)
 gather-runs: $(BUILD)/photonmap | $(DEPS_TEST)
