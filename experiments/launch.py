@@ -6,12 +6,13 @@ command line (command) and makes one render's files in the run layout
 
     python3 -m experiments.launch --pm PM --scene SCENE --width W --height H \\
         --subpixels S --threads T --repeats R --of N --stem ESTIMATE-pP-nN/seedK \\
-        --member ROOT METHOD "EXTRA ARGS" K [--member ...] [--dump-reps]
+        --member ROOT METHOD "EXTRA ARGS" K [--member ...] [--member-repeats ROOT METHOD R ...] [--dump-reps]
 
 renders every member (the render ROOT/METHOD-ESTIMATE-pP-nN/seedK with the
 extra renderer options EXTRA ARGS, run K of the study's N) back to back,
 each timed with the renderer's --repeats R (auto, or a count; 1: a single
-timed run; the times the analysis reads are the repeats' minima): a
+timed run; the times the analysis reads are the repeats' minima; a
+member of --member-repeats: its own R instead): a
 group of renders of one (cell, seed) whose times are compared is run as one
 job so that they are paired samples of one machine state. The order
 alternates with the seed: odd seeds in the order given, even seeds
@@ -106,9 +107,10 @@ def remove_tmp(base):
             os.remove(os.path.join(d, name))
 
 
-def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k):
+def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k, repeats):
     """One render of the settings S (argparse namespace: pm, scene, width,
-    height, subpixels, threads, repeats, of) into ROOT; prints its progress line.
+    height, subpixels, threads, of) into ROOT, timed with --repeats REPEATS;
+    prints its progress line.
     Returns 0 (rendered) or 2 (refused, recorded); raises LaunchError on
     any other failure (nothing recorded)."""
     name = f"{layout.cell_name(method, estimate, photons, nn)}/seed{seed}"
@@ -120,7 +122,7 @@ def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k):
         if os.path.exists(base + ext):
             os.remove(base + ext)
     cmd = command(s.pm, s.scene, method, estimate, photons, nn, seed, s.width, s.height, s.subpixels, s.threads,
-                  extra, base + ".tmp", s.repeats, s.dump_reps)
+                  extra, base + ".tmp", repeats, s.dump_reps)
     with open("/proc/loadavg", encoding="ascii") as f:
         load = f.read().split()[0]
     with open(base + ".tmp.err", "wb") as err:
@@ -151,9 +153,10 @@ def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k):
     raise LaunchError(f"{label} failed (exit {rc}): {' '.join(cmd)}\nlaunch.py: {msg}")
 
 
-def run_group(s, members):
+def run_group(s, members, repeats=None):
     """Every member (root, method, extra, k) of the stem s.stem, back to back,
-    in the order alternating with the seed; all records or none."""
+    in the order alternating with the seed, each timed with s.repeats or its
+    own of REPEATS ({(root, method): repeats}); all records or none."""
     m = STEM.fullmatch(s.stem)
     if not m:
         raise LaunchError(f"'{s.stem}': not ESTIMATE-pPHOTONS-nNN/seedK")
@@ -169,7 +172,8 @@ def run_group(s, members):
     try:
         for pos, i in enumerate(order, 1):
             root, method, extra, k = members[i]
-            render(s, root, method, estimate, photons, nn, seed, extra, pos if len(members) > 1 else 0, k)
+            render(s, root, method, estimate, photons, nn, seed, extra, pos if len(members) > 1 else 0, k,
+                   (repeats or {}).get((root, method), s.repeats))
         done = True
     finally:
         if not done:  # the group unfinished: none of its records stays
@@ -192,9 +196,16 @@ def main(argv=None):
     ap.add_argument("--stem", required=True, help="ESTIMATE-pPHOTONS-nNN/seedK")
     ap.add_argument("--dump-reps", action="store_true", help="each render's representatives to seedK.reps.csv")
     ap.add_argument("--member", nargs=4, action="append", required=True, metavar=("ROOT", "METHOD", "ARGS", "K"))
+    ap.add_argument("--member-repeats", nargs=3, action="append", default=[], metavar=("ROOT", "METHOD", "R"),
+                    help="the member ROOT METHOD's --repeats instead of --repeats (e.g. 1 for a long render)")
     s = ap.parse_args(argv)
+    members = [(root, method, extra, int(k)) for root, method, extra, k in s.member]
     try:
         check_repeats(s.repeats)
+        own = {(root, method): check_repeats(r) for root, method, r in s.member_repeats}
+        for key in own:
+            if key not in {(root, method) for root, method, _, _ in members}:
+                raise LaunchError(f"--member-repeats {' '.join(key)}: no such --member")
     except LaunchError as e:
         ap.error(str(e))
 
@@ -202,9 +213,8 @@ def main(argv=None):
         raise SystemExit(1)
     for sig in (signal.SIGTERM, signal.SIGHUP):
         signal.signal(sig, stop)
-    members = [(root, method, extra, int(k)) for root, method, extra, k in s.member]
     try:
-        run_group(s, members)
+        run_group(s, members, own)
     except LaunchError as e:
         print(f"launch.py: {e}", file=sys.stderr)
         return 1

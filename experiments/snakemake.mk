@@ -18,12 +18,12 @@ CORES ?= $(shell nproc 2>/dev/null || echo 1)
 TIMED_AT_ONCE ?= 1
 SNAKEFLAGS ?=
 # the knobs read from the environment too (as make's ?= defaults do)
-SMK_ENV_KNOBS := SCENE SIZE SEEDS PHOTONS NNS METHODS ESTIMATES SUBPIXELS THREADS PM PM_ARGS TAG CONV_RUNROOT \
+SMK_ENV_KNOBS := SCENE SIZE SEEDS TIME_REPEATS PHOTONS NNS METHODS ESTIMATES SUBPIXELS THREADS PM PM_ARGS TAG CONV_RUNROOT \
   REF REF_FAST RESULTS EE_TARGETS TIME BOOTSTRAP BOOTSTRAP_SEED PYTHON \
   CONV_REF_PHOTONS CONV_REF_FACTOR CONV_REF_NN CONV_REF_SEEDS CONV_REF_DIRECT RES_SIZES RES_TARGETS RES_REF \
   SCENES SCENES_CELL FIGURES REP_RULES BEYOND_SIZES BEYOND_TAUS BEYOND_GATE BEYOND_VARIANTS \
   REPRO_TASKSET REPRO_GOAL_PP FIG3_CELLS FIG3_PAPER_CELLS FIG_SEED FIG3_CROP FIG3_CROP_AT FIG_ERROR_BLOCK FIG_REF \
-  FIG2_PHOTONS FIG2_NN FIG2_PLANE FIG2_WINDOW EVAL_VARIANTS EVAL_CACHE EVAL_POV_SCENE OUT
+  FIG2_PHOTONS FIG2_NN FIG2_PLANE FIG2_WINDOW EVAL_VARIANTS EVAL_CACHE EVAL_POV_SCENE OUT GATHERS GATHER_CORNELL_SIZES ONE_REPEAT_WORK
 SMK_OWN_VARS := SNAKEMAKE CORES TIMED_AT_ONCE SNAKEFLAGS CLUSTER GROUP_RENDERS SLURM_JOBS SLURM_DIR SBATCH_OPTS SWEEP
 # shell_quote TEXT: TEXT as one single-quoted shell word
 shell_quote = '$(subst ','\'',$(1))'
@@ -63,7 +63,7 @@ smk = $(smk_logs)$(SNAKEMAKE) -s experiments/Snakefile $(smk_where) \
   --config STUDY=$(1) $(smk_config) $(if $(3),--forcerun $(3)) -- $(2)
 
 # the study targets: STUDY (studies.yaml), its report rule, its first analysis rule
-.PHONY: reproduce-table reproduce-runs list-runs caustic estimator-bias estimator-bias-runs figures sweep-slurm evaluate evaluate-references resolution resolution-runs scenes scenes-runs rep-study rep-study-runs beyond beyond-runs reproducibility reproducibility-runs
+.PHONY: reproduce-table reproduce-runs list-runs caustic estimator-bias estimator-bias-runs figures sweep-slurm evaluate evaluate-references resolution resolution-runs scenes scenes-runs rep-study rep-study-runs beyond beyond-runs reproducibility reproducibility-runs reproducibility-runs gather gather-runs
 reproduce-table: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,table1,table1,collect)
 # Table 1's renders only; every render's record path, one per line
@@ -77,15 +77,10 @@ estimator-bias: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,bias,bias,bias)
 estimator-bias-runs: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,bias,runs)
-
-# gather (issue 37; studies.yaml, rules/gather.smk): SCENES at the scenes
-# study's size, cornell also at GATHER_CORNELL_SIZES (SIZE given: that size
-# only), each grid against its converged reference (made first, as for `make scenes`)
-GATHER_CORNELL_SIZES ?= 256x192 512x384 1024x768
-gather_grids = $(foreach s,$(SCENES),$(foreach z,$(if $(and $(filter %/cornell.scene,$(s)),$(if $(filter command line,$(origin SIZE)),,y)),$(GATHER_CORNELL_SIZES),$(scenes_size)),$(s)@$(z)=$(call converged_ref,$(s),$(z))))
-.PHONY: gather
-gather: $(BUILD)/photonmap $(foreach g,$(gather_grids),$(lastword $(subst =, ,$(g)))) | $(DEPS_TEST)
-	+@$(call smk,gather $(call shell_quote,GATHER_GRIDS=$(call yaml_quote,$(gather_grids))) $(call shell_quote,DIRECT_RUNS=$(call yaml_quote,$(foreach s,$(SCENES),$(s)@$(scenes_size)=$(scene-$(call scene_id,$(s))_RUNS_CSV)))),gather,gather_collect)
+gather: $(BUILD)/photonmap | $(DEPS_TEST)
+	+@$(call smk,gather,gather,collect)
+gather-runs: $(BUILD)/photonmap | $(DEPS_TEST)
+	+@$(call smk,gather,runs)
 resolution: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,resolution,resolution,collect)
 resolution-runs: $(BUILD)/photonmap | $(DEPS_TEST)

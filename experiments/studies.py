@@ -119,7 +119,7 @@ class Grid:
     analysis files; attributes named after the knobs, lower case. NAME: the
     grid's name in its files' {grid} (a study of one grid: "")."""
 
-    def __init__(self, study, decl, k, name="", files=None, conv=None, root=None):
+    def __init__(self, study, decl, k, name="", files=None, conv=None, root=None, block=None):
         self.study, self.name = study, name
         self.knobs = k
         self.results, self.pm, self.python = k["RESULTS"], k["PM"], k["PYTHON"]
@@ -145,6 +145,8 @@ class Grid:
                      layout.run_root(self.results, self.scene, self.size, self.subpixels, self.threads, self.tag))
         # a study whose times are not compared renders once
         self.time_repeats = parse_time_repeats(k["TIME_REPEATS"]) if decl.get("timed", True) else "1"
+        # studies.yaml one_repeat: the renders whose work reaches a knob's value run once
+        self.one_repeat = (block or {}).get("one_repeat") or decl.get("one_repeat")
         # the conventional renders compared with: CONV_RUNROOT, the grid CONV's, or its own
         self.conv_root = k["CONV_RUNROOT"] or (conv.root if conv else self.root)
         self.conv_files = conv.run_files if conv else []
@@ -173,17 +175,42 @@ class Grid:
         """The place (1..N) of the render NAME in the grid's run list."""
         return self.run_names.index(name) + 1
 
+    def repeats(self, method, nn):
+        """The --repeats of the grid's render of METHOD at n = NN: TIME_REPEATS,
+        or 1 where the block's one_repeat (studies.yaml: {methods, factor,
+        at}) says the render's work, eye samples (width x height x
+        subpixels^2) x n x the knob FACTOR's value, reaches the knob AT's
+        value for one of its METHODS."""
+        once = self.one_repeat
+        if not once or method not in once["methods"]:
+            return self.time_repeats
+        work = self.width * self.height * self.subpixels ** 2 * int(nn) * float(self.knobs[once["factor"]])
+        return "1" if work >= float(self.knobs[once["at"]]) else self.time_repeats
+
+    def launch_words(self, stem):
+        """The launcher's words common to every job of the grid rendering the
+        renders STEM (ESTIMATE-pP-nN/seedK) of one (cell, seed): the members
+        (member_words) follow (experiments/launch.py)."""
+        return [self.python, "-m", "experiments.launch", "--pm", self.pm, "--scene", self.scene,
+                "--width", self.width, "--height", self.height, "--subpixels", self.subpixels,
+                "--threads", self.threads_arg, "--repeats", self.time_repeats, "--of", len(self.run_names),
+                "--stem", stem]
+
+    def member_words(self, root, method, nn, k):
+        """The launcher's words of one member: the render of METHOD at n = NN
+        into ROOT with the grid's renderer options, run K of the study's, and
+        its own --repeats where it is not the job's (repeats)."""
+        words = ["--member", root, method, self.pm_args, k]
+        repeats = self.repeats(method, nn)
+        return words + (["--member-repeats", root, method, repeats] if repeats != self.time_repeats else [])
+
     def launch_command(self, root, methods, estimate, photons, nn, seed):
         """The shell command rendering METHODS of one (cell, seed) back to back
         (experiments/launch.py)."""
         stem = f"{estimate}-p{photons}-n{nn}/seed{seed}"
-        words = [self.python, "-m", "experiments.launch", "--pm", self.pm, "--scene", self.scene,
-                 "--width", self.width, "--height", self.height, "--subpixels", self.subpixels,
-                 "--threads", self.threads_arg, "--repeats", self.time_repeats, "--of", len(self.run_names),
-                 "--stem", stem]
+        words = self.launch_words(stem)
         for m in methods:
-            name = f"{layout.cell_name(m, estimate, photons, nn)}/seed{seed}"
-            words += ["--member", root, m, self.pm_args, self.position(name)]
+            words += self.member_words(root, m, nn, self.position(f"{layout.cell_name(m, estimate, photons, nn)}/seed{seed}"))
         return shell_words(words + (["--dump-reps"] if self.dump_reps else []))
 
 
@@ -254,9 +281,11 @@ def block_cases(block, k):
 
 def grid_name(block, case, value):
     """A grid's name in its files' {grid}: its case's name and its value
-    (the scene's name for SCENE) joined by -, or the block's name."""
+    (the scene's name for SCENE; as the block's value_name spells it, e.g.
+    "N{value}") joined by -, or the block's name."""
     if block.get("over"):
         value = os.path.splitext(os.path.basename(value))[0] if block.get("knob") == "SCENE" else value
+        value = block.get("value_name", "{value}").format(value=value)
     return "-".join(x for x in (case, value) if x) or block.get("name", "")
 
 
@@ -281,7 +310,7 @@ class Study:
     def __init__(self, sid, decl, knobs, given=()):
         self.id, self.target, self.decl = sid, decl["target"], decl
         k = {name: knob_text(v) for name, v in knobs.items()}
-        self.knobs = k
+        self.knobs, self.given = k, set(given)
         self.results, self.pm, self.python = k["RESULTS"], k["PM"], k["PYTHON"]
         self.timed = 1 if decl.get("timed", True) else 0
         # REPRO_TASKSET (interleaved studies): a CPU list, "last" (this
@@ -315,7 +344,7 @@ class Study:
                     args = value_args(b, value, self.target, kk)
                     kk.update({n: knob_text(v).format(value=value, args=args) for n, v in (b.get("fixed") or {}).items()})
                     kk["VALUE"] = value
-                    grids.append(Grid(self, decl, kk, grid_name(b, case, value), files, conv, b.get("root")))
+                    grids.append(Grid(self, decl, kk, grid_name(b, case, value), files, conv, b.get("root"), b))
             by_block[b.get("name", "")] = grids
             self.blocks.append((b.get("name", ""), files, grids))
         self.grids = [g for _, _, gs in self.blocks for g in gs]
@@ -346,6 +375,13 @@ class Study:
         wildcard, else the block's only one."""
         grids = self.blocks[block][2]
         return grids[0] if len(grids) == 1 else self.by_name[wildcards.get("grid", "")]
+
+    def related(self, name):
+        """The study another one of the study's results comes from
+        (studies.yaml related: NAME: {study, knobs}), loaded with this
+        study's values of the knobs KNOBS."""
+        rel = self.decl["related"][name]
+        return load(rel["study"], {n: self.knobs[n] for n in rel["knobs"]})
 
     def conv_ref_photons(self):
         """P_e of our converged reference: CONV_REF_PHOTONS, or CONV_REF_FACTOR

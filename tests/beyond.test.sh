@@ -84,7 +84,7 @@ EOF
 chmod +x "$TMP/pm-fail" "$TMP/pm-slow"
 # launch PM SEED: one group of three members of one (cell, seed) at 8x6
 launch() {
-  "$PY" -m experiments.launch --pm "$1" --scene scenes/cornell.scene --width 8 --height 6 --subpixels 1 --threads 1 \
+  "$PY" -m experiments.launch --pm "$1" --scene scenes/cornell.scene --width 8 --height 6 --subpixels 1 --threads 1 --repeats 1 \
     --of 3 --stem "paper-p500-n5/seed$2" --member "$G/a" conventional "" 1 --member "$G/a" precomputed "" 2 \
     --member "$G/b" precomputed "--rep-eval lazy" 3
 }

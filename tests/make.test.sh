@@ -53,6 +53,19 @@ check "caustic SIZE=40x30 SEEDS=2 NNS=10: the caustic scene at 40x30" \
 check "estimator-bias SEEDS=2 NNS=5: those seeds and n only" \
   bash -c "out=\$(make -n estimator-bias SEEDS=2 NNS=5 RESULTS=$R 2>&1) && grep -q 'experiments.launch .*--stem paper-p50000-n5/seed2 --member [^ ]*/runs/estimator-bias ' <<< \"\$out\" &&
            ! grep -q -- '-n10/' <<< \"\$out\" && ! grep -q 'seed3' <<< \"\$out\""
+# gather: cornell at SIZE and at GATHER_CORNELL_SIZES, one run root per N
+# (gatherN), the heavy conventional renders once (12,288 eye samples x 8 x 40
+# >= ONE_REPEAT_WORK; 4 x 10 is not, nor 32x24's 3,072 x 8 x 40), the scenes study's runs as the map seen
+# directly, TIME_REPEATS from the environment
+check "gather: the grids per case and N, one_repeat, the scenes study's runs, TIME_REPEATS from the environment" \
+  bash -c "out=\$(TIME_REPEATS=3 make -n gather SIZE=64x48 SEEDS=2 SCENES=scenes/cornell.scene GATHERS='4 8' GATHER_CORNELL_SIZES=32x24 \
+             PHOTONS=5000 NNS='10 40' ONE_REPEAT_WORK=3e6 RESULTS=$R 2>&1) &&
+           grep -q -- '--repeats 3 --of 8 --stem paper-p5000-n40/seed1 --member [^ ]*runs/cornell-64x48-s2-t1-gather8 conventional .--gather 8 --direct shadow-rays. 3 --member-repeats [^ ]*-gather8 conventional 1 ' <<< \"\$out\" &&
+           grep -- 'n10/seed1 --member [^ ]*cornell-64x48-s2-t1-gather4 ' <<< \"\$out\" | grep -q -- '--repeats 3 ' &&
+           ! grep -- 'n10/seed1 --member [^ ]*cornell-64x48-s2-t1-gather4 ' <<< \"\$out\" | grep -q -- --member-repeats &&
+           grep -q 'analysis.reference build .*--width 32 --height 24' <<< \"\$out\" &&
+           grep -q -- '--grid scenes/cornell.scene 32x24 8 [^ ]*/gather/runs-cornell-32x24-N8.csv' <<< \"\$out\" &&
+           grep -q -- '--direct scenes/cornell.scene 64x48 [^ ]*/scenes/runs-cornell.csv' <<< \"\$out\""
 check "resolution SIZE=40x30: that size only" \
   bash -c "out=\$(make -n resolution SIZE=40x30 SEEDS=1 PHOTONS=2000 NNS=10 RESULTS=$R 2>&1) && grep -q 'convref.*/40x30.exr' <<< \"\$out\" &&
            ! grep -q '256x192' <<< \"\$out\""

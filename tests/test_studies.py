@@ -148,3 +148,56 @@ def test_reproducibility_two_runs_pinned():
         "reference/cornell/cornell-reference-256x192.exr"
     g = studies.load("reproducibility", {"SIZE": "40x30", "RESULTS": "/r"}).grids[0]
     assert g.ref_converged and g.ref.endswith("/40x30.exr")
+
+
+def test_gather_cases_times_n_each_with_its_tag_and_reference():
+    """gather: SCENES at SIZE, cornell also at GATHER_CORNELL_SIZES, one grid
+    per N of GATHERS, a run root tagged gatherN, --gather N on both methods."""
+    s = studies.load("gather", dict(TINY, SIZE="64x48", SCENES="scenes/cornell.scene scenes/caustic.scene",
+                                    GATHERS="4 8", GATHER_CORNELL_SIZES="32x24 64x48"))
+    assert [g.name for g in s.grids] == ["caustic-64x48-N4", "caustic-64x48-N8", "cornell-32x24-N4", "cornell-32x24-N8",
+                                         "cornell-64x48-N4", "cornell-64x48-N8"]
+    g = s.by_name["cornell-32x24-N8"]
+    assert (g.scene, g.size, g.tag, g.pm_args) == ("scenes/cornell.scene", "32x24", "gather8", "--gather 8 --direct shadow-rays")
+    assert g.root == "/r/runs/cornell-32x24-s2-t1-gather8"
+    assert g.methods == ["conventional", "precomputed"] and g.paired
+    assert g.ref == "/r/runs/cornell" + CONVREF + "/32x24.exr" and g.ref_converged
+    assert g.files["runs_csv"] == "/r/gather/runs-cornell-32x24-N8.csv"
+    # a scene other than cornell at SIZE only
+    assert not [x for x in s.grids if x.scene == "scenes/caustic.scene" and x.size != "64x48"]
+    for knob in ("SCENE", "TAG", "GATHER_GRIDS", "DIRECT_RUNS"):
+        with pytest.raises(studies.StudyError, match="GATHER_CORNELL_SIZES"):
+            studies.load("gather", dict(TINY, **{knob: "x"}))
+
+
+def test_gather_one_repeat_for_the_heaviest_conventional_renders():
+    """one_repeat: eye samples (64 x 48 x 2^2 = 12,288) x N x n at or above
+    ONE_REPEAT_WORK: the conventional render runs --repeats 1; the
+    precomputed one and the lighter cells TIME_REPEATS; control: a
+    threshold above every cell leaves every render at TIME_REPEATS."""
+    knobs = dict(TINY, SIZE="64x48", SCENES="scenes/cornell.scene", GATHERS="4", GATHER_CORNELL_SIZES="64x48",
+                 ONE_REPEAT_WORK="983040", TIME_REPEATS="3")
+    g = studies.load("gather", knobs).by_name["cornell-64x48-N4"]
+    assert g.repeats("conventional", 20) == "1"        # 12,288 x 4 x 20 = 983,040: at it
+    assert g.repeats("conventional", 19) == "3"        # below it
+    assert g.repeats("precomputed", 20) == "3"
+    cmd = g.launch_command(g.root, ["conventional", "precomputed"], "paper", "2000", "20", 1)
+    assert "--repeats 3 --of 16" in cmd and f"--member-repeats {g.root} conventional 1" in cmd
+    assert "precomputed 1" not in cmd.split("--member-repeats")[1]
+    light = studies.load("gather", dict(knobs, ONE_REPEAT_WORK="1e12")).by_name["cornell-64x48-N4"]
+    assert "--member-repeats" not in light.launch_command(light.root, ["conventional"], "paper", "2000", "20", 1)
+    # a study without one_repeat: TIME_REPEATS everywhere
+    t = studies.load("table1", dict(TINY, SIZE="64x48", TIME_REPEATS="3"))
+    assert t.repeats("conventional", 10 ** 9) == "3"
+
+
+def test_gather_direct_runs_are_the_scenes_studys_files():
+    """related: direct: the scenes study loaded with gather's RESULTS, SIZE
+    and SCENES: its runs.csv per scene, as `make scenes` writes them."""
+    knobs = dict(TINY, SIZE="64x48", SCENES="scenes/cornell.scene scenes/caustic.scene")
+    d = studies.load("gather", knobs).related("direct")
+    scenes = studies.load("scenes", {"RESULTS": "/r", "SIZE": "64x48", "SCENES": knobs["SCENES"]})
+    assert [(g.scene, g.size, g.files["runs_csv"]) for g in d.grids] == \
+        [(g.scene, g.size, g.files["runs_csv"]) for g in scenes.grids] == \
+        [("scenes/cornell.scene", "64x48", "/r/scenes/runs-cornell.csv"),
+         ("scenes/caustic.scene", "64x48", "/r/scenes/runs-caustic.csv")]

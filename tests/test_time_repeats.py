@@ -123,3 +123,21 @@ def test_phase_sums_are_minima_of_sums():
     assert collect.repeat_min(st, ("precompute", "render")) == 3.5
     # one timed run (no repeats recorded): the sum
     assert collect.repeat_min({"time_s": {"trace": 0.25, "build": 0.5}}, ("trace", "build")) == 0.75
+
+
+def test_launcher_member_repeats_override_one_member(tmp_path, monkeypatch, capsys):
+    """--member-repeats ROOT METHOD R: that member renders with --repeats R,
+    whatever --repeats says; one naming no member is refused (exit 2)."""
+    root = tmp_path / "runs"
+    rc, argv, _ = run_launcher(tmp_path, monkeypatch, "5")
+    assert argv[argv.index("--repeats") + 1] == "5"  # control: without it, --repeats
+    monkeypatch.setattr(sys, "argv", ["launch"])
+    pm = tmp_path / "pm"
+    base = ["--pm", str(pm), "--scene", "s.scene", "--width", "8", "--height", "6", "--subpixels", "1", "--repeats", "5",
+            "--of", "1", "--stem", "paper-p1000-n10/seed1", "--member", str(root), "precomputed", "", "1"]
+    assert launch.main(base + ["--member-repeats", str(root), "precomputed", "1"]) == 0
+    argv = (tmp_path / "argv").read_text().split("\n")
+    assert argv[argv.index("--repeats") + 1] == "1"
+    with pytest.raises(SystemExit) as e:
+        launch.main(base + ["--member-repeats", str(root), "conventional", "1"])
+    assert e.value.code == 2 and "no such --member" in capsys.readouterr().err

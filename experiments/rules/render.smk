@@ -75,14 +75,11 @@ if GROUPED:
 
     def group_command(wc):
         base = STUDY.by_root[wc.root]
-        members = [(base.root, m, base.pm_args) for m in base.methods]
-        members += [(STUDY.by_root[wc.root + sfx].root, "precomputed", g.pm_args) for sfx, g in MEMBERS]
         stem = f"{wc.estimate}-p{wc.photons}-n{wc.nn}/seed{wc.seed}"
-        words = [base.python, "-m", "experiments.launch", "--pm", base.pm, "--scene", base.scene,
-                 "--width", base.width, "--height", base.height, "--subpixels", base.subpixels,
-                 "--threads", base.threads_arg, "--repeats", base.time_repeats, "--of", len(base.run_names), "--stem", stem]
-        for root, m, args in members:
-            words += ["--member", root, m, args, base.position(f"{m}-{stem}")]
+        members = [(base, m) for m in base.methods] + [(STUDY.by_root[wc.root + sfx], "precomputed") for sfx, _ in MEMBERS]
+        words = base.launch_words(stem)
+        for g, m in members:
+            words += g.member_words(g.root, m, wc.nn, base.position(f"{m}-{stem}"))
         return shell_words(words)
 
     rule group:
