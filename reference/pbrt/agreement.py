@@ -5,8 +5,8 @@ Usage (reference/measure-pbrt.sh runs it):
 
 For each scene: the regions are the pixels whose four subpixel rays (the
 renderer's 2x2 points (x + (s + 0.5)/2) / W) all hit one shape first; this
-file casts those rays itself (numpy, the scene file's spheres and
-rectangles, the renderer's camera) since the renderer writes no shape ids.
+file casts those rays itself (numpy, on the spheres, rectangles and camera
+basis `photonmap info --json` gives) since the renderer writes no shape ids.
 In each region it takes the mean of the RGB mean over its pixels, per
 image, and reports, as ratios to pbrt (BDPT to 24 bounces + path tracing
 25-64, the mean over its seeds):
@@ -34,6 +34,9 @@ import sys
 import numpy as np
 from scipy import stats
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+from experiments.analysis import scene_info  # noqa: E402
+
 
 def read_exr(path):
     import OpenImageIO as oiio
@@ -52,48 +55,15 @@ def box_down(img, w, h):
     return img.reshape(h, fy, w, fx, 3).mean(axis=(1, 3))
 
 
-def parse_scene(path):
-    """Camera (position, look_at, up, fov) and shapes [(kind, params, material)]."""
-    cam, shapes = None, []
-    with open(path) as f:
-        for line in f:
-            tok = line.split("#", 1)[0].split()
-            if not tok:
-                continue
-            kv = {}
-            i = 1
-            while i < len(tok):
-                key = tok[i]
-                j = i + 1
-                vals = []
-                while j < len(tok) and not tok[j][0].isalpha():
-                    vals.append(float(tok[j]))
-                    j += 1
-                if not vals and j < len(tok):  # a name value (material NAME)
-                    vals = tok[j]
-                    j += 1
-                kv[key] = vals
-                i = j
-            if tok[0] == "camera":
-                cam = kv
-            elif tok[0] == "rect":
-                shapes.append(("rect", kv, kv["material"]))
-            elif tok[0] == "sphere":
-                shapes.append(("sphere", kv, kv["material"]))
-    return cam, shapes
-
-
 def shape_ids(scene, w, h):
-    """(h, w, 4) index of the first shape each 2x2 subpixel ray hits (-1: none)."""
-    cam, shapes = parse_scene(scene)
-    pos = np.array(cam["position"])
-    fwd = np.array(cam["look_at"]) - pos
-    fwd /= np.linalg.norm(fwd)
-    right = np.cross(fwd, np.array(cam["up"]))
-    right /= np.linalg.norm(right)
-    up = np.cross(right, fwd)
-    hw = math.tan(0.5 * math.radians(cam["fov"][0]))
-    right, up = right * hw, up * hw * h / w
+    """(h, w, 4) index of the first shape each 2x2 subpixel ray hits (-1:
+    none), and the shapes [(kind, params, material)]: the camera basis and
+    the shapes as the renderer reads them (`photonmap info --json`)."""
+    info = scene_info.load(scene, width=w, height=h)
+    b = info["camera"]["basis"]
+    pos, fwd, right, up = (np.array(b[k], dtype=float) for k in ("origin", "forward", "right", "up"))
+    shapes = [(sh["kind"], {k: ([v] if k == "radius" else v) for k, v in sh.items()}, sh["material"])
+              for sh in info["shapes"]]
     ys, xs, ss = np.meshgrid(np.arange(h), np.arange(w), np.arange(4), indexing="ij")
     u = (xs + (ss % 2 + 0.5) / 2) / w
     v = (ys + (ss // 2 + 0.5) / 2) / h
