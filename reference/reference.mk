@@ -69,7 +69,7 @@ $(eval $(call ref_render,cornell-reference-2x2-1024x768,$(REF_SCENE),1024,768,2,
 # render is the reference's own floor in the table's error columns
 $(eval $(call ref_render,cornell-fast-1024x768,$(REF_SCENE),1024,768,1,--quality fast,))
 # and the fast preset with the 2x2 subpixel rays: the floor of the 2x2
-# reference (experiments/findref.sh pairs each reference with the fast render
+# reference (experiments/studies.py's pov_reference pairs each reference with the fast render
 # of its own sampling)
 $(eval $(call ref_render,cornell-fast-2x2-1024x768,$(REF_SCENE),1024,768,2,--quality fast,))
 

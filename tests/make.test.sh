@@ -98,7 +98,7 @@ check "reproduce-table's default reference and floor at 1024x768 are the 2x2 ren
 # studies.pov_reference on a tree of empty files: the 2x2 pair wins over the one-sample
 # pair; control: with the one-sample pair alone it is found (the check above
 # tells them apart), and a pbrt or bounce-limited render is never a POV-Ray reference
-fr="$TMP/findref"; mkdir -p "$fr/a/reference/cornell" "$fr/b/reference/cornell" "$fr/c/reference/tworooms"
+fr="$TMP/povref"; mkdir -p "$fr/a/reference/cornell" "$fr/b/reference/cornell" "$fr/c/reference/tworooms"
 for f in reference-1024x768 fast-1024x768 reference-2x2-1024x768 fast-2x2-1024x768; do : > "$fr/a/reference/cornell/cornell-$f.exr"; done
 for f in reference-1024x768 fast-1024x768; do : > "$fr/b/reference/cornell/cornell-$f.exr"; done
 : > "$fr/c/reference/tworooms/tworooms-pbrt-bdpt-256x192-seed1.exr"; : > "$fr/c/reference/tworooms/tworooms-b2-reference-256x192.exr"

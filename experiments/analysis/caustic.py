@@ -303,7 +303,7 @@ def figure(summary, per_run, ref, args):
 
 
 def main():
-    """Command line: see the module docstring and experiments/caustic.mk."""
+    """Command line: see the module docstring and experiments/rules/caustic.smk."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", required=True, help="runs.csv of the caustic grid")
     ap.add_argument("--ref", required=True, help="the POV-Ray reference of the caustic scene at the grid's size")

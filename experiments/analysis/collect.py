@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """collect.py: the renders of a grid -> runs.csv and cells.csv.
 
-Owns turning the files of experiments/run.sh (seed<k>.run.json,
+Owns turning the files of experiments/launch.py (seed<k>.run.json,
 seed<k>.stats.json, seed<k>.exr under RUNROOT/<method>-<estimate>-p<P_e>-n<n>/)
 into numbers: every image-derived number of the analysis is computed here,
 once, with metrics.py.
@@ -16,7 +16,8 @@ analysis compares as the minimum over repeats of each repeat's sum
 (trace_build_s: photon pass + kd-tree build; precompute_render_s:
 precompute + eye pass; never a sum of per-phase minima), the CPU
 seconds of the process, its place in a back-to-back pair (pair_pos: 1 or 2,
-rendered first or second by experiments/pair.sh; 0: not paired), photon
+rendered first or second by rule pair of experiments/rules/render.smk;
+0: not paired), photon
 counts, and the image's relMSE/NMSE/RMSE/PSNR
 against the reference and its relMSE against the conventional image of the
 same seed and estimate (0 for the conventional image itself), and its role:
@@ -87,7 +88,7 @@ def read_run(root, method, estimate, photons, nn, seed):
     for key in layout.RECORD_KEYS:
         row[key] = math.nan if rec[key] is None else rec[key]
     row["message"] = rec.get("message", "")
-    row["pair_pos"] = rec.get("pair_pos", 0)  # records before pair.sh have none: not paired
+    row["pair_pos"] = rec.get("pair_pos", 0)  # records of unpaired renders have none: not paired
     if status == layout.REFUSED:
         row["status"] = status
         return row
@@ -182,7 +183,7 @@ def collect(args):
 
 
 def main():
-    """Command line: see the module docstring and experiments/table.mk."""
+    """Command line: see the module docstring and experiments/rules/grid.smk."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runroot", required=True)
     ap.add_argument("--conv-runroot", required=True)

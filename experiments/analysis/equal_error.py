@@ -321,7 +321,7 @@ def figure(results, path, note):
 
 
 def main():
-    """Command line: see the module docstring and experiments/table.mk."""
+    """Command line: see the module docstring and experiments/rules/grid.smk."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs-csv", required=True)
     ap.add_argument("--out", required=True, help="output stem: STEM.md and STEM.csv")

@@ -54,7 +54,7 @@ def law(method, estimate, n):
 
 def load(directory, method, estimate, photons, n, seeds):
     """Per-seed image means (average of the channels) of the runs of
-    experiments/run.sh; None if the renderer refused the setting, [] if
+    experiments/launch.py; None if the renderer refused the setting, [] if
     none was rendered."""
     values = []
     for s in range(1, seeds + 1):

@@ -2,7 +2,7 @@
 """reproducibility.py: two runs of one grid -> how far their results lie apart.
 
 Owns the comparison of runs A and B of `make reproducibility`
-(experiments/reproducibility.mk: the same grid, commit and settings, the
+(experiments/rules/reproducibility.smk: the same grid, commit and settings, the
 pairs of the two runs interleaved in time): per cell and estimate both runs'
 paired time ratios (precomputed / conventional, table.py's paired_ratio_*
 columns, and the drift control trace_ratio_*) and paired relMSE differences

@@ -749,7 +749,7 @@ def figure(res, args, caption):
 
 
 def main():
-    """Command line: see the module docstring and experiments/repstudy.mk."""
+    """Command line: see the module docstring and experiments/rules/rep-study.smk."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--base-runs", required=True, help="runs.csv of the untagged grid")
     ap.add_argument("--variant", action="append", default=[], metavar="RULE=RUNS.csv",

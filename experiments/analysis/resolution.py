@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """resolution.py: per-size Table 1 CSVs -> resolution.md, the cheapest
-settings per output size (`make resolution`, experiments/resolution.sh).
+settings per output size (`make resolution`, experiments/rules/resolution.smk).
 
 Owns the choice, for each relMSE target and output size, of the cheapest
 cell (method, estimate, P_e, n) whose error stays below the target: the

@@ -344,8 +344,9 @@ def paired_section(table, estimates):
         if not prec:
             continue
         out += ["", f"## Paired: precomputed against conventional, the same seed ({est} estimate)", "",
-                "Per seed the two renders share the photon map and ran back to back (`experiments/pair.sh`: the "
-                "order alternates with the seed). Time ratios: exp of the mean over seeds of log(precomputed / "
+                "Per seed the two renders share the photon map and ran back to back (rule `pair` of "
+                "`experiments/rules/render.smk`: the order alternates with the seed). "
+                "Time ratios: exp of the mean over seeds of log(precomputed / "
                 "conventional), with the exponentiated 95% t-interval of that mean; s: the renderer's own total "
                 "(`time_s.total`: no start-up, no image writing), CPU: the process (`/usr/bin/time`, secondary); "
                 "trace: the photon-trace phase, the same code in both methods, the **drift control** (100% when the "
@@ -570,7 +571,7 @@ def markdown(table, runs, estimates, args):
 
 
 def main():
-    """Command line: see the module docstring and experiments/table.mk."""
+    """Command line: see the module docstring and experiments/rules/grid.smk."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs-csv", required=True)
     ap.add_argument("--cells-csv", required=True)
