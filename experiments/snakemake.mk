@@ -5,7 +5,7 @@
 # experiments/studies.py applies over the study's own values and checks.
 #
 #   make reproduce-table SIZE=64x48 SEEDS=2      # renders what is missing, then the analysis
-#   make reproduce-table SNAKEFLAGS=-n           # the engine's dry run: every job and why it would run
+#   make reproduce-table SNAKEFLAGS=-n           # the engine's dry run, quiet: the number of jobs per rule
 #   make -n reproduce-table                      # the same dry run, with the jobs' shell commands
 #   make reproduce-table CLUSTER=slurm           # every job on Slurm, the renders grouped
 #
