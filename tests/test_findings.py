@@ -21,6 +21,17 @@ from helpers import table1_frame
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
+def md(name, d):
+    """FINDINGS.md's (title, lines) of finding NAME, from the files D names."""
+    writer = {n: w for _, n, w, _ in findings.FINDINGS}[name]
+    return writer(findings.RECORDS[name](d))
+
+
+def readme(name, d):
+    """README's summary bullet of finding NAME, from the files D names."""
+    return dict(findings.SUMMARY)[name](findings.RECORDS[name](d))
+
+
 def test_readme_numbers_backed():
     """Every number of README's findings section is a number token of some
     results file (the committed README against the committed results/)."""
@@ -114,10 +125,10 @@ def test_summary_wording_from_tests():
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "table1.csv")
         table1_frame([(80, 75, 85), (40, 38, 42), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(path, index=False)
-        line = findings.summary_table({"table": path})
+        line = readme("table", {"table": path})
         assert "P_e = 50k falls from" in line and "holds at 1 of 2 photon counts" in line
         table1_frame([(80, 75, 85), (78, 70, 82), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(path, index=False)
-        line = findings.summary_table({"table": path})
+        line = readme("table", {"table": path})
         assert "P_e = 50k goes from" in line and "holds at 0 of 2 photon counts" in line
 
 
@@ -129,7 +140,7 @@ def test_findings_wording_from_tests():
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "table1.csv")
         t.to_csv(path, index=False)
-        _, lines = findings.finding1({"table": path})
+        _, lines = md("table", {"table": path})
         text = "\n".join(lines)
         assert "at P_e = 50000: the ratio at n = 100 is ranked below the one at n = 10" in text
         assert "Over P_e at n = 10: the ratio at P_e = 500000 against the one at P_e = 50000: undetermined" in text
@@ -137,8 +148,8 @@ def test_findings_wording_from_tests():
         # a table without the paired columns: the finding says so, no number
         t.drop(columns=["paired_ratio_percent"]).to_csv(path, index=False)
         try:
-            findings.finding1({"table": path})
-            assert False, "finding1 answered without its column"
+            md("table", {"table": path})
+            assert False, "the table record answered without its column"
         except findings.Missing as e:
             assert "paired_ratio_percent" in str(e)
 
@@ -157,7 +168,7 @@ def test_findings_resolution_per_size():
     with tempfile.TemporaryDirectory() as d:
         rows(0.75).to_csv(os.path.join(d, "equal-error-1024x768.csv"), index=False)
         rows(1.25).to_csv(os.path.join(d, "equal-error-256x192.csv"), index=False)
-        _, lines = findings.finding7({"root": d, "resolution": d})
+        _, lines = md("resolution", {"root": d, "resolution": d})
         text = "\n".join(lines)
         assert text.index("- 256x192:") < text.index("- 1024x768:")
         # the headline: the curve's tightest target where 95% of the resamples are defined
@@ -165,8 +176,8 @@ def test_findings_resolution_per_size():
         assert "1.25 [1.15, 1.35]" not in text and "0.75 [0.65, 0.85]" not in text  # the tightest: 50% defined
         rows(1.0).drop(columns=["kind"]).to_csv(os.path.join(d, "equal-error-512x384.csv"), index=False)
         try:
-            findings.finding7({"root": d, "resolution": d})
-            assert False, "finding7 read a CSV without its columns"
+            md("resolution", {"root": d, "resolution": d})
+            assert False, "the resolution record read a CSV without its columns"
         except findings.Missing as e:
             assert "kind" in str(e)
 
@@ -190,13 +201,13 @@ def test_tightest_half_defined_not_quoted():
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "equal-error.csv")
         frame(0.5).to_csv(path, index=False)
-        for text in ("\n".join(findings.finding2({"equal_error": path})[1]),
-                     findings.summary_equal_error({"equal_error": path})):
+        for text in ("\n".join(md("equal_error", {"equal_error": path})[1]),
+                     readme("equal_error", {"equal_error": path})):
             assert "1.83" not in text and "0.917" not in text and "7.77" not in text, text
             assert "the curve starts at relmse 0.0101" in text.lower(), text
             assert "at 0.0123" in text and "1.61 [1.42, 1.88]x" in text, text
         frame(1.0).to_csv(path, index=False)
-        text = findings.summary_equal_error({"equal_error": path})
+        text = readme("equal_error", {"equal_error": path})
         assert "at 0.0101" in text and "1.83 [0.917, 7.77]x" in text, text
 
 
@@ -220,7 +231,7 @@ def test_findings_beyond():
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "beyond.csv")
         pd.DataFrame(rows).to_csv(path, index=False)
-        _, lines = findings.finding_beyond({"beyond": path})
+        _, lines = md("beyond", {"beyond": path})
         text = "\n".join(lines)
         assert "a-64x48 (relMSE 0.02, 5 seeds): the paper's rule 0.900 [0.800, 1.000]x; the best variant, lazy, 1.300 [1.200, 1.400]x" in text
         assert "12.5% of its eye samples fell back, 50.0% of the representatives" in text
@@ -232,8 +243,8 @@ def test_findings_beyond():
         assert "holds in 2 of 3 cases, 1 of them with the interval's lower end within the margin" in text
         pd.DataFrame(rows).drop(columns=["seeds"]).to_csv(path, index=False)
         try:
-            findings.finding_beyond({"beyond": path})
-            assert False, "finding_beyond answered without the seeds column"
+            md("beyond", {"beyond": path})
+            assert False, "the beyond record answered without the seeds column"
         except findings.Missing as e:
             assert "make beyond" in str(e)
 
@@ -252,14 +263,14 @@ def test_findings_scale():
         sp, tp = os.path.join(d, "scaling.csv"), os.path.join(d, "threads.csv")
         sc.to_csv(sp, index=False)
         th.to_csv(tp, index=False)
-        _, lines = findings.finding_scale({"scaling": sp, "threads": tp})
+        _, lines = md("scale", {"scaling": sp, "threads": tp})
         text = "\n".join(lines)
         assert "8,000 emitted photons (32,000 stored): 0.758 s in total" in text and "44.5 bytes" in text
         assert "90" not in text.split("8,000 emitted")[0]
         assert "photon pass 1.41x [1, 2]" in text and "kd-tree build 2x [2, 2]" in text
         os.remove(tp)
         try:
-            findings.finding_scale({"scaling": sp, "threads": tp})
-            assert False, "finding_scale answered without threads.csv"
+            md("scale", {"scaling": sp, "threads": tp})
+            assert False, "the scale record answered without threads.csv"
         except findings.Missing as e:
             assert "make bench-threads" in str(e)
