@@ -24,6 +24,9 @@ for the reference, rep-study-cells.csv), images with OpenImageIO
 (metrics.read_exr) from the paths runs.csv names;
 statistics come from table1.csv (computed by table.py with stats.py) and
 image metrics from metrics.py. Every figure names its data in a footer.
+Each figure NAME is two functions: NAME_record computes what it shows (the
+images, points, intervals, ranges and footer) from the inputs, and
+draw_NAME draws that record and nothing else.
 """
 
 import argparse
@@ -137,9 +140,11 @@ def provenance(args, extra=""):
 
 # ---- Figure 3 at 1:1
 
-def fig3(args):
-    """fig3.png: crops at 1:1 of each cell's two renders and their signed
-    difference, the reference once, time and error per panel."""
+def fig3_record(args):
+    """What fig3.png shows: per cell of --cells the crops of its two renders
+    (seed --seed) and their signed difference over the reference's
+    luminance with the row's symmetric range, its table rows and the ratio
+    column quoted; the reference's crop and whole frame; the crop window."""
     t = args.table_frame
     cells = parse_cells(args.cells)
     ref = read_image(args.ref, "the reference")
@@ -148,7 +153,6 @@ def fig3(args):
     # small renders: each pixel drawn as a zoom x zoom block, so panels stay legible
     zoom = max(1, math.ceil(300 / cw0))
     crop = lambda img: np.repeat(np.repeat(img[cy:cy + ch0, cx:cx + cw0], zoom, 0), zoom, 1)  # noqa: E731
-    cw, ch = cw0 * zoom, ch0 * zoom
     rows = []
     for p, n in cells:
         imgs = {}
@@ -160,12 +164,31 @@ def fig3(args):
             imgs[m] = crop(img)
         lr = np.maximum(plotting.luminance(crop(ref)), 1e-3)
         diff = (plotting.luminance(imgs["precomputed"]) - plotting.luminance(imgs["conventional"])) / lr
-        rows.append((p, n, imgs, diff, table_row(t, p, n, "conventional"), table_row(t, p, n, "precomputed")))
+        rp = table_row(t, p, n, "precomputed")
+        rows.append({"photons": p, "nn": n, "images": imgs, "diff": diff, "conventional": table_row(t, p, n, "conventional"),
+                     "precomputed": rp})
+        # the paired ratio (per-seed log ratios, t interval) where the table has it, as ratio-vs-n.png
+        rcol = "cpu_ratio" if args.time == "cpu_s" else "ratio"
+        if isnum(rp.get(f"paired_{rcol}_percent")):
+            rcol = "paired_" + rcol
+        rows[-1]["rcol"] = rcol
     # each row its own symmetric range (the 99th percentile of that row's
     # |difference|): one range for all rows left rows (b)-(d) blank beside (a)
-    lims = [float(f"{max(float(np.quantile(np.abs(r[3]), 0.99)), 1e-3):.1g}") for r in rows]
+    for r in rows:
+        r["lim"] = float(f"{max(float(np.quantile(np.abs(r['diff']), 0.99)), 1e-3):.1g}")
+    return {"cells": cells, "ref": ref, "ref_crop": crop(ref), "size": (W, H), "window": (cw0, ch0, cx, cy),
+            "zoom": zoom, "rows": rows, "footer": provenance(args)}
+
+
+def draw_fig3(rec, args):
+    """fig3.png from its record: crops at 1:1 of each cell's two renders and
+    their signed difference, the reference once, time and error per panel."""
+    cells, rows, ref, zoom = rec["cells"], rec["rows"], rec["ref"], rec["zoom"]
+    W, H = rec["size"]
+    cw0, ch0, cx, cy = rec["window"]
+    cw, ch = cw0 * zoom, ch0 * zoom
     gap, head, cap = 12, 26, 36
-    title_h, foot_h = 72, 14 * plotting.footer_lines(provenance(args), (3 * cw + 4 * gap) / 100) + 10
+    title_h, foot_h = 72, 14 * plotting.footer_lines(rec["footer"], (3 * cw + 4 * gap) / 100) + 10
     row_h = head + ch + cap
     fw = 3 * cw + 4 * gap + 40  # the difference column's colour bars
     fh = title_h + row_h * (len(rows) + 1) + foot_h
@@ -185,7 +208,7 @@ def fig3(args):
     plotting.pixel_text(fig, gap, y + 4, f"{args.ref_label}: the same crop, and the whole frame (reduced) "
                         "with the crop outlined", fontsize=10, weight="bold")
     ax = plotting.pixel_axes(fig, gap, y + head, cw, ch)
-    ax.imshow(plotting.srgb(crop(ref)), interpolation="nearest")
+    ax.imshow(plotting.srgb(rec["ref_crop"]), interpolation="nearest")
     tw = int(round(W * ch / H))
     ax = plotting.pixel_axes(fig, 2 * gap + cw, y + head, min(tw, cw), ch)
     ax.imshow(plotting.srgb(ref), interpolation="antialiased", extent=(0, W, H, 0))
@@ -200,15 +223,13 @@ def fig3(args):
                         "the nearest representative, which may\nlie on either surface, so the two\n"
                         "methods mix the surfaces differently.", fontsize=8.5)
     y += row_h
-    for i, (p, n, imgs, diff, rc, rp) in enumerate(rows):
+    for i, row in enumerate(rows):
+        p, n, imgs, rc, rp, rcol = row["photons"], row["nn"], row["images"], row["conventional"], row["precomputed"], \
+            row["rcol"]
         letter = chr(ord("a") + i)
         kind = "the paper's Fig. 3 cell" if i < args.paper_cells else "control"
         plotting.pixel_text(fig, gap, y + 4, f"({letter}) P_e = {kilo(p)}, n = {n} ({kind})", fontsize=10.5,
                             weight="bold")
-        # the paired ratio (per-seed log ratios, t interval) where the table has it, as ratio-vs-n.png
-        rcol = "cpu_ratio" if args.time == "cpu_s" else "ratio"
-        if isnum(rp.get(f"paired_{rcol}_percent")):
-            rcol = "paired_" + rcol
         ratio = report.fmt_ci(rp[f"{rcol}_percent"], rp[f"{rcol}_ci95_lo"], rp[f"{rcol}_ci95_hi"], 0)
         for j, (m, r) in enumerate((("conventional", rc), ("precomputed", rp))):
             x = gap + j * (cw + gap)
@@ -218,8 +239,8 @@ def fig3(args):
                                 fontsize=8.5)
         x = gap + 2 * (cw + gap)
         ax = plotting.pixel_axes(fig, x, y + head, cw, ch)
-        lim = lims[i]
-        ax.imshow(np.clip(diff, -lim, lim), cmap="RdBu_r", vmin=-lim, vmax=lim, interpolation="nearest")
+        lim = row["lim"]
+        ax.imshow(np.clip(row["diff"], -lim, lim), cmap="RdBu_r", vmin=-lim, vmax=lim, interpolation="nearest")
         cax = plotting.pixel_axes(fig, x + cw + 2, y + head, 8, ch)
         cax.set_axis_on()
         cax.grid(False)
@@ -230,16 +251,22 @@ def fig3(args):
                             f"time prec./conv.{' (paired)' if rcol.startswith('paired') else ''} {ratio} %\nrelMSE prec. vs conv., same seed: "
                             f"{report.fmt_pm(rp['relmse_conv_mean'], rp['relmse_conv_ci95'])}", fontsize=8.5)
         y += row_h
-    plotting.footer(fig, provenance(args))
+    plotting.footer(fig, rec["footer"])
     plotting.save(fig, os.path.join(args.out, "fig3.png"))
+
+
+def fig3(args):
+    """fig3.png (fig3_record, draw_fig3)."""
+    draw_fig3(fig3_record(args), args)
 
 
 # ---- error maps
 
-def fig3_errors(args):
-    """fig3-errors.png: per-pixel relative error against the reference of
-    every cell and method, whole frame, averaged over 2x2 blocks, on a
-    logarithmic colour scale with a colour bar."""
+def fig3_errors_record(args):
+    """What fig3-errors.png shows: per cell and method the square root of
+    the relMSE integrand against the reference averaged over
+    --error-block-square blocks, the render's own relMSE and its table row;
+    the colour scale's ends (1% and 99.9% quantiles of every map)."""
     t = args.table_frame
     cells = parse_cells(args.cells)
     ref = read_image(args.ref, "the reference")
@@ -263,9 +290,17 @@ def fig3_errors(args):
     allv = np.concatenate([r[1].ravel() for _, _, rr in maps for r in rr])
     lo = float(f"{max(np.quantile(allv, 0.01), 1e-4):.1g}")
     hi = float(f"{np.quantile(allv, 0.999):.1g}")
+    return {"block": b, "shape": (h2, w2), "maps": maps, "range": (lo, hi), "footer": provenance(args, f"Map: sqrt of the relMSE integrand (x - r)^2 / (r^2 + 0.01), mean over RGB and "
+                            f"{b}x{b}-pixel blocks (its square's mean is the image's relMSE), seed {args.seed}.")}
+
+
+def draw_fig3_errors(rec, args):
+    """fig3-errors.png from its record: the maps of every cell and method,
+    whole frame, on a logarithmic colour scale with a colour bar."""
+    b, maps, foot = rec["block"], rec["maps"], rec["footer"]
+    h2, w2 = rec["shape"]
+    lo, hi = rec["range"]
     norm = plt.matplotlib.colors.LogNorm(vmin=lo, vmax=hi)
-    foot = provenance(args, f"Map: sqrt of the relMSE integrand (x - r)^2 / (r^2 + 0.01), mean over RGB and "
-                            f"{b}x{b}-pixel blocks (its square's mean is the image's relMSE), seed {args.seed}.")
     zoom = max(1, math.ceil(300 / w2))  # small renders: each block drawn as zoom x zoom pixels
     gap, head, cap = 10, 22, 20
     pw, ph = w2 * zoom, h2 * zoom
@@ -299,6 +334,11 @@ def fig3_errors(args):
     plotting.save(fig, os.path.join(args.out, "fig3-errors.png"))
 
 
+def fig3_errors(args):
+    """fig3-errors.png (fig3_errors_record, draw_fig3_errors)."""
+    draw_fig3_errors(fig3_errors_record(args), args)
+
+
 # ---- Figure 2: the representatives and the cells they make
 
 def scene_facts(args, width, height):
@@ -311,14 +351,14 @@ def scene_facts(args, width, height):
         report.die(WHERE, f"{args.scene}: cannot read the camera: {e}")
 
 
-def fig2(args):
-    """fig2.png: (a) the representatives of one real run on one wall (the
-    plane whose normal is +FIG2_PLANE, at that coordinate's minimum: the back
-    wall for z, the floor for y), coloured by their precomputed irradiance;
-    (b) the estimate they give there, constant around each representative
-    (the nearest one, as the eye pass looks it up); (c) the same region in
-    the rendered image as luminance and (d) as displayed, its pixels
-    enlarged without smoothing."""
+def fig2_record(args):
+    """What fig2.png shows of the run --fig2-run: its representatives on one
+    wall (the plane whose normal is +FIG2_PLANE, at that coordinate's
+    minimum: the back wall for z, the floor for y) inside the window with
+    their irradiance's luminance and its 1%-99% range; the estimate they
+    give on a fine grid of the window (the nearest one within the radius
+    cap, as the eye pass looks it up); the window's outline projected into
+    the image, the pixels around it and their luminance range inside it."""
     from scipy.spatial import cKDTree
 
     d = args.fig2_run
@@ -346,7 +386,6 @@ def fig2(args):
         report.die(WHERE, f"FIG2_WINDOW '{args.fig2_window}' holds {int(inwin.sum())} representatives of the plane "
                    f"{axis} = {at:g}")
     ew = e[inwin]
-    norm = plt.Normalize(float(np.quantile(ew, 0.01)), float(np.quantile(ew, 0.99)))
     # (b): the nearest representative of the plane within the radius cap, on a fine grid
     tree = cKDTree(wall[[u, v]].to_numpy())
     res = 700
@@ -366,14 +405,39 @@ def fig2(args):
     cy0, cy1 = max(0, int(py.min()) - 4), min(H, int(math.ceil(py.max())) + 4)
     if cx1 - cx0 < 2 or cy1 - cy0 < 2:
         report.die(WHERE, f"FIG2_WINDOW '{args.fig2_window}' is not in view of {args.scene}'s camera")
+    sub = img[cy0:cy1, cx0:cx1]
+    lum = plotting.luminance(sub)
+    inside = plt.matplotlib.path.Path(np.column_stack([px, py]))
+    yy, xx = np.mgrid[cy0:cy1, cx0:cx1]
+    mask = inside.contains_points(np.column_stack([xx.ravel() + 0.5, yy.ravel() + 0.5])).reshape(lum.shape)
+    return {"run": d, "stats": st, "size": (W, H), "axis": axis, "u": u, "v": v, "window": (u0, u1, v0, v1),
+            "at": at, "on_plane": len(wall), "in_window": int(inwin.sum()), "wall_u": wall[u][inwin],
+            "wall_v": wall[v][inwin], "e": ew, "e_range": (float(np.quantile(ew, 0.01)), float(np.quantile(ew, 0.99))),
+            "field": field, "outline": (px, py), "pixels": (cx0, cx1, cy0, cy1), "sub": sub, "lum": lum,
+            "lum_range": tuple(np.quantile(lum[mask] if mask.any() else lum, [0.01, 0.99]))}
+
+
+def draw_fig2(rec, args):
+    """fig2.png from its record: (a) the representatives on the wall,
+    coloured by their precomputed irradiance; (b) the estimate they give
+    there, constant around each representative; (c) the same region in the
+    rendered image as luminance and (d) as displayed, its pixels enlarged
+    without smoothing."""
+    d, st, axis, u, v, at = rec["run"], rec["stats"], rec["axis"], rec["u"], rec["v"], rec["at"]
+    W, H = rec["size"]
+    u0, u1, v0, v1 = rec["window"]
+    px, py = rec["outline"]
+    cx0, cx1, cy0, cy1 = rec["pixels"]
+    ew, field, sub, lum = rec["e"], rec["field"], rec["sub"], rec["lum"]
+    norm = plt.Normalize(*rec["e_range"])
     fig = plt.figure(figsize=(19, 6.0))
     rule = (f"a fixed count of {st['rep_count']}" if st.get("rep_count", 0) else
             "every stored photon" if int(st["rep_every"]) == 1 else
             f"every {plotting.ordinal(st['rep_every'])} stored photon")
     foot = (f"Data: {d}.* (.reps.csv from `photonmap render --dump-reps`, .exr and .stats.json of the same render): "
             f"{st['scene']}, precomputed method, P_e = {kilo(st['photons_emitted'])}, n = {st['nn']}, seed "
-            f"{st['seed']}, {W}x{H}, {int(st['representatives'])} representatives ({rule}), {len(wall)} on the plane "
-            f"{axis} = {at:g}, {int(inwin.sum())} in the window {u} in [{u0:g}, {u1:g}], {v} in [{v0:g}, {v1:g}]. "
+            f"{st['seed']}, {W}x{H}, {int(st['representatives'])} representatives ({rule}), {rec['on_plane']} on the plane "
+            f"{axis} = {at:g}, {rec['in_window']} in the window {u} in [{u0:g}, {u1:g}], {v} in [{v0:g}, {v1:g}]. "
             f"(b) is computed from reps.csv: the representative of this plane nearest to each point (within the "
             f"radius cap {float(st['max_radius']):.3g}; on a plane every normal agrees), i.e. the eye pass's lookup "
             "restricted to the plane; the radiance is rho/pi times this irradiance.")
@@ -381,10 +445,10 @@ def fig2(args):
     flip = axis == "y"  # the floor seen from above: z (towards the camera) downwards
     vlim = (v1, v0) if flip else (v0, v1)
     ax = fig.add_subplot(gs[0, 0])
-    sc = ax.scatter(wall[u][inwin], wall[v][inwin], c=ew, cmap="viridis", norm=norm, s=22, edgecolors="none")
+    sc = ax.scatter(rec["wall_u"], rec["wall_v"], c=ew, cmap="viridis", norm=norm, s=22, edgecolors="none")
     ax2 = fig.add_subplot(gs[0, 1], sharex=ax, sharey=ax)
     ax2.imshow(field, cmap="viridis", norm=norm, extent=(u0, u1, v0, v1), origin="lower", interpolation="nearest")
-    ax2.plot(wall[u][inwin], wall[v][inwin], ".", color="white", ms=2, alpha=0.9)
+    ax2.plot(rec["wall_u"], rec["wall_v"], ".", color="white", ms=2, alpha=0.9)
     for a in (ax, ax2):
         a.set_xlim(u0, u1)
         a.set_ylim(*vlim)
@@ -397,12 +461,7 @@ def fig2(args):
     ax2.set_title("(b) the estimate at every point: E of the nearest\nrepresentative (white dots): constant cells")
     cb = fig.colorbar(sc, ax=[ax, ax2], orientation="horizontal", fraction=0.05, pad=0.12, aspect=50)
     cb.set_label("irradiance E, luminance (W per scene unit^2)")
-    sub = img[cy0:cy1, cx0:cx1]
-    lum = plotting.luminance(sub)
-    inside = plt.matplotlib.path.Path(np.column_stack([px, py]))
-    yy, xx = np.mgrid[cy0:cy1, cx0:cx1]
-    mask = inside.contains_points(np.column_stack([xx.ravel() + 0.5, yy.ravel() + 0.5])).reshape(lum.shape)
-    lnorm = plt.Normalize(*np.quantile(lum[mask] if mask.any() else lum, [0.01, 0.99]))
+    lnorm = plt.Normalize(*rec["lum_range"])
     for k, (panel, title) in enumerate((
             (None, f"(c) this run's rendered image: luminance of\npixels {cx0}-{cx1} x {cy0}-{cy1} (radiance = "
                    "rho/pi x E;\nits own colour scale), enlarged without smoothing"),
@@ -426,6 +485,11 @@ def fig2(args):
                  "nearest one's, so the radiance is piecewise constant", fontsize=12, weight="bold")
     plotting.footer(fig, foot)
     plotting.save(fig, os.path.join(args.out, "fig2.png"))
+
+
+def fig2(args):
+    """fig2.png (fig2_record, draw_fig2)."""
+    draw_fig2(fig2_record(args), args)
 
 
 # ---- plots of the grid: each has a record function (the points, intervals
@@ -588,7 +652,7 @@ def tradeoff(args):
     draw_tradeoff(tradeoff_record(args), args)
 
 
-def ratio_record(args):
+def ratio_vs_n_record(args):
     """What ratio-vs-n.png shows: per P_e the precomputed / conventional
     time (%) against n, ours with the t interval of the paired per-seed log
     ratio (a table1.csv without paired columns: its ratio of medians with
@@ -663,8 +727,8 @@ def draw_ratio_vs_n(rec, args):
 
 
 def ratio_vs_n(args):
-    """ratio-vs-n.png (ratio_record, draw_ratio_vs_n)."""
-    draw_ratio_vs_n(ratio_record(args), args)
+    """ratio-vs-n.png (ratio_vs_n_record, draw_ratio_vs_n)."""
+    draw_ratio_vs_n(ratio_vs_n_record(args), args)
 
 
 def phase_medians(args):
