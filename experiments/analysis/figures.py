@@ -290,8 +290,9 @@ def fig3_errors_record(args):
     allv = np.concatenate([r[1].ravel() for _, _, rr in maps for r in rr])
     lo = float(f"{max(np.quantile(allv, 0.01), 1e-4):.1g}")
     hi = float(f"{np.quantile(allv, 0.999):.1g}")
-    return {"block": b, "shape": (h2, w2), "maps": maps, "range": (lo, hi), "footer": provenance(args, f"Map: sqrt of the relMSE integrand (x - r)^2 / (r^2 + 0.01), mean over RGB and "
-                            f"{b}x{b}-pixel blocks (its square's mean is the image's relMSE), seed {args.seed}.")}
+    foot = provenance(args, f"Map: sqrt of the relMSE integrand (x - r)^2 / (r^2 + 0.01), mean over RGB and "
+                            f"{b}x{b}-pixel blocks (its square's mean is the image's relMSE), seed {args.seed}.")
+    return {"block": b, "shape": (h2, w2), "maps": maps, "range": (lo, hi), "footer": foot}
 
 
 def draw_fig3_errors(rec, args):
