@@ -21,6 +21,17 @@ from helpers import table1_frame
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
+def md(name, d):
+    """FINDINGS.md's (title, lines) of finding NAME, from the files D names."""
+    writer = {n: w for _, n, w, _ in findings.FINDINGS}[name]
+    return writer(findings.RECORDS[name](d))
+
+
+def readme(name, d):
+    """README's summary bullet of finding NAME, from the files D names."""
+    return dict(findings.SUMMARY)[name](findings.RECORDS[name](d))
+
+
 def test_readme_numbers_backed():
     """Every number of README's findings section is a number token of some
     results file (the committed README against the committed results/)."""
@@ -114,10 +125,10 @@ def test_summary_wording_from_tests():
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "table1.csv")
         table1_frame([(80, 75, 85), (40, 38, 42), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(path, index=False)
-        line = findings.summary_table({"table": path})
+        line = readme("table", {"table": path})
         assert "P_e = 50k falls from" in line and "holds at 1 of 2 photon counts" in line
         table1_frame([(80, 75, 85), (78, 70, 82), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(path, index=False)
-        line = findings.summary_table({"table": path})
+        line = readme("table", {"table": path})
         assert "P_e = 50k goes from" in line and "holds at 0 of 2 photon counts" in line
 
 
@@ -129,7 +140,7 @@ def test_findings_wording_from_tests():
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "table1.csv")
         t.to_csv(path, index=False)
-        _, lines = findings.finding1({"table": path})
+        _, lines = md("table", {"table": path})
         text = "\n".join(lines)
         assert "at P_e = 50000: the ratio at n = 100 is ranked below the one at n = 10" in text
         assert "Over P_e at n = 10: the ratio at P_e = 500000 against the one at P_e = 50000: undetermined" in text
@@ -137,8 +148,8 @@ def test_findings_wording_from_tests():
         # a table without the paired columns: the finding says so, no number
         t.drop(columns=["paired_ratio_percent"]).to_csv(path, index=False)
         try:
-            findings.finding1({"table": path})
-            assert False, "finding1 answered without its column"
+            md("table", {"table": path})
+            assert False, "the table record answered without its column"
         except findings.Missing as e:
             assert "paired_ratio_percent" in str(e)
 
@@ -157,7 +168,7 @@ def test_findings_resolution_per_size():
     with tempfile.TemporaryDirectory() as d:
         rows(0.75).to_csv(os.path.join(d, "equal-error-1024x768.csv"), index=False)
         rows(1.25).to_csv(os.path.join(d, "equal-error-256x192.csv"), index=False)
-        _, lines = findings.finding7({"root": d, "resolution": d})
+        _, lines = md("resolution", {"root": d, "resolution": d})
         text = "\n".join(lines)
         assert text.index("- 256x192:") < text.index("- 1024x768:")
         # the headline: the curve's tightest target where 95% of the resamples are defined
@@ -165,8 +176,8 @@ def test_findings_resolution_per_size():
         assert "1.25 [1.15, 1.35]" not in text and "0.75 [0.65, 0.85]" not in text  # the tightest: 50% defined
         rows(1.0).drop(columns=["kind"]).to_csv(os.path.join(d, "equal-error-512x384.csv"), index=False)
         try:
-            findings.finding7({"root": d, "resolution": d})
-            assert False, "finding7 read a CSV without its columns"
+            md("resolution", {"root": d, "resolution": d})
+            assert False, "the resolution record read a CSV without its columns"
         except findings.Missing as e:
             assert "kind" in str(e)
 
@@ -190,13 +201,13 @@ def test_tightest_half_defined_not_quoted():
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "equal-error.csv")
         frame(0.5).to_csv(path, index=False)
-        for text in ("\n".join(findings.finding2({"equal_error": path})[1]),
-                     findings.summary_equal_error({"equal_error": path})):
+        for text in ("\n".join(md("equal_error", {"equal_error": path})[1]),
+                     readme("equal_error", {"equal_error": path})):
             assert "1.83" not in text and "0.917" not in text and "7.77" not in text, text
             assert "the curve starts at relmse 0.0101" in text.lower(), text
             assert "at 0.0123" in text and "1.61 [1.42, 1.88]x" in text, text
         frame(1.0).to_csv(path, index=False)
-        text = findings.summary_equal_error({"equal_error": path})
+        text = readme("equal_error", {"equal_error": path})
         assert "at 0.0101" in text and "1.83 [0.917, 7.77]x" in text, text
 
 
@@ -220,7 +231,7 @@ def test_findings_beyond():
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "beyond.csv")
         pd.DataFrame(rows).to_csv(path, index=False)
-        _, lines = findings.finding_beyond({"beyond": path})
+        _, lines = md("beyond", {"beyond": path})
         text = "\n".join(lines)
         assert "a-64x48 (relMSE 0.02, 5 seeds): the paper's rule 0.900 [0.800, 1.000]x; the best variant, lazy, 1.300 [1.200, 1.400]x" in text
         assert "12.5% of its eye samples fell back, 50.0% of the representatives" in text
@@ -232,8 +243,8 @@ def test_findings_beyond():
         assert "holds in 2 of 3 cases, 1 of them with the interval's lower end within the margin" in text
         pd.DataFrame(rows).drop(columns=["seeds"]).to_csv(path, index=False)
         try:
-            findings.finding_beyond({"beyond": path})
-            assert False, "finding_beyond answered without the seeds column"
+            md("beyond", {"beyond": path})
+            assert False, "the beyond record answered without the seeds column"
         except findings.Missing as e:
             assert "make beyond" in str(e)
 
@@ -252,14 +263,223 @@ def test_findings_scale():
         sp, tp = os.path.join(d, "scaling.csv"), os.path.join(d, "threads.csv")
         sc.to_csv(sp, index=False)
         th.to_csv(tp, index=False)
-        _, lines = findings.finding_scale({"scaling": sp, "threads": tp})
+        _, lines = md("scale", {"scaling": sp, "threads": tp})
         text = "\n".join(lines)
         assert "8,000 emitted photons (32,000 stored): 0.758 s in total" in text and "44.5 bytes" in text
         assert "90" not in text.split("8,000 emitted")[0]
         assert "photon pass 1.41x [1, 2]" in text and "kd-tree build 2x [2, 2]" in text
         os.remove(tp)
         try:
-            findings.finding_scale({"scaling": sp, "threads": tp})
-            assert False, "finding_scale answered without threads.csv"
+            md("scale", {"scaling": sp, "threads": tp})
+            assert False, "the scale record answered without threads.csv"
         except findings.Missing as e:
             assert "make bench-threads" in str(e)
+
+
+# ---- the record functions: a synthetic results directory with known numbers
+
+def write_csv(d, rel, rows):
+    """ROWS (a list of dicts) as the CSV D/REL; its path."""
+    path = os.path.join(d, rel)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    pd.DataFrame(rows).to_csv(path, index=False)
+    return path
+
+
+def test_record_table():
+    """The table record: ranks over n only between disjoint intervals, the
+    paper's value inside/outside our interval counted by hand."""
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "table1.csv")
+        table1_frame([(80, 75, 85), (40, 38, 42), (68, 65, 71)], [(0.01, 0.005, 0.02)] * 3).to_csv(path, index=False)
+        r = findings.record_table({"table": path})
+        assert r["pairs"] == (5, 5) and r["photons"] == [50000, 500000] and r["nns"] == [10, 100]
+        assert r["over_n"][50000]["rank"] == "lower" and r["over_n"][50000]["count"] == 2
+        assert r["over_n"][500000]["count"] == 1 and r["falls"] == 1
+        assert r["grid"][(100, 500000)] is None and r["grid"][(100, 50000)]["ratio"] == 40
+        # paper 70: inside only at (500k, 10) (65-71); outside: 75-85 above it, 38-42 below it
+        assert r["inside"] == {50000: (0, 2), 500000: (1, 1)}
+        assert r["inside_any"] and not r["inside_all"] and r["outside"] == 2 and r["outside_lower"] == 1
+        # negative control: the paper's value moved inside every interval
+        t = table1_frame([(80, 60, 85), (40, 38, 72), (68, 65, 71)], [(0.01, 0.005, 0.02)] * 3)
+        t.to_csv(path, index=False)
+        r = findings.record_table({"table": path})
+        assert r["inside_all"] and r["outside"] == 0 and r["over_n"][50000]["rank"] == "overlap"
+
+
+def test_record_cost():
+    """The cost record: verdict groups per estimate, the bias share of the
+    excess (cells.csv: excess 0.04 of which 0.01 bias = 25%), the largest
+    excess, and what ten times the photons remove (1 - 0.02/0.08 = 75%)."""
+    with tempfile.TemporaryDirectory() as d:
+        rows = []
+        for (ph, n), (m, v), (cm, cc) in zip([(50000, 10), (50000, 100), (500000, 10), (500000, 100)],
+                                            [(0.05, "higher"), (0.02, "higher"), (0.0, "equivalent"), (0.01, None)],
+                                            [(0.08, 0.001), (0.1, 0.05), (0.02, 0.001), (0.09, 0.05)]):
+            rows.append({"photons": ph, "nn": n, "method": "precomputed", "pairs": 5, "relmse_diff_mean": m,
+                         "relmse_diff_lo": m - 0.01, "relmse_diff_hi": m + 0.01, "relmse_diff_verdict": v,
+                         "relmse_conv_mean": cm, "relmse_conv_ci95": cc})
+        table = write_csv(d, "table1.csv", rows)
+        cells = []
+        for (ph, n), (e, b) in zip([(50000, 10), (50000, 100)], [(0.04, 0.01), (0.02, 0.015)]):
+            cells.append({"method": "conventional", "estimate": "paper", "photons": ph, "nn": n,
+                          "relmse_ref_mean": 0.1, "bias_ref": 0.02})
+            cells.append({"method": "precomputed", "estimate": "paper", "photons": ph, "nn": n,
+                          "relmse_ref_mean": 0.1 + e, "bias_ref": 0.02 + b})
+        r = findings.record_cost({"table": table, "cells": write_csv(d, "cells.csv", cells)})
+        g = r["verdicts"]["paper"]["groups"]
+        assert [(c["photons"], c["nn"]) for c in g["higher"]] == [(50000, 10), (50000, 100)]
+        assert len(g["equivalent"]) == 1 and len(g["undetermined"]) == 1 and "corrected" not in r["verdicts"]
+        s = r["bias_share"][0]
+        assert s["cells"] == 2 and abs(s["min"] - 0.25) < 1e-9 and abs(s["max"] - 0.75) < 1e-9
+        assert (s["largest"]["photons"], s["largest"]["nn"]) == (50000, 10)
+        w = r["worst"]
+        assert (w["photons"], w["nn"]) == (50000, 10) and abs(w["share"] - 0.25) < 1e-9 and w["mean"] == 0.05
+        m = r["more_photons"]
+        assert m["factor"] == 10 and [x["nn"] for x in m["per_n"]] == [10, 100]
+        assert abs(m["per_n"][0]["removed"] - 0.75) < 1e-9 and m["per_n"][0]["disjoint"]
+        assert abs(m["per_n"][1]["removed"] - 0.1) < 1e-9 and not m["per_n"][1]["disjoint"]
+
+
+def test_record_bias():
+    """The bias record: the n = 10 row, whether it sits on the law, and the
+    corrected intervals that contain 1 (3 of 4 by construction)."""
+    rows = [{"n": n, "law_n_over_n_minus_1": n / (n - 1), "conventional_paper_mean": n / (n - 1) + 0.001,
+             "conventional_paper_ci95": 0.002, "conventional_paper_seeds": 8,
+             "conventional_corrected_mean": 1.0005, "conventional_corrected_ci95": 0.001,
+             "precomputed_corrected_mean": c, "precomputed_corrected_ci95": 0.001} for n, c in ((10, 0.9999), (20, 1.01))]
+    with tempfile.TemporaryDirectory() as d:
+        r = findings.record_bias({"bias": write_csv(d, "b.csv", rows)})
+        assert r["at10"]["n"] == 10 and r["at10"]["on_law"] and r["quoted"]["seeds"] == 8
+        assert (r["covered"], r["intervals"]) == (3, 4)
+        assert r["lowest"][0] == 0.9999 and r["highest"][0] == 1.01
+        rows[0].update(n=5, conventional_paper_mean=1.2)  # no n = 10 row: the smallest n, off its law
+        r = findings.record_bias({"bias": write_csv(d, "b.csv", rows)})
+        assert r["at10"] is None and r["quoted"]["n"] == 5 and not r["quoted"]["on_law"]
+
+
+def test_record_caustic_scenes_baseline():
+    """The caustic record ranks the window against the image only when the
+    intervals are disjoint; the scenes record carries the seeds; the
+    baseline record counts the cells whose trace interval excludes 100."""
+    with tempfile.TemporaryDirectory() as d:
+        base = {"estimate": "paper", "photons": 50000, "nn": 10, "method": "precomputed", "img_excess_mean": 0.1,
+                "img_excess_ci95": 0.01, "seeds": 5}
+        c = write_csv(d, "c.csv", [{**base, "win_excess_mean": 0.3, "win_excess_ci95": 0.05},
+                                   {**base, "nn": 50, "win_excess_mean": 0.12, "win_excess_ci95": 0.05},
+                                   {**base, "method": "conventional", "win_excess_mean": 0.0, "win_excess_ci95": 0.0}])
+        r = findings.record_caustic({"caustic": c})
+        assert [x["rank"] for x in r["rows"]] == ["higher", "overlap"]
+        s = write_csv(d, "s.csv", [{"scene": "a", "diff_seeds": 3, "ee_paper": "x", "ee_corrected": "y"}])
+        assert findings.record_scenes({"scenes": s})["rows"] == [{"scene": "a", "seeds": 3, "paper": "x",
+                                                                 "corrected": "y"}]
+        t = table1_frame([(80, 75, 85), (99, 97, 101), (103, 101, 105)], [(0.01, 0.005, 0.02)] * 3)
+        r = findings.record_baseline({"table": write_csv(d, "t.csv", t.to_dict("records"))})
+        assert (r["median"], r["min"], r["max"], r["off"], r["cells"]) == (99, 80, 103, 2, 3)
+
+
+def test_record_equal_error_and_resolution():
+    """The equal-error record: the tightest row, the span where 95% of the
+    resamples are defined, its ends' rank, and the headline against 1; an
+    estimate without a tightest row has none (its writer says so)."""
+    rows = [{"estimate": "paper", "kind": "tightest", "target": 0.01, "speedup": 0.5, "lo": 0.4, "hi": 0.6,
+             "defined_fraction": 1.0},
+            {"estimate": "paper", "kind": "curve", "target": 0.01, "speedup": 0.5, "lo": 0.4, "hi": 0.6,
+             "defined_fraction": 1.0},
+            {"estimate": "paper", "kind": "curve", "target": 0.02, "speedup": 2.0, "lo": 1.8, "hi": 2.2,
+             "defined_fraction": 1.0},
+            {"estimate": "corrected", "kind": "curve", "target": 0.02, "speedup": 1.0, "lo": 0.8, "hi": 1.2,
+             "defined_fraction": 0.5}]
+    with tempfile.TemporaryDirectory() as d:
+        write_csv(d, "equal-error.csv", rows)
+        r = findings.record_equal_error({"equal_error": os.path.join(d, "equal-error.csv")})["estimates"]
+        p, c = r
+        assert p["tightest"]["target"] == 0.01 and p["span"][0]["speedup"] == 0.5 and p["span"][1]["speedup"] == 2.0
+        assert p["span_rank"] == "lower" and p["headline"]["target"] == 0.01 and p["headline_vs_one"] == "lower"
+        assert p["curve_targets"] == 2 and c["tightest"] is None and c["headline"] is None
+        write_csv(d, "res/equal-error-512x384.csv", rows)
+        write_csv(d, "res/equal-error-64x48.csv", rows[:2])
+        r = findings.record_resolution({"root": d, "resolution": os.path.join(d, "res")})
+        assert [s["size"] for s in r["sizes"]] == ["64x48", "512x384"] and r["dir"] == "res"
+        assert r["sizes"][0]["file"] == os.path.join("res", "equal-error-64x48.csv")
+        assert r["sizes"][0]["estimates"][0]["span"] is not None and r["sizes"][0]["estimates"][0]["span_rank"] == "overlap"
+
+
+def test_record_scale_stability_repro_rules():
+    """The scale record's conventional row and its two-thread medians (the
+    pairs' t1/t2: 4/2, 4/4, 4/1 -> median 2); the stability record's file;
+    the repro summary row; the rules rejected."""
+    with tempfile.TemporaryDirectory() as d:
+        sc = write_csv(d, "scaling.csv", [{"method": m, "photons_emitted": p, "photons_stored": 2 * p, "threads": 2,
+                                           "trace_s": 1, "build_s": 1, "precompute_s": 0, "eye_s": 1, "total_s": t,
+                                           "bytes_per_stored": 40} for m, p, t in
+                                          (("conventional", 1000, 3.0), ("conventional", 9000, 7.0),
+                                           ("precomputed", 9000, 5.0))])
+        th = write_csv(d, "threads.csv", [{"photons_emitted": 9000, "pair": k, "threads": t, "trace_s": 4 / (s if t == 2 else 1),
+                                           "build_s": 1.0, "total_s": 6 if t == 1 else 3} for k, s in ((1, 2), (2, 1), (3, 4))
+                                          for t in (1, 2)])
+        r = findings.record_scale({"scaling": sc, "threads": th})
+        c = r["conventional"]
+        assert c["photons_emitted"] == 9000 and c["total_s"] == 7.0 and c["two_total_median"] == 3
+        assert c["two_total_pairs"] == 3 and c["trace"][0] == 2 and (c["trace"][1], c["trace"][2]) == (1, 4)
+        assert [m for m, _ in r["largest"]] == ["conventional", "precomputed"]
+        os.makedirs(os.path.join(d, "stability"))
+        open(os.path.join(d, "stability", "x.md"), "w", encoding="utf-8").close()
+        assert findings.record_stability({"root": d, "stability": os.path.join(d, "stability", "x.md")}) == \
+            {"file": os.path.join("stability", "x.md")}
+        try:
+            findings.record_stability({"root": d, "stability": os.path.join(d, "nope.md")})
+            assert False, "the stability record answered without its file"
+        except findings.Missing as e:
+            assert "make stability" in str(e)
+        rp = write_csv(d, "repro.csv", [{"summary_ratio_median_abs_delta_pp": 1.5, "summary_ratio_max_abs_delta_pp": 4.0,
+                                         "summary_ratio_overlap_cells": 8, "summary_cells": 9, "summary_goal_pp": 2,
+                                         "summary_met": True}])
+        assert findings.record_repro({"repro": rp}) == {"median_pp": 1.5, "max_pp": 4.0, "overlap": 8, "cells": 9,
+                                                        "goal_pp": 2, "met": True}
+        ru = write_csv(d, "rules.csv", [{"rule": k, "label": k.upper(), "fitted": False, "chi2": 1.0, "dof": 3,
+                                         "p_value": 0.5, "p_holm": 0.9, "verdict": v}
+                                        for k, v in (("a", "incompatible"), ("b", "not rejected"), ("c", "incompatible"))])
+        r = findings.record_rules({"rep": ru})
+        assert r["rejected"] == ["A", "C"] and len(r["rows"]) == 3
+
+
+def test_record_metric_and_peers():
+    """The metric record: NMSE proportional to relMSE per cell keeps the
+    rank correlation at 1 and the ratio fixed; the peers record: ours twice
+    as fast as the strongest peer (cKDTree), nanoflann four times slower."""
+    runs = []
+    for ph, n, base in ((50000, 10, 1.0), (50000, 50, 2.0), (500000, 10, 3.0)):
+        for seed in range(5):
+            for method, extra in (("conventional", 0.0), ("precomputed", 0.5)):
+                v = base + extra + 0.01 * seed
+                runs.append({"role": "grid", "status": "ok", "method": method, "estimate": "paper", "photons": ph,
+                             "nn": n, "seed": seed, "relmse_ref": v, "nmse_ref": 2 * v})
+    runs.append({**runs[0], "role": "reference", "nmse_ref": 100.0})  # not a grid run: ignored
+    with tempfile.TemporaryDirectory() as d:
+        r = findings.record_metric({"runs": write_csv(d, "runs.csv", runs)})["estimates"]
+        assert len(r) == 1 and r[0]["cells"] == 6 and r[0]["compared"] == 3 and r[0]["changed"] == []
+        assert abs(r[0]["rho"] - 1) < 1e-12 and abs(r[0]["ratio_min"] - 2) < 1e-12 and abs(r[0]["ratio_max"] - 2) < 1e-12
+        peers = [{"who": w, "order": "tiles", "pe": 50000, "stored": 1000, "k": 50, "queries": 10, "rep": rep,
+                  "seconds": s} for w, s in (("ours", 1.0), ("flann-knn", 3.0), ("flann-radius", 5.0), ("ckdtree", 2.0),
+                                             ("nanoflann", 4.0)) for rep in (0, 1)]
+        peers.append({**peers[0], "rep": "build", "seconds": 99.0})
+        r = findings.record_peers({"peers": write_csv(d, "peers.csv", peers)})
+        assert r["rows"] == [{"k": 50, "pe": 50000, "strongest": "ckdtree", "strongest_ratio": 2.0,
+                              "nanoflann_ratio": 4.0}]
+
+
+def test_writers_read_only_the_record():
+    """FINDINGS.md and README's summary quote a record's numbers as they are
+    (hand-made records, no file read): a number changed in the record moves
+    in both texts."""
+    rec = {"median_pp": 1.234, "max_pp": 5.678, "overlap": 7, "cells": 9, "goal_pp": 2, "met": False}
+    recs = {name: findings.Missing("absent") for name in findings.RECORDS}
+    recs["repro"] = rec
+    md_text = findings.markdown({"root": "x"}, recs)
+    sm_text = findings.summary({"root": "x"}, recs)
+    assert "1.23 pp (goal 2 pp); the two runs' intervals overlap in 7 of 9 cells; goal not met." in md_text
+    assert "overlap in 7 of 9 cells" in sm_text and "largest shift is 5.68 pp" in sm_text
+    assert md_text.count("Not answered here: absent.") == len(findings.FINDINGS) - 1
+    recs["repro"] = {**rec, "overlap": 9}
+    assert "overlap in 9 of 9 cells" in findings.summary({"root": "x"}, recs)

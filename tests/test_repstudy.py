@@ -178,9 +178,50 @@ def test_markdown_numbers_and_rules_csv(tmp_path):
     class A:
         out = os.path.join(str(tmp_path), "rep-study")
         time = "cpu_s"
-    md = repstudy.markdown(res, A, os.path.join(str(tmp_path), "runs.csv"), ["v1.csv", "v8.csv"])
+    md = repstudy.markdown(res, repstudy.conclusions(res), A, os.path.join(str(tmp_path), "runs.csv"),
+                           ["v1.csv", "v8.csv"])
     assert "sigma = " in md and "Holm" in md and "nan" not in md.lower().split()
     assert "| every 8th |" in md and "incompatible" in md
+
+
+def test_conclusions_record(tmp_path):
+    """The record the report and the figure are written from: the rule that
+    differs from the paper is the one left out of those not rejected, the
+    lowest chi^2 is a matching rule, the paper's slope ratios are the ones
+    the synthetic table was built with, and the sensitivity rows scale the
+    noise; negative control: with every rule at the paper's slope none is
+    left out."""
+    res = study(tmp_path, off=3.0)
+    rec = repstudy.conclusions(res)
+    label = res["scores"].set_index("rule")["label"]
+    assert rec["tested"] == 3 and rec["size"] == "1024x768" and rec["seeds"] == list(SEEDS)
+    assert rec["kept"] == [label["every4"], label["every1"]] and rec["best"]["label"] in rec["kept"]
+    assert rec["shared"] == [] and rec["best_shape"] is not None
+    for p in PES:
+        assert rec["paper_ratio"][p][""] == pytest.approx(PAPER_RATIO[p], rel=1e-9)
+    assert [a["factor"] for a in rec["sensitivity"]] == [0.5, 2.0]
+    assert rec["sensitivity"][1]["noise"] == pytest.approx(2 * res["noise"])
+    assert rec["kept"] == [a for a in rec["sensitivity"][1]["kept"] if a in rec["kept"]]
+    md = repstudy.markdown(res, {**rec, "kept": ["made-up rule"]}, type("A", (), {"out": "x", "time": "cpu_s"}),
+                           "runs.csv", [])
+    assert "after Holm over 3 rules: made-up rule;" in md  # the report words the record, it does not recount
+    assert len(repstudy.conclusions(study(tmp_path, off=1.0))["kept"]) == 3
+
+
+# the synthetic rules' slopes fall with R (every8 is the slow one), so the
+# cost model implies no R and panel (b) has only nan points to draw
+@pytest.mark.filterwarnings("ignore:All-NaN axis encountered:RuntimeWarning")
+def test_figure_drawn_from_the_record(tmp_path):
+    """The figure is drawn from analyse's and conclusions' records alone (a PNG
+    comes out) and its footer is the caption made from the record."""
+    res = study(tmp_path)
+    rec = repstudy.conclusions(res)
+    cap = repstudy.caption(rec, "runs.csv", ["a/v1.csv"], res["noise"])
+    assert "v1.csv; 1024x768, paper estimate, seeds 1 2 3 4 5 (conventional)" in cap
+    path = os.path.join(str(tmp_path), "rep-study.png")
+    repstudy.figure(res, rec, path, cap)
+    with open(path, "rb") as f:
+        assert f.read(8) == b"\x89PNG\r\n\x1a\n"
 
 
 def test_noise_sensitivity_larger_noise_rejects_less(tmp_path):

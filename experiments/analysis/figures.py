@@ -24,6 +24,9 @@ for the reference, rep-study-cells.csv), images with OpenImageIO
 (metrics.read_exr) from the paths runs.csv names;
 statistics come from table1.csv (computed by table.py with stats.py) and
 image metrics from metrics.py. Every figure names its data in a footer.
+Each figure NAME is two functions: NAME_record computes what it shows (the
+images, points, intervals, ranges and footer) from the inputs, and
+draw_NAME draws that record and nothing else.
 """
 
 import argparse
@@ -137,9 +140,11 @@ def provenance(args, extra=""):
 
 # ---- Figure 3 at 1:1
 
-def fig3(args):
-    """fig3.png: crops at 1:1 of each cell's two renders and their signed
-    difference, the reference once, time and error per panel."""
+def fig3_record(args):
+    """What fig3.png shows: per cell of --cells the crops of its two renders
+    (seed --seed) and their signed difference over the reference's
+    luminance with the row's symmetric range, its table rows and the ratio
+    column quoted; the reference's crop and whole frame; the crop window."""
     t = args.table_frame
     cells = parse_cells(args.cells)
     ref = read_image(args.ref, "the reference")
@@ -148,7 +153,6 @@ def fig3(args):
     # small renders: each pixel drawn as a zoom x zoom block, so panels stay legible
     zoom = max(1, math.ceil(300 / cw0))
     crop = lambda img: np.repeat(np.repeat(img[cy:cy + ch0, cx:cx + cw0], zoom, 0), zoom, 1)  # noqa: E731
-    cw, ch = cw0 * zoom, ch0 * zoom
     rows = []
     for p, n in cells:
         imgs = {}
@@ -160,12 +164,31 @@ def fig3(args):
             imgs[m] = crop(img)
         lr = np.maximum(plotting.luminance(crop(ref)), 1e-3)
         diff = (plotting.luminance(imgs["precomputed"]) - plotting.luminance(imgs["conventional"])) / lr
-        rows.append((p, n, imgs, diff, table_row(t, p, n, "conventional"), table_row(t, p, n, "precomputed")))
+        rp = table_row(t, p, n, "precomputed")
+        rows.append({"photons": p, "nn": n, "images": imgs, "diff": diff, "conventional": table_row(t, p, n, "conventional"),
+                     "precomputed": rp})
+        # the paired ratio (per-seed log ratios, t interval) where the table has it, as ratio-vs-n.png
+        rcol = "cpu_ratio" if args.time == "cpu_s" else "ratio"
+        if isnum(rp.get(f"paired_{rcol}_percent")):
+            rcol = "paired_" + rcol
+        rows[-1]["rcol"] = rcol
     # each row its own symmetric range (the 99th percentile of that row's
     # |difference|): one range for all rows left rows (b)-(d) blank beside (a)
-    lims = [float(f"{max(float(np.quantile(np.abs(r[3]), 0.99)), 1e-3):.1g}") for r in rows]
+    for r in rows:
+        r["lim"] = float(f"{max(float(np.quantile(np.abs(r['diff']), 0.99)), 1e-3):.1g}")
+    return {"cells": cells, "ref": ref, "ref_crop": crop(ref), "size": (W, H), "window": (cw0, ch0, cx, cy),
+            "zoom": zoom, "rows": rows, "footer": provenance(args)}
+
+
+def draw_fig3(rec, args):
+    """fig3.png from its record: crops at 1:1 of each cell's two renders and
+    their signed difference, the reference once, time and error per panel."""
+    cells, rows, ref, zoom = rec["cells"], rec["rows"], rec["ref"], rec["zoom"]
+    W, H = rec["size"]
+    cw0, ch0, cx, cy = rec["window"]
+    cw, ch = cw0 * zoom, ch0 * zoom
     gap, head, cap = 12, 26, 36
-    title_h, foot_h = 72, 14 * plotting.footer_lines(provenance(args), (3 * cw + 4 * gap) / 100) + 10
+    title_h, foot_h = 72, 14 * plotting.footer_lines(rec["footer"], (3 * cw + 4 * gap) / 100) + 10
     row_h = head + ch + cap
     fw = 3 * cw + 4 * gap + 40  # the difference column's colour bars
     fh = title_h + row_h * (len(rows) + 1) + foot_h
@@ -185,7 +208,7 @@ def fig3(args):
     plotting.pixel_text(fig, gap, y + 4, f"{args.ref_label}: the same crop, and the whole frame (reduced) "
                         "with the crop outlined", fontsize=10, weight="bold")
     ax = plotting.pixel_axes(fig, gap, y + head, cw, ch)
-    ax.imshow(plotting.srgb(crop(ref)), interpolation="nearest")
+    ax.imshow(plotting.srgb(rec["ref_crop"]), interpolation="nearest")
     tw = int(round(W * ch / H))
     ax = plotting.pixel_axes(fig, 2 * gap + cw, y + head, min(tw, cw), ch)
     ax.imshow(plotting.srgb(ref), interpolation="antialiased", extent=(0, W, H, 0))
@@ -200,15 +223,13 @@ def fig3(args):
                         "the nearest representative, which may\nlie on either surface, so the two\n"
                         "methods mix the surfaces differently.", fontsize=8.5)
     y += row_h
-    for i, (p, n, imgs, diff, rc, rp) in enumerate(rows):
+    for i, row in enumerate(rows):
+        p, n, imgs, rc, rp, rcol = row["photons"], row["nn"], row["images"], row["conventional"], row["precomputed"], \
+            row["rcol"]
         letter = chr(ord("a") + i)
         kind = "the paper's Fig. 3 cell" if i < args.paper_cells else "control"
         plotting.pixel_text(fig, gap, y + 4, f"({letter}) P_e = {kilo(p)}, n = {n} ({kind})", fontsize=10.5,
                             weight="bold")
-        # the paired ratio (per-seed log ratios, t interval) where the table has it, as ratio-vs-n.png
-        rcol = "cpu_ratio" if args.time == "cpu_s" else "ratio"
-        if isnum(rp.get(f"paired_{rcol}_percent")):
-            rcol = "paired_" + rcol
         ratio = report.fmt_ci(rp[f"{rcol}_percent"], rp[f"{rcol}_ci95_lo"], rp[f"{rcol}_ci95_hi"], 0)
         for j, (m, r) in enumerate((("conventional", rc), ("precomputed", rp))):
             x = gap + j * (cw + gap)
@@ -218,8 +239,8 @@ def fig3(args):
                                 fontsize=8.5)
         x = gap + 2 * (cw + gap)
         ax = plotting.pixel_axes(fig, x, y + head, cw, ch)
-        lim = lims[i]
-        ax.imshow(np.clip(diff, -lim, lim), cmap="RdBu_r", vmin=-lim, vmax=lim, interpolation="nearest")
+        lim = row["lim"]
+        ax.imshow(np.clip(row["diff"], -lim, lim), cmap="RdBu_r", vmin=-lim, vmax=lim, interpolation="nearest")
         cax = plotting.pixel_axes(fig, x + cw + 2, y + head, 8, ch)
         cax.set_axis_on()
         cax.grid(False)
@@ -230,16 +251,22 @@ def fig3(args):
                             f"time prec./conv.{' (paired)' if rcol.startswith('paired') else ''} {ratio} %\nrelMSE prec. vs conv., same seed: "
                             f"{report.fmt_pm(rp['relmse_conv_mean'], rp['relmse_conv_ci95'])}", fontsize=8.5)
         y += row_h
-    plotting.footer(fig, provenance(args))
+    plotting.footer(fig, rec["footer"])
     plotting.save(fig, os.path.join(args.out, "fig3.png"))
+
+
+def fig3(args):
+    """fig3.png (fig3_record, draw_fig3)."""
+    draw_fig3(fig3_record(args), args)
 
 
 # ---- error maps
 
-def fig3_errors(args):
-    """fig3-errors.png: per-pixel relative error against the reference of
-    every cell and method, whole frame, averaged over 2x2 blocks, on a
-    logarithmic colour scale with a colour bar."""
+def fig3_errors_record(args):
+    """What fig3-errors.png shows: per cell and method the square root of
+    the relMSE integrand against the reference averaged over
+    --error-block-square blocks, the render's own relMSE and its table row;
+    the colour scale's ends (1% and 99.9% quantiles of every map)."""
     t = args.table_frame
     cells = parse_cells(args.cells)
     ref = read_image(args.ref, "the reference")
@@ -263,9 +290,18 @@ def fig3_errors(args):
     allv = np.concatenate([r[1].ravel() for _, _, rr in maps for r in rr])
     lo = float(f"{max(np.quantile(allv, 0.01), 1e-4):.1g}")
     hi = float(f"{np.quantile(allv, 0.999):.1g}")
-    norm = plt.matplotlib.colors.LogNorm(vmin=lo, vmax=hi)
     foot = provenance(args, f"Map: sqrt of the relMSE integrand (x - r)^2 / (r^2 + 0.01), mean over RGB and "
                             f"{b}x{b}-pixel blocks (its square's mean is the image's relMSE), seed {args.seed}.")
+    return {"block": b, "shape": (h2, w2), "maps": maps, "range": (lo, hi), "footer": foot}
+
+
+def draw_fig3_errors(rec, args):
+    """fig3-errors.png from its record: the maps of every cell and method,
+    whole frame, on a logarithmic colour scale with a colour bar."""
+    b, maps, foot = rec["block"], rec["maps"], rec["footer"]
+    h2, w2 = rec["shape"]
+    lo, hi = rec["range"]
+    norm = plt.matplotlib.colors.LogNorm(vmin=lo, vmax=hi)
     zoom = max(1, math.ceil(300 / w2))  # small renders: each block drawn as zoom x zoom pixels
     gap, head, cap = 10, 22, 20
     pw, ph = w2 * zoom, h2 * zoom
@@ -299,6 +335,11 @@ def fig3_errors(args):
     plotting.save(fig, os.path.join(args.out, "fig3-errors.png"))
 
 
+def fig3_errors(args):
+    """fig3-errors.png (fig3_errors_record, draw_fig3_errors)."""
+    draw_fig3_errors(fig3_errors_record(args), args)
+
+
 # ---- Figure 2: the representatives and the cells they make
 
 def scene_facts(args, width, height):
@@ -311,14 +352,14 @@ def scene_facts(args, width, height):
         report.die(WHERE, f"{args.scene}: cannot read the camera: {e}")
 
 
-def fig2(args):
-    """fig2.png: (a) the representatives of one real run on one wall (the
-    plane whose normal is +FIG2_PLANE, at that coordinate's minimum: the back
-    wall for z, the floor for y), coloured by their precomputed irradiance;
-    (b) the estimate they give there, constant around each representative
-    (the nearest one, as the eye pass looks it up); (c) the same region in
-    the rendered image as luminance and (d) as displayed, its pixels
-    enlarged without smoothing."""
+def fig2_record(args):
+    """What fig2.png shows of the run --fig2-run: its representatives on one
+    wall (the plane whose normal is +FIG2_PLANE, at that coordinate's
+    minimum: the back wall for z, the floor for y) inside the window with
+    their irradiance's luminance and its 1%-99% range; the estimate they
+    give on a fine grid of the window (the nearest one within the radius
+    cap, as the eye pass looks it up); the window's outline projected into
+    the image, the pixels around it and their luminance range inside it."""
     from scipy.spatial import cKDTree
 
     d = args.fig2_run
@@ -346,7 +387,6 @@ def fig2(args):
         report.die(WHERE, f"FIG2_WINDOW '{args.fig2_window}' holds {int(inwin.sum())} representatives of the plane "
                    f"{axis} = {at:g}")
     ew = e[inwin]
-    norm = plt.Normalize(float(np.quantile(ew, 0.01)), float(np.quantile(ew, 0.99)))
     # (b): the nearest representative of the plane within the radius cap, on a fine grid
     tree = cKDTree(wall[[u, v]].to_numpy())
     res = 700
@@ -366,14 +406,39 @@ def fig2(args):
     cy0, cy1 = max(0, int(py.min()) - 4), min(H, int(math.ceil(py.max())) + 4)
     if cx1 - cx0 < 2 or cy1 - cy0 < 2:
         report.die(WHERE, f"FIG2_WINDOW '{args.fig2_window}' is not in view of {args.scene}'s camera")
+    sub = img[cy0:cy1, cx0:cx1]
+    lum = plotting.luminance(sub)
+    inside = plt.matplotlib.path.Path(np.column_stack([px, py]))
+    yy, xx = np.mgrid[cy0:cy1, cx0:cx1]
+    mask = inside.contains_points(np.column_stack([xx.ravel() + 0.5, yy.ravel() + 0.5])).reshape(lum.shape)
+    return {"run": d, "stats": st, "size": (W, H), "axis": axis, "u": u, "v": v, "window": (u0, u1, v0, v1),
+            "at": at, "on_plane": len(wall), "in_window": int(inwin.sum()), "wall_u": wall[u][inwin],
+            "wall_v": wall[v][inwin], "e": ew, "e_range": (float(np.quantile(ew, 0.01)), float(np.quantile(ew, 0.99))),
+            "field": field, "outline": (px, py), "pixels": (cx0, cx1, cy0, cy1), "sub": sub, "lum": lum,
+            "lum_range": tuple(np.quantile(lum[mask] if mask.any() else lum, [0.01, 0.99]))}
+
+
+def draw_fig2(rec, args):
+    """fig2.png from its record: (a) the representatives on the wall,
+    coloured by their precomputed irradiance; (b) the estimate they give
+    there, constant around each representative; (c) the same region in the
+    rendered image as luminance and (d) as displayed, its pixels enlarged
+    without smoothing."""
+    d, st, axis, u, v, at = rec["run"], rec["stats"], rec["axis"], rec["u"], rec["v"], rec["at"]
+    W, H = rec["size"]
+    u0, u1, v0, v1 = rec["window"]
+    px, py = rec["outline"]
+    cx0, cx1, cy0, cy1 = rec["pixels"]
+    ew, field, sub, lum = rec["e"], rec["field"], rec["sub"], rec["lum"]
+    norm = plt.Normalize(*rec["e_range"])
     fig = plt.figure(figsize=(19, 6.0))
     rule = (f"a fixed count of {st['rep_count']}" if st.get("rep_count", 0) else
             "every stored photon" if int(st["rep_every"]) == 1 else
             f"every {plotting.ordinal(st['rep_every'])} stored photon")
     foot = (f"Data: {d}.* (.reps.csv from `photonmap render --dump-reps`, .exr and .stats.json of the same render): "
             f"{st['scene']}, precomputed method, P_e = {kilo(st['photons_emitted'])}, n = {st['nn']}, seed "
-            f"{st['seed']}, {W}x{H}, {int(st['representatives'])} representatives ({rule}), {len(wall)} on the plane "
-            f"{axis} = {at:g}, {int(inwin.sum())} in the window {u} in [{u0:g}, {u1:g}], {v} in [{v0:g}, {v1:g}]. "
+            f"{st['seed']}, {W}x{H}, {int(st['representatives'])} representatives ({rule}), {rec['on_plane']} on the plane "
+            f"{axis} = {at:g}, {rec['in_window']} in the window {u} in [{u0:g}, {u1:g}], {v} in [{v0:g}, {v1:g}]. "
             f"(b) is computed from reps.csv: the representative of this plane nearest to each point (within the "
             f"radius cap {float(st['max_radius']):.3g}; on a plane every normal agrees), i.e. the eye pass's lookup "
             "restricted to the plane; the radiance is rho/pi times this irradiance.")
@@ -381,10 +446,10 @@ def fig2(args):
     flip = axis == "y"  # the floor seen from above: z (towards the camera) downwards
     vlim = (v1, v0) if flip else (v0, v1)
     ax = fig.add_subplot(gs[0, 0])
-    sc = ax.scatter(wall[u][inwin], wall[v][inwin], c=ew, cmap="viridis", norm=norm, s=22, edgecolors="none")
+    sc = ax.scatter(rec["wall_u"], rec["wall_v"], c=ew, cmap="viridis", norm=norm, s=22, edgecolors="none")
     ax2 = fig.add_subplot(gs[0, 1], sharex=ax, sharey=ax)
     ax2.imshow(field, cmap="viridis", norm=norm, extent=(u0, u1, v0, v1), origin="lower", interpolation="nearest")
-    ax2.plot(wall[u][inwin], wall[v][inwin], ".", color="white", ms=2, alpha=0.9)
+    ax2.plot(rec["wall_u"], rec["wall_v"], ".", color="white", ms=2, alpha=0.9)
     for a in (ax, ax2):
         a.set_xlim(u0, u1)
         a.set_ylim(*vlim)
@@ -397,12 +462,7 @@ def fig2(args):
     ax2.set_title("(b) the estimate at every point: E of the nearest\nrepresentative (white dots): constant cells")
     cb = fig.colorbar(sc, ax=[ax, ax2], orientation="horizontal", fraction=0.05, pad=0.12, aspect=50)
     cb.set_label("irradiance E, luminance (W per scene unit^2)")
-    sub = img[cy0:cy1, cx0:cx1]
-    lum = plotting.luminance(sub)
-    inside = plt.matplotlib.path.Path(np.column_stack([px, py]))
-    yy, xx = np.mgrid[cy0:cy1, cx0:cx1]
-    mask = inside.contains_points(np.column_stack([xx.ravel() + 0.5, yy.ravel() + 0.5])).reshape(lum.shape)
-    lnorm = plt.Normalize(*np.quantile(lum[mask] if mask.any() else lum, [0.01, 0.99]))
+    lnorm = plt.Normalize(*rec["lum_range"])
     for k, (panel, title) in enumerate((
             (None, f"(c) this run's rendered image: luminance of\npixels {cx0}-{cx1} x {cy0}-{cy1} (radiance = "
                    "rho/pi x E;\nits own colour scale), enlarged without smoothing"),
@@ -428,7 +488,14 @@ def fig2(args):
     plotting.save(fig, os.path.join(args.out, "fig2.png"))
 
 
-# ---- plots of the grid
+def fig2(args):
+    """fig2.png (fig2_record, draw_fig2)."""
+    draw_fig2(fig2_record(args), args)
+
+
+# ---- plots of the grid: each has a record function (the points, intervals
+# and ranges it shows, from the tables) and a drawing function (from the
+# record alone)
 
 def cell_time(args, method, est, photons, nn):
     """(mean, 95% t half-width) over seeds of the time args.time of one
@@ -440,10 +507,11 @@ def cell_time(args, method, est, photons, nn):
     return stats.t_interval(sel[args.time].to_numpy(float)) if args.time in sel else (math.nan, math.nan)
 
 
-def errbar_xy(ax, t, est, args, colour, marker, label, **kw):
+def errbar_points(t, est, args):
     """Mean time against mean relMSE of the rows T of table1.csv for
-    estimate EST, both with 95% t intervals over seeds, joined in order of
-    n; returns (times, errors) of the points drawn."""
+    estimate EST, both with 95% t intervals over seeds, in order of n, the
+    points without both means left out: a dict of arrays x, xh (time
+    half-width), y, ye (error half-width)."""
     s = sfx(est)
     t = t.sort_values("nn")
     tm = [cell_time(args, r["method"], est, r["photons"], r["nn"]) for _, r in t.iterrows()]
@@ -452,26 +520,33 @@ def errbar_xy(ax, t, est, args, colour, marker, label, **kw):
     y = t["relmse_ref_mean" + s].to_numpy(float)
     ok = np.isfinite(x) & np.isfinite(y)
     if not ok.any():
-        return np.array([]), np.array([])
-    t, x, y, xh = t[ok], x[ok], y[ok], xh[ok]
-    ye = np.nan_to_num(t["relmse_ref_ci95" + s].to_numpy(float))
+        return {"x": np.array([]), "xh": np.array([]), "y": np.array([]), "ye": np.array([])}
+    return {"x": x[ok], "xh": xh[ok], "y": y[ok], "ye": np.nan_to_num(t["relmse_ref_ci95" + s].to_numpy(float)[ok])}
+
+
+def draw_errbar(ax, pts, colour, marker, label, **kw):
+    """The points PTS (errbar_points) with their intervals on both axes,
+    joined in order; nothing when there are none."""
+    x, xh, y, ye = pts["x"], pts["xh"], pts["y"], pts["ye"]
+    if not x.size:
+        return
     ax.errorbar(x, y, xerr=[np.minimum(xh, x * 0.999), xh], yerr=[np.minimum(ye, y * 0.999), ye], fmt=marker + "-",
                 color=colour, label=label, ms=6, lw=1.1, capsize=2, elinewidth=0.9, **kw)
-    return x, y
 
 
-def draw_front(ax, x, y, colour, label):
-    """The Pareto front of the points (X time, Y error) as the equal-error
-    analysis interpolates it: straight segments in log-log between the
-    front's cells (stats.pareto_front, stats.time_at_error)."""
-    idx = stats.pareto_front(x, y)
+def draw_front(ax, x, y, idx, colour, label):
+    """The Pareto front IDX (stats.pareto_front) of the points (X time, Y
+    error) as the equal-error analysis interpolates it: straight segments in
+    log-log between the front's cells (stats.time_at_error)."""
     if len(idx) >= 2:
         ax.plot(np.asarray(x)[idx], np.asarray(y)[idx], "--", color=colour, lw=2.2, alpha=0.55, zorder=0, label=label)
 
 
-def tradeoff(args):
-    """tradeoff.png: time against relMSE, with intervals on both axes: (a)
-    the paper estimate, (b) the corrected one, (c) the rep-study's rules."""
+def tradeoff_record(args):
+    """What tradeoff.png shows: per estimate, method and P_e the cells'
+    points (errbar_points) and each method's Pareto front; the rep-study's
+    rules at one P_e (the largest, where they differ most) against its
+    conventional cells; the axes' ranges from the cells' means."""
     t = args.table_frame
     estimates = ["paper"] + (["corrected"] if "relmse_ref_mean_corrected" in t
                              and t["relmse_ref_mean_corrected"].notna().any() else [])
@@ -479,43 +554,31 @@ def tradeoff(args):
     if args.rep_study_cells and os.path.isfile(args.rep_study_cells):
         rs = read_csv(args.rep_study_cells, ["rule", "label", "photons", "nn", "time_median_s", "time_min_s",
                                              "time_max_s", "relmse_ref_mean", "relmse_ref_ci95"], "rep-study cells")
-    npanel = len(estimates) + (1 if rs is not None else 0)
-    fig, axes = plt.subplots(1, npanel, figsize=(max(6.2 * npanel, 9.0), 7.6), sharey=True, squeeze=False)
-    axes = axes[0]
     allp = sorted(set(t["photons"]))
-    shades = {"conventional": ["#9ecae1", "#3182bd", "#08306b"], "precomputed": ["#fcae91", "#e6550d", "#7f2704"]}
-    for k, est in enumerate(estimates):
-        ax = axes[k]
+    panels = []
+    for est in estimates:
+        methods = []
         for m in ("conventional", "precomputed"):
-            xs, ys_ = [], []
-            for i, p in enumerate(allp):
-                sel = t[(t["method"] == m) & (t["photons"] == p)]
-                x, y = errbar_xy(ax, sel, est, args, shades[m][i % 3], plotting.photon_marker(p, allp),
-                                 f"{m}, P_e = {kilo(p)}")
-                xs += list(x)
-                ys_ += list(y)
-            draw_front(ax, xs, ys_, shades[m][1], f"{m} front (log-log interpolation of the equal-error number)")
-        ax.set_title(f"({chr(ord('a') + k)}) {est} estimate" + (" (--bias-correction)" if est == "corrected" else ""))
+            lines = [(p, errbar_points(t[(t["method"] == m) & (t["photons"] == p)], est, args)) for p in allp]
+            xs = [v for _, pts in lines for v in pts["x"]]
+            ys = [v for _, pts in lines for v in pts["y"]]
+            methods.append({"method": m, "lines": lines, "front_x": xs, "front_y": ys,
+                            "front": stats.pareto_front(xs, ys)})
+        panels.append({"estimate": est, "methods": methods})
+    rules = None
     if rs is not None:
-        # the rules at one P_e (the largest, where they differ most), against its conventional cells
-        ax = axes[-1]
         pr = max(set(rs["photons"]) & set(allp)) if set(rs["photons"]) & set(allp) else max(rs["photons"])
-        conv = t[(t["method"] == "conventional") & (t["photons"] == pr)]
-        errbar_xy(ax, conv, "paper", args, "#888888", plotting.photon_marker(pr, allp), "conventional")
+        conv = errbar_points(t[(t["method"] == "conventional") & (t["photons"] == pr)], "paper", args)
+        lines = []
         for j, rule in enumerate(dict.fromkeys(rs["rule"])):
             r = rs[(rs["rule"] == rule) & (rs["photons"] == pr)].sort_values("nn")
             if r.empty:
                 continue
-            col = plotting.RULE_COLOURS[j % len(plotting.RULE_COLOURS)]
             x = r["time_median_s"].to_numpy(float)
-            y = r["relmse_ref_mean"].to_numpy(float)
-            ye = np.nan_to_num(r["relmse_ref_ci95"].to_numpy(float))
-            ax.errorbar(x, y, xerr=[x - r["time_min_s"], r["time_max_s"] - x], yerr=[np.minimum(ye, y * 0.999), ye],
-                        fmt=plotting.photon_marker(pr, allp) + "-", color=col, ms=5, lw=1, capsize=1.5,
-                        label=r["label"].iloc[0])
-        ax.set_title(f"({chr(ord('a') + npanel - 1)}) representative rules at P_e = {kilo(pr)} "
-                     "(paper estimate; rep-study)")
-    med, _, _, tl = time_cols(args)
+            lines.append({"index": j, "label": r["label"].iloc[0], "x": x, "y": r["relmse_ref_mean"].to_numpy(float),
+                          "lo": x - r["time_min_s"], "hi": r["time_max_s"] - x,
+                          "ye": np.nan_to_num(r["relmse_ref_ci95"].to_numpy(float))})
+        rules = {"photons": pr, "conventional": conv, "lines": lines}
     # the y range from the cells' means (few seeds give long error bars: they are clipped at the axes)
     ys = [t["relmse_ref_mean" + sfx(e)] for e in estimates] + ([rs["relmse_ref_mean"]] if rs is not None else [])
     ys = np.concatenate([np.asarray(v, dtype=float) for v in ys])
@@ -524,38 +587,80 @@ def tradeoff(args):
     xs = np.array([cell_time(args, r["method"], e, r["photons"], r["nn"])[0] for e in estimates
                    for _, r in t.iterrows()], dtype=float)
     xs = xs[np.isfinite(xs) & (xs > 0)]
+    return {"photons": allp, "panels": panels, "rules": rules,
+            "xlim": (xs.min() / 1.3, xs.max() * 1.3) if xs.size else None,
+            "ylim": (ys.min() / 1.6, ys.max() * 1.6) if ys.size else None,
+            "footer": provenance(args, (f"Rep-study points: {args.rep_study_cells} (their seeds; error bars reaching "
+                                        "past the axes are clipped)." if rs is not None else
+                                        "No rep-study data (run `make rep-study` to add its rules)."))}
+
+
+def draw_tradeoff(rec, args):
+    """tradeoff.png from its record: time against relMSE, with intervals on
+    both axes: (a) the paper estimate, (b) the corrected one, (c) the
+    rep-study's rules."""
+    npanel = len(rec["panels"]) + (1 if rec["rules"] is not None else 0)
+    fig, axes = plt.subplots(1, npanel, figsize=(max(6.2 * npanel, 9.0), 7.6), sharey=True, squeeze=False)
+    axes = axes[0]
+    allp = rec["photons"]
+    shades = {"conventional": ["#9ecae1", "#3182bd", "#08306b"], "precomputed": ["#fcae91", "#e6550d", "#7f2704"]}
+    for k, panel in enumerate(rec["panels"]):
+        ax = axes[k]
+        for m in panel["methods"]:
+            for i, (p, pts) in enumerate(m["lines"]):
+                draw_errbar(ax, pts, shades[m["method"]][i % 3], plotting.photon_marker(p, allp),
+                            f"{m['method']}, P_e = {kilo(p)}")
+            draw_front(ax, m["front_x"], m["front_y"], m["front"], shades[m["method"]][1],
+                       f"{m['method']} front (log-log interpolation of the equal-error number)")
+        est = panel["estimate"]
+        ax.set_title(f"({chr(ord('a') + k)}) {est} estimate" + (" (--bias-correction)" if est == "corrected" else ""))
+    if rec["rules"] is not None:
+        ax = axes[-1]
+        pr = rec["rules"]["photons"]
+        draw_errbar(ax, rec["rules"]["conventional"], "#888888", plotting.photon_marker(pr, allp), "conventional")
+        for r in rec["rules"]["lines"]:
+            col = plotting.RULE_COLOURS[r["index"] % len(plotting.RULE_COLOURS)]
+            x, y, ye = r["x"], r["y"], r["ye"]
+            ax.errorbar(x, y, xerr=[r["lo"], r["hi"]], yerr=[np.minimum(ye, y * 0.999), ye],
+                        fmt=plotting.photon_marker(pr, allp) + "-", color=col, ms=5, lw=1, capsize=1.5,
+                        label=r["label"])
+        ax.set_title(f"({chr(ord('a') + npanel - 1)}) representative rules at P_e = {kilo(pr)} "
+                     "(paper estimate; rep-study)")
+    tl = time_cols(args)[3]
     for ax in axes:
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel(f"mean time, {tl} (1 thread; bars: 95% t over seeds, as the error's)")
         ax.legend(fontsize=7.5, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=2)
-        if xs.size:
-            ax.set_xlim(xs.min() / 1.3, xs.max() * 1.3)
+        if rec["xlim"] is not None:
+            ax.set_xlim(*rec["xlim"])
         plotting.log_ticks(ax.xaxis, *ax.get_xlim())
-    if ys.size:
-        axes[0].set_ylim(ys.min() / 1.6, ys.max() * 1.6)
+    if rec["ylim"] is not None:
+        axes[0].set_ylim(*rec["ylim"])
     plotting.log_ticks(axes[0].yaxis, *axes[0].get_ylim())
     axes[0].set_ylabel(f"relMSE against {args.ref_label}")
     fig.suptitle("Speed against accuracy: each line one method and P_e,\nn = 10, 20, 50, 100 from top to "
                  "bottom (markers: P_e); dashed: each method's Pareto front", fontsize=11 if npanel > 1 else 9.5,
                  weight="bold")
-    foot = provenance(args, (f"Rep-study points: {args.rep_study_cells} (their seeds; error bars reaching past the "
-                             "axes are clipped)." if rs is not None else
-                             "No rep-study data (run `make rep-study` to add its rules)."))
+    foot = rec["footer"]
     fig.subplots_adjust(left=0.08, right=0.99, top=0.88, bottom=0.3 + 0.02 * plotting.footer_lines(foot, 6.2 * npanel))
     plotting.footer(fig, foot)
     plotting.save(fig, os.path.join(args.out, "tradeoff.png"))
 
 
-def ratio_vs_n(args):
-    """ratio-vs-n.png: precomputed / conventional time (%) against n, one
-    panel per P_e: ours with the t interval of the paired per-seed log ratio
-    (a table1.csv without paired columns: its ratio of medians with the
-    bootstrap interval), both estimates, and the paper's (single runs, no
-    interval)."""
+def tradeoff(args):
+    """tradeoff.png (tradeoff_record, draw_tradeoff)."""
+    draw_tradeoff(tradeoff_record(args), args)
+
+
+def ratio_vs_n_record(args):
+    """What ratio-vs-n.png shows: per P_e the precomputed / conventional
+    time (%) against n, ours with the t interval of the paired per-seed log
+    ratio (a table1.csv without paired columns: its ratio of medians with
+    the bootstrap interval) for each estimate the table has, the paper's
+    (single runs, no interval), and the y range."""
     t = args.table_frame
     pre = t[t["method"] == "precomputed"]
-    allp = sorted(set(pre["photons"]))
     cpu = args.time == "cpu_s"
     col, lo, hi = ("cpu_ratio_percent", "cpu_ratio_ci95_lo", "cpu_ratio_ci95_hi") if cpu else \
         ("ratio_percent", "ratio_ci95_lo", "ratio_ci95_hi")
@@ -563,43 +668,68 @@ def ratio_vs_n(args):
     paired = ("paired_" + col) in args.table_frame
     if paired:
         col, lo, hi = "paired_" + col, "paired_" + lo, "paired_" + hi
-    fig, axes = plt.subplots(1, len(allp), figsize=(4.6 * len(allp), 5), sharey=True, squeeze=False)
     ymax = 100
-    for ax, p in zip(axes[0], allp):
+    panels = []
+    for p in sorted(set(pre["photons"])):
         g = pre[pre["photons"] == p].sort_values("nn")
-        for est, style, off in (("paper", "o-", 0.97), ("corrected", "s--", 1.03)):
+        ours = []
+        for est in ("paper", "corrected"):
             s = sfx(est)
             if col + s not in g or not g[col + s].notna().any():
                 continue
             y = g[col + s].to_numpy(float)
-            err = [y - g[lo + s].to_numpy(float), g[hi + s].to_numpy(float) - y]
-            ax.errorbar(g["nn"] * off, y, yerr=np.nan_to_num(err), fmt=style, color=plotting.METHOD_COLOUR["precomputed"]
-                        if est == "paper" else "#e08a1e", capsize=3, ms=6, label=f"ours, {est} estimate (95% {'paired t' if paired else 'bootstrap'})")
+            ours.append({"estimate": est, "nn": g["nn"].to_numpy(), "y": y,
+                         "err": np.nan_to_num([y - g[lo + s].to_numpy(float), g[hi + s].to_numpy(float) - y])})
             ymax = max(ymax, np.nanmax(g[hi + s]))
+        paper = None
         if g["paper_ratio_percent"].notna().any():
-            ax.plot(g["nn"], g["paper_ratio_percent"], "*-", color=plotting.PAPER_COLOUR, ms=10,
-                    label="paper, Table 1 (one run per cell)")
+            paper = (g["nn"].to_numpy(), g["paper_ratio_percent"].to_numpy())
             ymax = max(ymax, g["paper_ratio_percent"].max())
-        ax.axhline(100, color="#777777", lw=1, ls=":")
-        ax.text(g["nn"].min(), 101, "equal time", fontsize=8, color="#555555", va="bottom")
-        ax.set_xscale("log")
-        ax.set_xticks(sorted(set(g["nn"])), [str(v) for v in sorted(set(g["nn"]))])
-        ax.set_xlabel("n (nearest photons)")
-        ax.set_title(f"P_e = {kilo(p)}")
-    for ax in axes[0]:
-        ax.set_ylim(0, ymax * 1.08)
-    axes[0][0].set_ylabel(f"precomputed / conventional time, % ({'CPU' if cpu else 'wall'})")
-    axes[0][0].legend(fontsize=8, loc="lower left")
-    fig.suptitle("The comparable quantity: time of the precomputed method relative to the conventional one",
-                 fontsize=11.5, weight="bold")
+        panels.append({"photons": p, "nns": sorted(set(g["nn"])), "ours": ours, "paper": paper})
     foot = provenance(args, ("Ours: paired ratio (the geometric mean of the per-seed ratios of the two renders of "
                              "one seed, rendered back to back), 95% t interval over seeds. " if paired else "") +
                       "Without paired columns: ratio of the median times, interval from resampling the seeds of both cells "
                             "(table.py); offsets along n only separate the estimates.")
+    return {"panels": panels, "paired": paired, "cpu": cpu, "ymax": ymax, "footer": foot}
+
+
+def draw_ratio_vs_n(rec, args):
+    """ratio-vs-n.png from its record, one panel per P_e."""
+    panels = rec["panels"]
+    fig, axes = plt.subplots(1, len(panels), figsize=(4.6 * len(panels), 5), sharey=True, squeeze=False)
+    style = {"paper": ("o-", 0.97), "corrected": ("s--", 1.03)}
+    for ax, pan in zip(axes[0], panels):
+        for o in pan["ours"]:
+            est = o["estimate"]
+            fmt_, off = style[est]
+            ax.errorbar(o["nn"] * off, o["y"], yerr=o["err"], fmt=fmt_, color=plotting.METHOD_COLOUR["precomputed"]
+                        if est == "paper" else "#e08a1e", capsize=3, ms=6,
+                        label=f"ours, {est} estimate (95% {'paired t' if rec['paired'] else 'bootstrap'})")
+        if pan["paper"] is not None:
+            ax.plot(*pan["paper"], "*-", color=plotting.PAPER_COLOUR, ms=10,
+                    label="paper, Table 1 (one run per cell)")
+        ax.axhline(100, color="#777777", lw=1, ls=":")
+        ax.text(min(pan["nns"]), 101, "equal time", fontsize=8, color="#555555", va="bottom")
+        ax.set_xscale("log")
+        ax.set_xticks(pan["nns"], [str(v) for v in pan["nns"]])
+        ax.set_xlabel("n (nearest photons)")
+        ax.set_title(f"P_e = {kilo(pan['photons'])}")
+    for ax in axes[0]:
+        ax.set_ylim(0, rec["ymax"] * 1.08)
+    axes[0][0].set_ylabel(f"precomputed / conventional time, % ({'CPU' if rec['cpu'] else 'wall'})")
+    axes[0][0].legend(fontsize=8, loc="lower left")
+    fig.suptitle("The comparable quantity: time of the precomputed method relative to the conventional one",
+                 fontsize=11.5, weight="bold")
+    foot = rec["footer"]
     fig.subplots_adjust(left=0.07, right=0.99, top=0.86, wspace=0.08,
-                        bottom=0.13 + 0.025 * plotting.footer_lines(foot, 4.6 * len(allp)))
+                        bottom=0.13 + 0.025 * plotting.footer_lines(foot, 4.6 * len(panels)))
     plotting.footer(fig, foot)
     plotting.save(fig, os.path.join(args.out, "ratio-vs-n.png"))
+
+
+def ratio_vs_n(args):
+    """ratio-vs-n.png (ratio_vs_n_record, draw_ratio_vs_n)."""
+    draw_ratio_vs_n(ratio_vs_n_record(args), args)
 
 
 def phase_medians(args):
@@ -618,41 +748,26 @@ def phase_medians(args):
     return out
 
 
-def phases(args):
-    """phases.png: per-phase median times (trace, build, precompute, eye
-    pass) stacked, per cell, both methods, one panel per P_e."""
+PHASES = [("trace", "trace photons", "#8c8c8c"), ("build", "build kd-tree", "#c7b37a"),
+          ("precompute", "precompute at representatives", "#e6550d"), ("render", "eye pass", "#3182bd")]
+
+
+def phases_record(args):
+    """What phases.png shows: per P_e and n of the table the per-phase
+    median times of each method (phase_medians, a missing phase as 0), and
+    the renders' median load average."""
     t = args.table_frame
     med = phase_medians(args)
-    allp = sorted(set(t["photons"]))
-    phase = [("trace", "trace photons", "#8c8c8c"), ("build", "build kd-tree", "#c7b37a"),
-             ("precompute", "precompute at representatives", "#e6550d"), ("render", "eye pass", "#3182bd")]
-    fig, axes = plt.subplots(1, len(allp), figsize=(4.6 * len(allp), 5.2), sharey=True, squeeze=False)
-    for ax, p in zip(axes[0], allp):
-        g = t[t["photons"] == p]
-        ns = sorted(set(g["nn"]))
-        for i, n in enumerate(ns):
-            for j, m in enumerate(("conventional", "precomputed")):
+    panels = []
+    for p in sorted(set(t["photons"])):
+        ns = sorted(set(t[t["photons"] == p]["nn"]))
+        bars = {}
+        for n in ns:
+            for m in ("conventional", "precomputed"):
                 r = med.get((int(p), int(n), m))
-                if r is None:
-                    continue
-                x = i + (j - 0.5) * 0.38
-                bottom = 0.0
-                for key, label, colour in phase:
-                    v = float(r[key]) if isnum(r[key]) else 0.0
-                    ax.bar(x, v, 0.36, bottom=bottom, color=colour, edgecolor="white", lw=0.5,
-                           label=label if (i, j) == (0, 1) or (key != "precompute" and (i, j) == (0, 0)) else None)
-                    bottom += v
-                ax.text(x, bottom, "C" if m == "conventional" else "P", ha="center", va="bottom", fontsize=8)
-        ax.set_xticks(range(len(ns)), [f"n={n}" for n in ns])
-        ax.set_title(f"P_e = {kilo(p)}   (C: conventional, P: precomputed)")
-        ax.grid(axis="x", visible=False)
-    axes[0][0].set_ylabel("seconds per phase, median over seeds\n" + ("(CPU-scaled wall clock, 1 thread)"
-                                                                      if args.time == "cpu_s" else "(wall clock, 1 thread)"))
-    handles, labels = axes[0][0].get_legend_handles_labels()
-    order = [labels.index(lab) for _, lab, _ in phase if lab in labels]
-    axes[0][0].legend([handles[i] for i in order], [labels[i] for i in order], fontsize=8, loc="upper left")
-    fig.suptitle("Where the time goes: the precomputed method moves kNN work from the eye pass to the "
-                 "precompute", fontsize=11.5, weight="bold")
+                if r is not None:
+                    bars[(n, m)] = {k: float(r[k]) if isnum(r[k]) else 0.0 for k, _, _ in PHASES}
+        panels.append({"photons": p, "nns": ns, "bars": bars})
     load = args.runs_frame.loc[args.runs_frame["status"] == "ok", "loadavg_1min"]
     foot = provenance(args, "Phases: the renderer's monotonic clock per phase (runs.csv *_s from the stats JSON)"
                             + (", scaled per render by its CPU seconds / wall seconds (cpu_s / total_s) so that a "
@@ -660,10 +775,49 @@ def phases(args):
                             + "; median over seeds of each phase on its own, so they need not add up to the median "
                             f"total. 1-minute load average at the renders' start: median {fmt(load.median())} on "
                             f"{os.cpu_count()} cores.")
+    return {"panels": panels, "footer": foot}
+
+
+def draw_phases(rec, args):
+    """phases.png from its record: the phases stacked per cell, both
+    methods, one panel per P_e."""
+    panels = rec["panels"]
+    fig, axes = plt.subplots(1, len(panels), figsize=(4.6 * len(panels), 5.2), sharey=True, squeeze=False)
+    for ax, pan in zip(axes[0], panels):
+        ns = pan["nns"]
+        for i, n in enumerate(ns):
+            for j, m in enumerate(("conventional", "precomputed")):
+                r = pan["bars"].get((n, m))
+                if r is None:
+                    continue
+                x = i + (j - 0.5) * 0.38
+                bottom = 0.0
+                for key, label, colour in PHASES:
+                    v = r[key]
+                    ax.bar(x, v, 0.36, bottom=bottom, color=colour, edgecolor="white", lw=0.5,
+                           label=label if (i, j) == (0, 1) or (key != "precompute" and (i, j) == (0, 0)) else None)
+                    bottom += v
+                ax.text(x, bottom, "C" if m == "conventional" else "P", ha="center", va="bottom", fontsize=8)
+        ax.set_xticks(range(len(ns)), [f"n={n}" for n in ns])
+        ax.set_title(f"P_e = {kilo(pan['photons'])}   (C: conventional, P: precomputed)")
+        ax.grid(axis="x", visible=False)
+    axes[0][0].set_ylabel("seconds per phase, median over seeds\n" + ("(CPU-scaled wall clock, 1 thread)"
+                                                                      if args.time == "cpu_s" else "(wall clock, 1 thread)"))
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    order = [labels.index(lab) for _, lab, _ in PHASES if lab in labels]
+    axes[0][0].legend([handles[i] for i in order], [labels[i] for i in order], fontsize=8, loc="upper left")
+    fig.suptitle("Where the time goes: the precomputed method moves kNN work from the eye pass to the "
+                 "precompute", fontsize=11.5, weight="bold")
+    foot = rec["footer"]
     fig.subplots_adjust(left=0.07, right=0.99, top=0.87, wspace=0.06,
-                        bottom=0.1 + 0.025 * plotting.footer_lines(foot, 4.6 * len(allp)))
+                        bottom=0.1 + 0.025 * plotting.footer_lines(foot, 4.6 * len(panels)))
     plotting.footer(fig, foot)
     plotting.save(fig, os.path.join(args.out, "phases.png"))
+
+
+def phases(args):
+    """phases.png (phases_record, draw_phases)."""
+    draw_phases(phases_record(args), args)
 
 
 FIGURES = {"fig3": fig3, "fig3-errors": fig3_errors, "fig2": fig2, "tradeoff": tradeoff, "ratio-vs-n": ratio_vs_n,

@@ -20,6 +20,12 @@ that makes it, instead of a number. The findings are numbered as the
 hand-written ones of results/README.md that they replace (1-9), each with
 the question the review asked of it.
 
+Three layers, one concern each: a record function per finding (record_*)
+loads its results files once and returns a plain dict with every number and
+verdict the finding quotes; md_* words a record as a FINDINGS.md section and
+readme_* as a bullet of README's summary block. Both writers of a finding
+read the same record and compute nothing of their own.
+
   python3 -m experiments.analysis.findings --results results --out results/FINDINGS.md
 """
 
@@ -79,27 +85,27 @@ def cell(p, n):
     return f"({p // 1000}k, {int(n)})" if p % 1000 == 0 else f"({p}, {int(n)})"
 
 
-def word_rank(a, b, what_a, what_b):
-    """A sentence part comparing two unpaired intervals by stats.rank."""
-    r = stats.rank(a, b)
-    if r == "higher":
-        return f"{what_a} is ranked above {what_b} (disjoint 95% intervals)"
-    if r == "lower":
-        return f"{what_a} is ranked below {what_b} (disjoint 95% intervals)"
-    return f"{what_a} against {what_b}: undetermined (the 95% intervals overlap)"
-
-
 def prec_rows(table):
     """The precomputed rows of a table1.csv."""
     return table[table["method"] != "conventional"]
 
 
-# ---- the findings: each returns (title, [lines]) or raises Missing
+# ---- records: one per finding. Each loads its results files once and
+# returns a plain dict holding every number and verdict that FINDINGS.md and
+# README's summary quote of it (or raises Missing); the writers below only
+# word and format a record, they compute nothing.
 
-def pairs_text(pairs):
-    """'5 pairs', or '3-5 pairs' where the cells differ."""
-    lo, hi = int(pairs.min()), int(pairs.max())
-    return f"{lo} pairs" if lo == hi else f"{lo}-{hi} pairs"
+EQUAL_ERROR_COLUMNS = ["estimate", "kind", "target", "speedup", "lo", "hi", "defined_fraction"]
+
+
+def row_dict(r):
+    """A results row (a pandas Series) as a plain dict."""
+    return {k: r[k] for k in r.index}
+
+
+def span_of(rows):
+    """(smallest, largest) of an integer column's values."""
+    return int(rows.min()), int(rows.max())
 
 
 def excess_and_bias(q, c):
@@ -129,65 +135,456 @@ def resolution_files(d):
                   key=lambda f: int(os.path.basename(f)[len("equal-error-"):-4].split("x")[0]))
 
 
-def finding1(d):
-    """The table's shape: the paired time ratio over n and P_e, and the paper's values."""
+def headline_of(e, est):
+    """The headline row of estimate EST in an equal-error CSV (the tightest
+    curve target at least equal_error.DEFINED_MIN of the resamples reach on
+    both fronts), or None."""
+    g = e[(e["estimate"] == est) & (e["kind"] == "curve")]
+    return ee.headline([r for _, r in g.iterrows()])
+
+
+def tightest_and_curve(e, est):
+    """(tightest row, (lowest, highest) curve rows where 95% of the resamples
+    reach both fronts, or None) of estimate EST in an equal-error CSV; Missing
+    when the fronts share no error."""
+    g = e[e["estimate"] == est]
+    t = g[g["kind"] == "tightest"]
+    if len(t) == 0:
+        raise Missing(f"the {est} estimate's fronts reach no common {metrics.PRIMARY}")
+    c = g[(g["kind"] == "curve") & (g["defined_fraction"] >= ee.DEFINED_MIN)]
+    span = (c.loc[c["speedup"].idxmin()], c.loc[c["speedup"].idxmax()]) if len(c) else None
+    return t.iloc[0], span
+
+
+def equal_error_record(e):
+    """Per estimate of an equal-error frame E (equal_error.py's kinds
+    `tightest` and `curve`), in file order: the tightest row (None when the
+    fronts share no error), the span of the curve where 95% of the resamples
+    reach both fronts and the rank of its two ends, the headline row and
+    its interval against 1, and the curve's extent."""
+    out = []
+    for est, g in e.groupby("estimate", sort=False):
+        c = g[g["kind"] == "curve"]
+        r = {"estimate": est, "curve_targets": len(c), "curve_min": c["target"].min(),
+             "curve_max": c["target"].max(), "tightest": None, "span": None, "span_rank": None,
+             "headline": None, "headline_vs_one": None}
+        try:
+            t, span = tightest_and_curve(g, est)
+        except Missing:
+            out.append(r)
+            continue
+        r["tightest"] = row_dict(t)
+        if span is not None:
+            r["span"] = (row_dict(span[0]), row_dict(span[1]))
+            r["span_rank"] = stats.rank((span[0]["lo"], span[0]["hi"]), (span[1]["lo"], span[1]["hi"]))
+        h = headline_of(g, est)
+        if h is not None:
+            r["headline"] = row_dict(h)
+            r["headline_vs_one"] = stats.rank((h["lo"], h["hi"]), (1.0, 1.0))
+        out.append(r)
+    return out
+
+
+def estimate_of(records, est):
+    """The record of estimate EST in an equal_error_record list; Missing when
+    its fronts share no error (or it is absent)."""
+    for r in records:
+        if r["estimate"] == est and r["tightest"] is not None:
+            return r
+    raise Missing(f"the {est} estimate's fronts reach no common {metrics.PRIMARY}")
+
+
+def record_table(d):
+    """Table 1's paired time ratios: the grid, the rank over n at each P_e
+    and over P_e at each n (first against last, unpaired intervals), and
+    where the paper's single value lies against our interval."""
     t = load(d["table"], ["photons", "nn", "method", "paper_ratio_percent", "paired_ratio_percent",
                           "paired_ratio_ci95_lo", "paired_ratio_ci95_hi", "pairs"], "make reproduce-table")
     p = prec_rows(t)
-    lines = [f"Paired time ratio precomputed / conventional (per-seed log ratios of the renderer's own time, "
-             f"95% t interval over {pairs_text(p['pairs'])}), % "
-             "(the paper's single measurement in brackets):", ""]
     nns = sorted(p["nn"].unique())
     phs = sorted(p["photons"].unique())
-    rows = []
-    for n in nns:
-        r = [str(int(n))]
-        for ph in phs:
-            s = p[(p["photons"] == ph) & (p["nn"] == n)]
-            if len(s) == 0:
-                r.append("n/a")
-                continue
-            s = s.iloc[0]
-            r.append(f"{ci(s['paired_ratio_percent'], s['paired_ratio_ci95_lo'], s['paired_ratio_ci95_hi'], pct)}"
-                     f" ({pct(s['paper_ratio_percent'])})")
-        rows.append(r)
-    lines += report.md_table(["n"] + [f"P_e = {cell(ph, 0)[1:-4]}" for ph in phs], rows)
-    lines.append("")
+
+    def val(s):
+        return {"photons": s["photons"], "nn": s["nn"], "ratio": s["paired_ratio_percent"],
+                "lo": s["paired_ratio_ci95_lo"], "hi": s["paired_ratio_ci95_hi"], "paper": s["paper_ratio_percent"]}
 
     def iv(s):
         return (s["paired_ratio_ci95_lo"], s["paired_ratio_ci95_hi"])
-    for ph in phs:
-        s = p[p["photons"] == ph].sort_values("nn")
-        if len(s) >= 2:
-            lo, hi = s.iloc[0], s.iloc[-1]
-            lines.append(f"- Over n at P_e = {int(ph)}: " + word_rank(iv(hi), iv(lo), f"the ratio at n = {int(hi['nn'])}",
-                                                                        f"the one at n = {int(lo['nn'])}") + ".")
+
+    def ends(s):
+        lo, hi = s.iloc[0], s.iloc[-1]
+        return {"count": len(s), "first": val(lo), "last": val(hi), "rank": stats.rank(iv(hi), iv(lo))}
+    grid = {}
     for n in nns:
-        s = p[p["nn"] == n].sort_values("photons")
-        if len(s) >= 2:
-            lo, hi = s.iloc[0], s.iloc[-1]
-            lines.append(f"- Over P_e at n = {int(n)}: " + word_rank(iv(hi), iv(lo), f"the ratio at P_e = {int(hi['photons'])}",
-                                                                       f"the one at P_e = {int(lo['photons'])}") + ".")
-    inside = {}
-    for ph in phs:
-        s = p[(p["photons"] == ph) & np.isfinite(p["paper_ratio_percent"])]
-        k = int(((s["paired_ratio_ci95_lo"] <= s["paper_ratio_percent"])
-                 & (s["paper_ratio_percent"] <= s["paired_ratio_ci95_hi"])).sum())
-        inside[ph] = (k, len(s))
+        for ph in phs:
+            s = p[(p["photons"] == ph) & (p["nn"] == n)]
+            grid[(n, ph)] = val(s.iloc[0]) if len(s) else None
+    over_n = {ph: ends(p[p["photons"] == ph].sort_values("nn")) for ph in phs}
+    over_p = {n: ends(p[p["nn"] == n].sort_values("photons")) for n in nns}
+    known = p[np.isfinite(p["paper_ratio_percent"])]
+    inside = (known["paired_ratio_ci95_lo"] <= known["paper_ratio_percent"]) & \
+             (known["paper_ratio_percent"] <= known["paired_ratio_ci95_hi"])
+    out = known[~inside]
+    return {"pairs": span_of(p["pairs"]), "nns": nns, "photons": phs, "grid": grid, "over_n": over_n,
+            "over_p": over_p, "falls": sum(over_n[ph]["rank"] == "lower" for ph in phs),
+            "inside": {ph: (int(inside[known["photons"] == ph].sum()), int((known["photons"] == ph).sum()))
+                       for ph in phs},
+            "inside_all": bool(inside.all()), "inside_any": bool(inside.any()), "outside": len(out),
+            "outside_lower": int((out["paired_ratio_ci95_hi"] < out["paper_ratio_percent"]).sum())}
+
+
+def record_equal_error(d):
+    """The table's equal-error curve, per estimate (equal_error_record)."""
+    return {"estimates": equal_error_record(load(d["equal_error"], EQUAL_ERROR_COLUMNS, "make reproduce-table"))}
+
+
+VERDICTS = ("higher", "lower", "equivalent", "undetermined")
+
+
+def record_cost(d):
+    """What the speed costs in accuracy: the paired relMSE verdicts per
+    estimate and cell, the bias share of the excess where the precomputed
+    method ranks worse, and what more photons remove of the difference from
+    the conventional image at each n."""
+    t = load(d["table"], ["photons", "nn", "method", "relmse_diff_mean", "relmse_diff_lo", "relmse_diff_hi",
+                          "relmse_diff_verdict", "relmse_conv_mean", "relmse_conv_ci95", "pairs"],
+             "make reproduce-table")
+    cells = load(d["cells"], ["method", "estimate", "photons", "nn", "relmse_ref_mean", "bias_ref"],
+                 "make reproduce-table")
+    p = prec_rows(t)
+    verdicts = {}
+    for est in ("paper", "corrected"):
+        sfx = "" if est == "paper" else f"_{est}"
+        col = f"relmse_diff_verdict{sfx}"
+        if col not in p.columns:
+            continue
+        groups = {}
+        for _, r in p.iterrows():
+            groups.setdefault(str(r[col]) if isinstance(r[col], str) else "undetermined", []).append(
+                {"photons": r["photons"], "nn": r["nn"], "mean": r[f"relmse_diff_mean{sfx}"],
+                 "lo": r[f"relmse_diff_lo{sfx}"], "hi": r[f"relmse_diff_hi{sfx}"]})
+        verdicts[est] = {"pairs": span_of(p[f"pairs{sfx}"]), "groups": groups}
+    # bias share of the excess, per cell where the paired test ranks the
+    # precomputed method worse (a share of a difference that may be zero is
+    # no number)
+    worse = {(est, c["photons"], c["nn"]) for est, v in verdicts.items() for c in v["groups"].get("higher", [])}
+    shares = {}
+    for est, g in cells.groupby("estimate", sort=False):
+        for (ph, n), h in g.groupby(["photons", "nn"]):
+            c = h[h["method"] == "conventional"]
+            q = h[h["method"] == "precomputed"]
+            if len(c) and len(q) and (est, ph, n) in worse:
+                ex, bx = excess_and_bias(q, c)
+                if ex > 0:
+                    shares.setdefault(est, []).append({"photons": ph, "nn": n, "excess": ex, "bias": bx,
+                                                       "share": bx / ex})
+    bias_share = [{"estimate": est, "cells": len(sh), "min": min(s["share"] for s in sh),
+                   "max": max(s["share"] for s in sh), "largest": max(sh, key=lambda s: s["excess"])}
+                  for est, sh in shares.items()]
+    # the largest excess of the paper estimate where it ranks worse, with its bias share
+    worst = None
+    hi = p[p["relmse_diff_verdict"] == "higher"]
+    if len(hi):
+        r = hi.loc[hi["relmse_diff_mean"].idxmax()]
+        c = cells[(cells["estimate"] == "paper") & (cells["photons"] == r["photons"]) & (cells["nn"] == r["nn"])]
+        q, v = c[c["method"] == "precomputed"], c[c["method"] == "conventional"]
+        share = None
+        if len(q) and len(v):
+            ex, bx = excess_and_bias(q, v)
+            if ex > 0:
+                share = bx / ex
+        worst = {"photons": r["photons"], "nn": r["nn"], "mean": r["relmse_diff_mean"], "lo": r["relmse_diff_lo"],
+                 "hi": r["relmse_diff_hi"], "share": share}
+    # the difference from the conventional image of the same seed: n against P_e
+    conv = p[["photons", "nn", "relmse_conv_mean", "relmse_conv_ci95"]]
+    phs = sorted(conv["photons"].unique())
+    more = None
+    if len(phs) >= 2:
+        more = {"from": phs[0], "to": phs[-1], "factor": phs[-1] / phs[0], "per_n": []}
+        for n, g in conv.groupby("nn"):
+            a = g[g["photons"] == phs[0]]
+            b = g[g["photons"] == phs[-1]]
+            if len(a) and len(b):
+                a, b = a.iloc[0], b.iloc[0]
+                r = stats.rank((b["relmse_conv_mean"] - b["relmse_conv_ci95"], b["relmse_conv_mean"] + b["relmse_conv_ci95"]),
+                               (a["relmse_conv_mean"] - a["relmse_conv_ci95"], a["relmse_conv_mean"] + a["relmse_conv_ci95"]))
+                more["per_n"].append({"nn": n, "removed": 1 - b["relmse_conv_mean"] / a["relmse_conv_mean"],
+                                      "disjoint": r in ("lower", "higher")})
+    return {"pairs": span_of(p["pairs"]), "cells": len(p), "verdicts": verdicts, "bias_share": bias_share,
+            "worst": worst, "more_photons": more}
+
+
+def record_bias(d):
+    """The estimator's bias in the analytic scene: the paper estimate at
+    n = 10 (else the smallest n) against the law n/(n-1), and the corrected
+    intervals' coverage of 1."""
+    b = load(d["bias"], ["n", "law_n_over_n_minus_1", "conventional_paper_mean", "conventional_paper_ci95",
+                         "conventional_corrected_mean", "conventional_corrected_ci95", "precomputed_corrected_mean",
+                         "precomputed_corrected_ci95", "conventional_paper_seeds"], "make estimator-bias")
+
+    def at(s):
+        r = s.iloc[0]
+        return {"n": r["n"], "mean": r["conventional_paper_mean"], "ci95": r["conventional_paper_ci95"],
+                "seeds": r["conventional_paper_seeds"], "law": r["law_n_over_n_minus_1"],
+                "on_law": abs(r["conventional_paper_mean"] - r["law_n_over_n_minus_1"]) <= r["conventional_paper_ci95"]}
+    k_in, k_all, vals = corrected_coverage(b)
+    return {"at10": at(b[b["n"] == 10]) if (b["n"] == 10).any() else None,
+            "quoted": at(b[b["n"] == 10] if (b["n"] == 10).any() else b[b["n"] == b["n"].min()]),
+            "covered": k_in, "intervals": k_all,
+            "lowest": min(vals, key=lambda v: v[0]) if vals else None,
+            "highest": max(vals, key=lambda v: v[0]) if vals else None}
+
+
+def record_caustic(d):
+    """The caustic window's excess against the whole image's, per
+    precomputed cell, ranked only by disjoint intervals."""
+    c = load(d["caustic"], ["estimate", "photons", "nn", "method", "win_excess_mean", "win_excess_ci95",
+                            "img_excess_mean", "img_excess_ci95", "seeds"], "make caustic")
+    rows = []
+    for _, r in c[c["method"] == "precomputed"].iterrows():
+        w = (r["win_excess_mean"] - r["win_excess_ci95"], r["win_excess_mean"] + r["win_excess_ci95"])
+        i = (r["img_excess_mean"] - r["img_excess_ci95"], r["img_excess_mean"] + r["img_excess_ci95"])
+        rows.append({"estimate": r["estimate"], "photons": r["photons"], "nn": r["nn"], "win": r["win_excess_mean"],
+                     "win_ci95": r["win_excess_ci95"], "img": r["img_excess_mean"], "img_ci95": r["img_excess_ci95"],
+                     "seeds": r["seeds"], "rank": stats.rank(w, i)})
+    return {"rows": rows}
+
+
+def record_scenes(d):
+    """The scenes' equal-error cells as scenes.csv words them, with their seeds."""
+    s = load(d["scenes"], ["scene", "diff_seeds", "ee_paper", "ee_corrected"], "make scenes")
+    return {"rows": [{"scene": r["scene"], "seeds": int(r["diff_seeds"]), "paper": r["ee_paper"],
+                      "corrected": r["ee_corrected"]} for _, r in s.iterrows()]}
+
+
+def record_resolution(d):
+    """Per output size, smallest first: its equal-error record."""
+    files = resolution_files(d)
+    return {"dir": os.path.relpath(d["resolution"], d["root"]) if "root" in d else d["resolution"],
+            "sizes": [{"size": os.path.basename(f)[len("equal-error-"):-4],
+                       "file": os.path.relpath(f, d["root"]) if "root" in d else f,
+                       "estimates": equal_error_record(load(f, EQUAL_ERROR_COLUMNS, "make resolution"))}
+                      for f in files]}
+
+
+def record_baseline(d):
+    """The drift control: the photon-trace phase's paired ratio over the cells."""
+    t = load(d["table"], ["method", "photons", "nn", "trace_ratio_percent", "trace_ratio_ci95_lo",
+                          "trace_ratio_ci95_hi"], "make reproduce-table")
+    p = prec_rows(t)
+    off = p[(p["trace_ratio_ci95_hi"] < 100) | (p["trace_ratio_ci95_lo"] > 100)]
+    return {"median": p["trace_ratio_percent"].median(), "min": p["trace_ratio_percent"].min(),
+            "max": p["trace_ratio_percent"].max(), "off": len(off), "cells": len(p)}
+
+
+def speedup_stats(g, col):
+    """(median, smallest, largest, pairs) of the two-thread speed-ups of
+    column COL, or None without a pair."""
+    x = threads.speedups(g, col)
+    return (np.median(x), x.min(), x.max(), len(x)) if len(x) else None
+
+
+def record_scale(d):
+    """Performance at scale: the largest map of each method in the scaling
+    table, the two-thread speed-ups per map size, and for the conventional
+    method's largest map its two-thread total."""
+    sc = load(d["scaling"], ["method", "photons_emitted", "photons_stored", "threads", "trace_s", "build_s",
+                             "precompute_s", "eye_s", "total_s", "bytes_per_stored"], "make bench-scaling")
+    th = load(d["threads"], ["photons_emitted", "pair", "threads", "trace_s", "build_s", "total_s"],
+              "make bench-threads")
+    largest = [(m, row_dict(g.loc[g["photons_emitted"].idxmax()])) for m, g in sc.groupby("method", sort=False)]
+    two = [{"photons": ph, **{col: speedup_stats(g, col) for col in ("trace_s", "build_s", "total_s")}}
+           for ph, g in th.groupby("photons_emitted")]
+    conv = None
+    c = sc[sc["method"] == "conventional"]
+    if len(c):
+        r = c.loc[c["photons_emitted"].idxmax()]
+        g = th[th["photons_emitted"] == r["photons_emitted"]]
+        t2 = g[g["threads"] == 2]["total_s"]
+        conv = {**row_dict(r), "two_total_median": np.median(t2) if len(t2) else None, "two_total_pairs": len(t2),
+                "trace": speedup_stats(g, "trace_s"), "build": speedup_stats(g, "build_s")}
+    return {"largest": largest, "two_threads": two, "conventional": conv}
+
+
+def record_stability(d):
+    """Where the stability check's extremes are."""
+    path = d["stability"]
+    if not os.path.isfile(path):
+        raise Missing(f"`{path}` is missing (`make stability`)")
+    return {"file": os.path.relpath(path, d["root"])}
+
+
+def record_beyond(d):
+    """Beyond the paper's rule, paper estimate: per case the paper rule's
+    and the best variant's speed-ups and what the goal's tests say, the
+    count of cases that meet it, and for README the best variants quoted."""
+    b = load(d["beyond"], ["case", "variant", "estimate", "target", "speedup", "lo", "hi", "defined_fraction",
+                           "fallback_rate", "evaluated_share", "seeds", "best", "above_one", "vs_paper", "goal_met"],
+             "make beyond")
+    b = b[b["estimate"] == "paper"]
+    margin = stats.EQUIVALENCE_MARGIN
+    cases = []
+    for case, g in b.groupby("case", sort=False):
+        seeds = int(g["seeds"].min())
+        paper = g[g["variant"] == "paper"]
+        best = g[g["best"].astype(bool)]
+        c = {"case": case, "seeds": seeds, "variants": len(g) - 1}
+        if paper.empty or best.empty:
+            c["status"] = "no best"
+        elif seeds < MIN_SEEDS_QUOTED:
+            c["status"] = "few seeds"
+        elif min(float(paper.iloc[0]["defined_fraction"]), float(best.iloc[0]["defined_fraction"])) < ee.DEFINED_MIN:
+            c["status"] = "undefined"
+        else:
+            r = best.iloc[0]
+            c.update(status="quoted", paper=row_dict(paper.iloc[0]), best=row_dict(r), above=bool(r["above_one"]),
+                     fragile=bool(r["above_one"]) and float(r["lo"]) < 1.0 + margin, met=bool(r["goal_met"]))
+        cases.append(c)
+    quoted = [c for c in cases if c["status"] == "quoted"]
+    best = b[b["best"].astype(bool)]
+    q = best[best["defined_fraction"].astype(float) >= ee.DEFINED_MIN]
+    met = q[q["goal_met"].astype(bool)]
+    readme = None
+    if len(q):
+        readme = {"cases": len(q), "met": len(met), "thin": len(met[met["lo"] < 1.0 + margin]),
+                  "seeds": int(q["seeds"].min()), "largest": row_dict(q.loc[q["speedup"].idxmax()]),
+                  "smallest": row_dict(q.loc[q["speedup"].idxmin()])}
+    return {"cases": cases, "quoted": len(quoted), "met": sum(c["met"] for c in quoted),
+            "thin": sum(c["met"] and c["fragile"] for c in quoted), "best_rows": len(best), "readme": readme}
+
+
+def record_repro(d):
+    """Reproducibility between two runs: reproducibility.csv's summary row."""
+    r = load(d["repro"], ["summary_ratio_median_abs_delta_pp", "summary_ratio_max_abs_delta_pp",
+                          "summary_ratio_overlap_cells", "summary_cells", "summary_goal_pp", "summary_met"],
+             "make reproducibility")
+    s = r.iloc[0]
+    return {"median_pp": s["summary_ratio_median_abs_delta_pp"], "max_pp": s["summary_ratio_max_abs_delta_pp"],
+            "overlap": int(s["summary_ratio_overlap_cells"]), "cells": int(s["summary_cells"]),
+            "goal_pp": s["summary_goal_pp"], "met": bool(s["summary_met"])}
+
+
+def record_rules(d):
+    """The representative rules' tests as repstudy.py made them (chi^2 per
+    rule with the degrees of freedom it has left, Holm over the rules), read
+    from rep-study-rules.csv."""
+    r = load(d["rep"], ["rule", "label", "fitted", "chi2", "dof", "p_value", "p_holm", "verdict"], "make rep-study")
+    rows = [row_dict(x) for _, x in r.iterrows()]
+    return {"rows": rows, "rejected": [x["label"] for x in rows if x["verdict"] == "incompatible"]}
+
+
+def record_metric(d):
+    """The error metric: per estimate, the Spearman correlation of the
+    cells' mean relMSE and NMSE, their ratio's range, and the cells whose
+    paired verdict (Holm) differs between the two."""
+    r = load(d["runs"], ["role", "status", "method", "estimate", "photons", "nn", "seed", "relmse_ref", "nmse_ref"],
+             "make reproduce-table")
+    r = r[(r["role"] == "grid") & (r["status"] == "ok")]
+    out = []
+    for est, g in r.groupby("estimate", sort=False):
+        means = g.groupby(["method", "photons", "nn"])[["relmse_ref", "nmse_ref"]].mean()
+        verdicts = {}
+        for col in ("relmse_ref", "nmse_ref"):
+            comps, keys = [], []
+            for (ph, n), h in g.groupby(["photons", "nn"]):
+                a = h[h["method"] == "precomputed"].set_index("seed")[col]
+                b = h[h["method"] == "conventional"].set_index("seed")[col]
+                seeds = sorted(set(a.index) & set(b.index))
+                if seeds:
+                    comps.append(stats.paired_difference(a.loc[seeds].to_numpy(), b.loc[seeds].to_numpy()))
+                    keys.append((ph, n))
+            verdicts[col] = dict(zip(keys, (c["verdict"] for c in stats.compare_family(comps))))
+        ratio = (means["nmse_ref"] / means["relmse_ref"]).to_numpy(np.float64)
+        out.append({"estimate": est, "cells": len(means),
+                    "rho": sps.spearmanr(means["relmse_ref"], means["nmse_ref"]).statistic,
+                    "ratio_min": np.min(ratio), "ratio_max": np.max(ratio), "compared": len(verdicts["relmse_ref"]),
+                    "changed": [(k, verdicts["relmse_ref"][k], verdicts["nmse_ref"].get(k))
+                                for k in verdicts["relmse_ref"]
+                                if verdicts["relmse_ref"][k] != verdicts["nmse_ref"].get(k)]})
+    return {"estimates": out}
+
+
+def record_peers(d):
+    """The kd-tree against the peers in tile order, per k: the map size, the
+    strongest peer and its and nanoflann's query rate relative to ours."""
+    f = load(d["peers"], ["who", "order", "pe", "stored", "k", "queries", "rep", "seconds"], "make bench")
+    got = {}
+    for order, pe, _, k, _, med in bench_report.peer_medians(f):
+        if order == "tiles":
+            got[int(k)] = (pe, med)
+    rows = []
+    for k in sorted(got):
+        pe, med = got[k]
+        best = bench_report.strongest_peer(med)
+        rows.append({"k": k, "pe": pe, "strongest": best, "strongest_ratio": med[best] / med["ours"],
+                     "nanoflann_ratio": med["nanoflann"] / med["ours"]})
+    return {"file": d["peers"], "rows": rows}
+
+
+RECORDS = {"table": record_table, "equal_error": record_equal_error, "cost": record_cost, "bias": record_bias,
+           "caustic": record_caustic, "scenes": record_scenes, "resolution": record_resolution,
+           "baseline": record_baseline, "scale": record_scale, "stability": record_stability,
+           "beyond": record_beyond, "repro": record_repro, "rules": record_rules, "metric": record_metric,
+           "peers": record_peers}
+
+
+def records(d):
+    """Every finding's record from the results files D names: name -> the
+    record, or the Missing that says why there is none."""
+    out = {}
+    for name, fn in RECORDS.items():
+        try:
+            out[name] = fn(d)
+        except Missing as e:
+            out[name] = e
+    return out
+
+
+# ---- FINDINGS.md: one section per record; each writer returns (title,
+# [lines]) from its record or raises Missing
+
+def pairs_text(pairs):
+    """'5 pairs', or '3-5 pairs' where the cells differ, of a (smallest, largest)."""
+    lo, hi = pairs
+    return f"{lo} pairs" if lo == hi else f"{lo}-{hi} pairs"
+
+
+def word_rank(r, what_a, what_b):
+    """A sentence part wording the stats.rank verdict R of two unpaired intervals."""
+    if r == "higher":
+        return f"{what_a} is ranked above {what_b} (disjoint 95% intervals)"
+    if r == "lower":
+        return f"{what_a} is ranked below {what_b} (disjoint 95% intervals)"
+    return f"{what_a} against {what_b}: undetermined (the 95% intervals overlap)"
+
+
+def md_table(rec):
+    """Finding 1: the table's shape."""
+    lines = [f"Paired time ratio precomputed / conventional (per-seed log ratios of the renderer's own time, "
+             f"95% t interval over {pairs_text(rec['pairs'])}), % "
+             "(the paper's single measurement in brackets):", ""]
+    rows = []
+    for n in rec["nns"]:
+        r = [str(int(n))]
+        for ph in rec["photons"]:
+            s = rec["grid"][(n, ph)]
+            r.append("n/a" if s is None else f"{ci(s['ratio'], s['lo'], s['hi'], pct)} ({pct(s['paper'])})")
+        rows.append(r)
+    lines += report.md_table(["n"] + [f"P_e = {cell(ph, 0)[1:-4]}" for ph in rec["photons"]], rows)
+    lines.append("")
+    for ph, s in rec["over_n"].items():
+        if s["count"] >= 2:
+            lines.append(f"- Over n at P_e = {int(ph)}: " + word_rank(s["rank"], f"the ratio at n = {int(s['last']['nn'])}",
+                                                                        f"the one at n = {int(s['first']['nn'])}") + ".")
+    for n, s in rec["over_p"].items():
+        if s["count"] >= 2:
+            lines.append(f"- Over P_e at n = {int(n)}: " + word_rank(s["rank"], f"the ratio at P_e = {int(s['last']['photons'])}",
+                                                                       f"the one at P_e = {int(s['first']['photons'])}") + ".")
     lines.append("- The paper's value lies inside our interval in " + ", ".join(
-        f"{k} of {m} cells at P_e = {int(ph)}" for ph, (k, m) in inside.items()) +
+        f"{k} of {m} cells at P_e = {int(ph)}" for ph, (k, m) in rec["inside"].items()) +
         " (the paper's values are one run each, with no interval: a value outside ours is a difference "
         "only if the paper's own run-to-run spread is smaller than our interval).")
     return "The time ratio over n and P_e, against the paper's", lines
-
-
-EQUAL_ERROR_COLUMNS = ["estimate", "kind", "target", "speedup", "lo", "hi", "defined_fraction"]
-
-
-def finding2(d):
-    """Equal error: the tightest target both fronts reach, and the curve."""
-    e = load(d["equal_error"], EQUAL_ERROR_COLUMNS, "make reproduce-table")
-    return "The speed-up at equal error", equal_error_lines(e)
 
 
 def headline_text(h):
@@ -200,27 +597,24 @@ def headline_text(h):
         f"resamples reach on both fronts, the speed-up is {ci(h['speedup'], h['lo'], h['hi'])}x"
 
 
-def equal_error_lines(e):
-    """One line per estimate of an equal-error CSV (equal_error.py's kinds
-    `tightest` and `curve`): where the curve starts, the speed-up at the
-    headline target (equal_error.headline) and the range of the curve where
-    it is defined."""
+def equal_error_lines(recs):
+    """One line per estimate of an equal_error_record list: where the curve
+    starts, the speed-up at the headline target (equal_error.headline) and
+    the range of the curve where it is defined."""
     lines = []
-    for est, g in e.groupby("estimate", sort=False):
-        c = g[g["kind"] == "curve"]
-        try:
-            t, span = tightest_and_curve(g, est)
-        except Missing:
+    for r in recs:
+        est, t, span = r["estimate"], r["tightest"], r["span"]
+        if t is None:
             lines.append(f"- {est} estimate: the two fronts reach no common {metrics.PRIMARY}: no speed-up at equal "
                          "error is defined.")
             continue
         s = f"- {est} estimate: the curve starts at {metrics.PRIMARY} {fmt(t['target'])}, the tightest both fronts " \
             "reach (the larger of the two fronts' smallest errors" \
             + ("; fewer than 95% of the bootstrap resamples reach it on both fronts, so no speed-up is quoted there"
-               if t["defined_fraction"] < ee.DEFINED_MIN else "") + f"); {headline_text(headline_of(g, est))}"
+               if t["defined_fraction"] < ee.DEFINED_MIN else "") + f"); {headline_text(r['headline'])}"
         if span is not None:
             a, b = span
-            s += f". Over the {len(c)} targets of the curve ({fmt(c['target'].min())} to {fmt(c['target'].max())}), " \
+            s += f". Over the {r['curve_targets']} targets of the curve ({fmt(r['curve_min'])} to {fmt(r['curve_max'])}), " \
                  f"where at least 95% of the resamples reach the target the speed-up runs from " \
                  f"{ci(a['speedup'], a['lo'], a['hi'])} (at {fmt(a['target'])}) to " \
                  f"{ci(b['speedup'], b['lo'], b['hi'])} (at {fmt(b['target'])}): it depends on the target, " \
@@ -232,115 +626,64 @@ def equal_error_lines(e):
     return lines
 
 
-def finding3(d):
-    """What the speed costs in accuracy: paired verdicts, the bias share, n against P_e."""
-    t = load(d["table"], ["photons", "nn", "method", "relmse_diff_mean", "relmse_diff_lo", "relmse_diff_hi",
-                          "relmse_diff_verdict", "relmse_conv_mean", "relmse_conv_ci95", "pairs"],
-             "make reproduce-table")
-    cells = load(d["cells"], ["method", "estimate", "photons", "nn", "relmse_ref_mean", "bias_ref"],
-                 "make reproduce-table")
-    p = prec_rows(t)
+def md_equal_error(rec):
+    """Finding 2: equal error."""
+    return "The speed-up at equal error", equal_error_lines(rec["estimates"])
+
+
+def md_cost(rec):
+    """Finding 3: what the speed costs in accuracy."""
     lines = []
-    for est in ("paper", "corrected"):
-        sfx = "" if est == "paper" else f"_{est}"
-        col = f"relmse_diff_verdict{sfx}"
-        if col not in p.columns:
-            continue
-        groups = {}
-        for _, r in p.iterrows():
-            groups.setdefault(str(r[col]) if isinstance(r[col], str) else "undetermined", []).append(r)
-        words = {"higher": "the precomputed method ranked worse (higher error, Holm-corrected p < 0.05)",
-                 "lower": "ranked better", "equivalent":
-                 f"equivalent within delta = {fmt(100 * stats.EQUIVALENCE_MARGIN)}% of the conventional error",
-                 "undetermined": "undetermined"}
-        parts = []
-        for v in ("higher", "lower", "equivalent", "undetermined"):
-            if v in groups:
-                parts.append(f"{words[v]} in " + ", ".join(
-                    f"{cell(r['photons'], r['nn'])} ({fmt(r[f'relmse_diff_mean{sfx}'])} "
-                    f"[{fmt(r[f'relmse_diff_lo{sfx}'])}, {fmt(r[f'relmse_diff_hi{sfx}'])}])" for r in groups[v]))
+    words = {"higher": "the precomputed method ranked worse (higher error, Holm-corrected p < 0.05)",
+             "lower": "ranked better", "equivalent":
+             f"equivalent within delta = {fmt(100 * stats.EQUIVALENCE_MARGIN)}% of the conventional error",
+             "undetermined": "undetermined"}
+    for est, v in rec["verdicts"].items():
+        parts = [f"{words[k]} in " + ", ".join(f"{cell(c['photons'], c['nn'])} ({fmt(c['mean'])} "
+                                               f"[{fmt(c['lo'])}, {fmt(c['hi'])}])" for c in v["groups"][k])
+                 for k in VERDICTS if k in v["groups"]]
         lines.append(f"- {est} estimate, paired {metrics.PRIMARY} difference precomputed - conventional per seed "
-                     f"({int(p[f'pairs{sfx}'].min())} pairs per cell): " + "; ".join(parts) + ".")
-    # bias share of the excess, per cell where the paired test ranks the
-    # precomputed method worse (a share of a difference that may be zero is
-    # no number)
-    worse = set()
-    for est in ("paper", "corrected"):
-        col = "relmse_diff_verdict" + ("" if est == "paper" else f"_{est}")
-        if col in p.columns:
-            worse |= {(est, r["photons"], r["nn"]) for _, r in p.iterrows() if r[col] == "higher"}
-    shares = []
-    for est, g in cells.groupby("estimate", sort=False):
-        for (ph, n), h in g.groupby(["photons", "nn"]):
-            c = h[h["method"] == "conventional"]
-            q = h[h["method"] == "precomputed"]
-            if len(c) and len(q) and (est, ph, n) in worse:
-                ex, bx = excess_and_bias(q, c)
-                if ex > 0:
-                    shares.append((est, ph, n, ex, bx, bx / ex))
-    if shares:
-        for est in dict.fromkeys(s[0] for s in shares):
-            sh = [s for s in shares if s[0] == est]
-            k = max(sh, key=lambda s: s[3])
-            lines.append(f"- {est} estimate: where the paired test ranks the precomputed method's error above the "
-                         f"conventional one ({len(sh)} cells), the bias term's share of the excess runs from "
-                         f"{pct(100 * min(s[5] for s in sh))}% to {pct(100 * max(s[5] for s in sh))}% (cells.csv "
-                         f"bias_ref); at {cell(k[1], k[2])}, the largest excess, {fmt(k[3])} of which {fmt(k[4])} "
-                         f"({pct(100 * k[5])}%) is bias.")
-    # the difference from the conventional image of the same seed: n against P_e
-    conv = p[["photons", "nn", "relmse_conv_mean", "relmse_conv_ci95"]]
-    phs = sorted(conv["photons"].unique())
-    if len(phs) >= 2:
-        parts = []
-        for n, g in conv.groupby("nn"):
-            a = g[g["photons"] == phs[0]]
-            b = g[g["photons"] == phs[-1]]
-            if len(a) and len(b):
-                a, b = a.iloc[0], b.iloc[0]
-                removed = 1 - b["relmse_conv_mean"] / a["relmse_conv_mean"]
-                r = stats.rank((b["relmse_conv_mean"] - b["relmse_conv_ci95"], b["relmse_conv_mean"] + b["relmse_conv_ci95"]),
-                               (a["relmse_conv_mean"] - a["relmse_conv_ci95"], a["relmse_conv_mean"] + a["relmse_conv_ci95"]))
-                parts.append(f"n = {int(n)}: {pct(100 * removed)}% " +
-                             ("(disjoint intervals)" if r in ("lower", "higher") else "(intervals overlap: undetermined)"))
+                     f"({v['pairs'][0]} pairs per cell): " + "; ".join(parts) + ".")
+    for s in rec["bias_share"]:
+        k = s["largest"]
+        lines.append(f"- {s['estimate']} estimate: where the paired test ranks the precomputed method's error above the "
+                     f"conventional one ({s['cells']} cells), the bias term's share of the excess runs from "
+                     f"{pct(100 * s['min'])}% to {pct(100 * s['max'])}% (cells.csv "
+                     f"bias_ref); at {cell(k['photons'], k['nn'])}, the largest excess, {fmt(k['excess'])} of which "
+                     f"{fmt(k['bias'])} ({pct(100 * k['share'])}%) is bias.")
+    m = rec["more_photons"]
+    if m is not None:
         lines.append(f"- The precomputed image's {metrics.PRIMARY} against the conventional image of the same seed: "
-                     f"{int(phs[-1] / phs[0])} times the photons ({int(phs[0])} to {int(phs[-1])}) removes "
-                     + ", ".join(parts) + " of it: the photon count matters as well as n.")
+                     f"{int(m['factor'])} times the photons ({int(m['from'])} to {int(m['to'])}) removes "
+                     + ", ".join(f"n = {int(x['nn'])}: {pct(100 * x['removed'])}% " +
+                                 ("(disjoint intervals)" if x["disjoint"] else "(intervals overlap: undetermined)")
+                                 for x in m["per_n"]) + " of it: the photon count matters as well as n.")
     return "What the speed costs in accuracy", lines
 
 
-def finding4(d):
-    """The estimator's bias in the analytic scene."""
-    b = load(d["bias"], ["n", "law_n_over_n_minus_1", "conventional_paper_mean", "conventional_paper_ci95",
-                         "conventional_corrected_mean", "conventional_corrected_ci95", "precomputed_corrected_mean",
-                         "precomputed_corrected_ci95", "conventional_paper_seeds"], "make estimator-bias")
+def md_bias(rec):
+    """Finding 4: the estimator's bias in the analytic scene."""
     lines = []
-    at = b[b["n"] == 10]
-    if len(at):
-        r = at.iloc[0]
-        lines.append(f"- Conventional, paper estimate, at n = 10: {fmt(r['conventional_paper_mean'], 5)} ± "
-                     f"{fmt(r['conventional_paper_ci95'], 2)} ({int(r['conventional_paper_seeds'])} seeds); the law "
-                     f"n/(n-1) gives {fmt(r['law_n_over_n_minus_1'], 5)}.")
-    k_in, k_all, vals = corrected_coverage(b)
-    lo = min(vals, key=lambda v: v[0])
-    hi = max(vals, key=lambda v: v[0])
-    lines.append(f"- With `--bias-correction`, 1 (the exact radiance) lies inside {k_in} of the {k_all} intervals "
-                 f"(both methods, every n); the means run from {fmt(lo[0], 5)} ± {fmt(lo[1], 2)} to "
-                 f"{fmt(hi[0], 5)} ± {fmt(hi[1], 2)}.")
+    r = rec["at10"]
+    if r is not None:
+        lines.append(f"- Conventional, paper estimate, at n = 10: {fmt(r['mean'], 5)} ± "
+                     f"{fmt(r['ci95'], 2)} ({int(r['seeds'])} seeds); the law "
+                     f"n/(n-1) gives {fmt(r['law'], 5)}.")
+    lo, hi = rec["lowest"], rec["highest"]
+    if lo is None:
+        raise Missing("`estimator-bias.csv` has no finite corrected interval (`make estimator-bias`)")
+    lines.append(f"- With `--bias-correction`, 1 (the exact radiance) lies inside {rec['covered']} of the "
+                 f"{rec['intervals']} intervals (both methods, every n); the means run from {fmt(lo[0], 5)} ± "
+                 f"{fmt(lo[1], 2)} to {fmt(hi[0], 5)} ± {fmt(hi[1], 2)}.")
     return "The paper's estimator is biased by a law", lines
 
 
-def finding5(d):
-    """The caustic window's excess against the whole image's."""
-    c = load(d["caustic"], ["estimate", "photons", "nn", "method", "win_excess_mean", "win_excess_ci95",
-                            "img_excess_mean", "img_excess_ci95", "seeds"], "make caustic")
-    lines = []
-    for _, r in c[c["method"] == "precomputed"].iterrows():
-        w = (r["win_excess_mean"] - r["win_excess_ci95"], r["win_excess_mean"] + r["win_excess_ci95"])
-        i = (r["img_excess_mean"] - r["img_excess_ci95"], r["img_excess_mean"] + r["img_excess_ci95"])
-        lines.append(f"- {r['estimate']} {cell(r['photons'], r['nn'])}: excess in the window "
-                     f"{fmt(r['win_excess_mean'])} ± {fmt(r['win_excess_ci95'])}, over the image "
-                     f"{fmt(r['img_excess_mean'])} ± {fmt(r['img_excess_ci95'])} ({int(r['seeds'])} seeds): "
-                     + word_rank(w, i, "the window's", "the image's") + ".")
+def md_caustic(rec):
+    """Finding 5: the caustic window's excess against the whole image's."""
+    lines = [f"- {r['estimate']} {cell(r['photons'], r['nn'])}: excess in the window "
+             f"{fmt(r['win'])} ± {fmt(r['win_ci95'])}, over the image "
+             f"{fmt(r['img'])} ± {fmt(r['img_ci95'])} ({int(r['seeds'])} seeds): "
+             + word_rank(r["rank"], "the window's", "the image's") + "." for r in rec["rows"]]
     lines.append("- Overlap is not equality: the file holds no paired window-minus-image test with a margin, "
                  "so no cell is called equal.")
     return "The caustic window against the whole image", lines
@@ -353,160 +696,123 @@ def few_seeds(name, seeds, make):
             f"95%) are not quoted; rerun `{make} SEEDS={MIN_SEEDS_QUOTED}` or more.")
 
 
-def finding6(d):
-    """The scenes' speed-ups, quoted only where enough seeds stand behind an interval."""
-    s = load(d["scenes"], ["scene", "diff_seeds", "ee_paper", "ee_corrected"], "make scenes")
-    lines = []
-    for _, r in s.iterrows():
-        seeds = int(r["diff_seeds"])
-        if seeds < MIN_SEEDS_QUOTED:
-            lines.append(few_seeds(r["scene"], seeds, "make scenes"))
-        else:
-            lines.append(f"- {r['scene']} ({seeds} seeds): paper estimate {r['ee_paper']}; corrected {r['ee_corrected']} "
-                         "(target: speed-up [95% bootstrap interval]).")
-    return "Across scenes", lines
+def md_scenes(rec):
+    """Finding 6: the scenes' speed-ups, quoted only where enough seeds stand behind an interval."""
+    return "Across scenes", [
+        few_seeds(r["scene"], r["seeds"], "make scenes") if r["seeds"] < MIN_SEEDS_QUOTED else
+        f"- {r['scene']} ({r['seeds']} seeds): paper estimate {r['paper']}; corrected {r['corrected']} "
+        "(target: speed-up [95% bootstrap interval])." for r in rec["rows"]]
 
 
-def finding7(d):
-    """Small images: the speed-up at equal error per output size."""
-    files = resolution_files(d)
-    if not files:
-        raise Missing(f"no `{os.path.relpath(d['resolution'], d['root'])}/equal-error-WxH.csv` (`make resolution`)")
+def md_resolution(rec):
+    """Finding 7: the speed-up at equal error per output size."""
+    if not rec["sizes"]:
+        raise Missing(f"no `{rec['dir']}/equal-error-WxH.csv` (`make resolution`)")
     lines = []
-    for f in files:
-        size = os.path.basename(f)[len("equal-error-"):-4]
-        e = load(f, EQUAL_ERROR_COLUMNS, "make resolution")
-        lines += [f"- {size}:"] + ["  " + x for x in equal_error_lines(e)]
+    for s in rec["sizes"]:
+        lines += [f"- {s['size']}:"] + ["  " + x for x in equal_error_lines(s["estimates"])]
     lines.append("- Each size is judged against its own reference (`resolution/resolution.md` gives each one's "
                  "measured noise and kernel bias).")
     return "The speed-up at equal error per output size", lines
 
 
-def finding8(d):
-    """The baseline and the drift control."""
-    t = load(d["table"], ["method", "photons", "nn", "trace_ratio_percent", "trace_ratio_ci95_lo",
-                          "trace_ratio_ci95_hi"], "make reproduce-table")
-    p = prec_rows(t)
-    off = p[(p["trace_ratio_ci95_hi"] < 100) | (p["trace_ratio_ci95_lo"] > 100)]
-    lines = [f"- Drift control (the photon-trace phase, the same code in both methods, paired ratio per cell): "
-             f"median {pct(p['trace_ratio_percent'].median())}%, range {pct(p['trace_ratio_percent'].min())}-"
-             f"{pct(p['trace_ratio_percent'].max())}%; its interval excludes 100% in {len(off)} of {len(p)} cells"
-             + (": there the machine drifted within a pair, and a ratio change there is not attributed to the code."
-                if len(off) else "."),
-             "- The instruction counts and timings of the old finding 8 are in no results file and are not "
-             "repeated; `bench/bench.md` (`make bench`) holds what the benchmark measures."]
-    return "The baseline, and drift between runs", lines
+def md_baseline(rec):
+    """Finding 8: the baseline and the drift control."""
+    return "The baseline, and drift between runs", [
+        f"- Drift control (the photon-trace phase, the same code in both methods, paired ratio per cell): "
+        f"median {pct(rec['median'])}%, range {pct(rec['min'])}-{pct(rec['max'])}%; its interval excludes 100% in "
+        f"{rec['off']} of {rec['cells']} cells"
+        + (": there the machine drifted within a pair, and a ratio change there is not attributed to the code."
+           if rec["off"] else "."),
+        "- The baseline's instruction counts and timings are in no results file and are not "
+        "repeated; `bench/bench.md` (`make bench`) holds what the benchmark measures."]
 
 
-def finding_scale(d):
-    """Performance at scale: the largest map of the scaling table and the two-thread speed-ups."""
-    sc = load(d["scaling"], ["method", "photons_emitted", "photons_stored", "threads", "trace_s", "build_s",
-                             "precompute_s", "eye_s", "total_s", "bytes_per_stored"], "make bench-scaling")
+def md_scale(rec):
+    """Finding P: the largest map of the scaling table and the two-thread speed-ups."""
     lines = []
-    for m, g in sc.groupby("method", sort=False):
-        r = g.loc[g["photons_emitted"].idxmax()]
+    for m, r in rec["largest"]:
         lines.append(f"- {m}, n = 100, 512x384, {int(r['threads'])} threads, {int(r['photons_emitted']):,} emitted "
                      f"photons ({int(r['photons_stored']):,} stored): {fmt(r['total_s'])} s in total (trace "
                      f"{fmt(r['trace_s'])}, build {fmt(r['build_s'])}, precompute {fmt(r['precompute_s'])}, eye pass "
                      f"{fmt(r['eye_s'])} s; one render, `bench/scaling.csv`), peak memory "
                      f"{fmt(r['bytes_per_stored'])} bytes per stored photon.")
-    th = load(d["threads"], ["photons_emitted", "pair", "threads", "trace_s", "build_s", "total_s"],
-              "make bench-threads")
-    for ph, g in th.groupby("photons_emitted"):
-        parts = []
-        for col, what in (("trace_s", "photon pass"), ("build_s", "kd-tree build"), ("total_s", "total")):
-            x = threads.speedups(g, col)
-            parts.append(f"{what} {fmt(np.median(x))}x [{fmt(x.min())}, {fmt(x.max())}]" if len(x) else "")
-        if not parts[0]:
+    for t in rec["two_threads"]:
+        if t["trace_s"] is None:
             continue
-        lines.append(f"- Two threads against one at {int(ph):,} emitted photons (median of {len(x)} back-to-back "
+        parts = [f"{what} {fmt(x[0])}x [{fmt(x[1])}, {fmt(x[2])}]" if x is not None else ""
+                 for x, what in ((t["trace_s"], "photon pass"), (t["build_s"], "kd-tree build"),
+                                 (t["total_s"], "total"))]
+        pairs = t["total_s"][3] if t["total_s"] is not None else 0
+        lines.append(f"- Two threads against one at {int(t['photons']):,} emitted photons (median of {pairs} back-to-back "
                      f"pairs [smallest, largest], `bench/threads.csv`): " + ", ".join(parts) + ".")
     return "Performance at scale", lines
 
 
-def finding9(d):
-    """Stability: what the check compares."""
-    path = d["stability"]
-    if not os.path.isfile(path):
-        raise Missing(f"`{path}` is missing (`make stability`)")
+def md_stability(rec):
+    """Finding 9: what the stability check compares."""
     return "Stability under scale and position", [
-        f"- `{os.path.relpath(path, d['root'])}` (written by `make stability`) holds each extreme's expected value and "
+        f"- `{rec['file']}` (written by `make stability`) holds each extreme's expected value and "
         "verdict; what it compares is the image mean (and byte identity where stated), not every pixel, so no "
         "per-pixel agreement is claimed here."]
 
 
-def finding_beyond(d):
-    """Beyond the paper's rule: the representative variants at equal error, per case (make beyond)."""
-    b = load(d["beyond"], ["case", "variant", "estimate", "target", "speedup", "lo", "hi", "defined_fraction",
-                           "fallback_rate", "evaluated_share", "seeds", "best", "above_one", "vs_paper", "goal_met"],
-             "make beyond")
-    b = b[b["estimate"] == "paper"]
+def md_beyond(rec):
+    """Finding B: the representative variants at equal error, per case."""
     lines = []
-    met = total = thin = 0
-    for case, g in b.groupby("case", sort=False):
-        seeds = int(g["seeds"].min())
-        paper = g[g["variant"] == "paper"]
-        best = g[g["best"].astype(bool)]
-        if paper.empty or best.empty:
+    f3 = lambda x: report.fmt_fixed(x, 3)  # noqa: E731 (an end at 1.001 must not print as 1)
+    margin = stats.EQUIVALENCE_MARGIN
+    for c in rec["cases"]:
+        case = c["case"]
+        if c["status"] == "no best":
             lines.append(f"- {case}: no best variant: none is ranked faster than every other by the paired tests "
                          "(per seed against the paper's rule and each other, Holm).")
             continue
-        p, r = paper.iloc[0], best.iloc[0]
-        if seeds < MIN_SEEDS_QUOTED:
-            lines.append(few_seeds(case, seeds, "make beyond"))
+        if c["status"] == "few seeds":
+            lines.append(few_seeds(case, c["seeds"], "make beyond"))
             continue
-        if min(float(p["defined_fraction"]), float(r["defined_fraction"])) < ee.DEFINED_MIN:
+        if c["status"] == "undefined":
             lines.append(f"- {case}: its speed-ups are taken at a target that fewer than {100 * ee.DEFINED_MIN:.0f}% "
                          "of the bootstrap resamples reach on both fronts: not quoted (`make beyond` again quotes "
                          "each at the tightest target that enough resamples reach).")
             continue
-        f3 = lambda x: report.fmt_fixed(x, 3)  # noqa: E731 (an end at 1.001 must not print as 1)
-        margin = stats.EQUIVALENCE_MARGIN
-        fragile = bool(r["above_one"]) and float(r["lo"]) < 1.0 + margin
-        if fragile:
+        p, r = c["paper"], c["best"]
+        if c["fragile"]:
             above = (f"above 1.0 only by less than the {fmt(100 * margin)}% margin, for the largest of "
-                     f"{len(g) - 1} variants' point estimates (a selection that favours it), so not established")
+                     f"{c['variants']} variants' point estimates (a selection that favours it), so not established")
         else:
-            above = "above 1.0" if bool(r["above_one"]) else "not above 1.0"
+            above = "above 1.0" if c["above"] else "not above 1.0"
         vs = {"higher": "faster", "undetermined": "not ranked", "lower": "slower"}.get(
             r["vs_paper"], "not compared")
-        lines.append(f"- {case} (relMSE {fmt(r['target'])}, {seeds} seeds): the paper's rule "
+        lines.append(f"- {case} (relMSE {fmt(r['target'])}, {c['seeds']} seeds): the paper's rule "
                      f"{ci(p['speedup'], p['lo'], p['hi'], f3)}x; the best variant, {r['variant']}, "
                      f"{ci(r['speedup'], r['lo'], r['hi'], f3)}x, its interval {above}; against the paper's rule, "
                      f"paired per seed (Holm): {vs}; {fmt(100 * r['fallback_rate'])}% of its eye samples fell back, "
                      f"{pct(100 * r['evaluated_share'])}% of the representatives were evaluated: the goal "
-                     + (("holds as worded, by a margin too thin to rely on." if fragile else "holds.")
-                        if bool(r["goal_met"]) else "does not hold."))
-        total += 1
-        met += bool(r["goal_met"])
-        thin += bool(r["goal_met"]) and fragile
-    if total:
+                     + (("holds as worded, by a margin too thin to rely on." if c["fragile"] else "holds.")
+                        if c["met"] else "does not hold."))
+    if rec["quoted"]:
         lines.append(f"- The goal (the best variant's interval above 1.0 and the paired test not ranking it slower "
                      "than the paper's rule) holds in "
-                     f"{met} of {total} cases"
-                     + (f", {thin} of them with the interval's lower end within the margin of 1.0" if thin else "")
+                     f"{rec['met']} of {rec['quoted']} cases"
+                     + (f", {rec['thin']} of them with the interval's lower end within the margin of 1.0"
+                        if rec["thin"] else "")
                      + "; `beyond/beyond.md` says for each case that misses it where the time goes "
                      "and where the error lies.")
     return "Beyond the paper's rule", lines
 
 
-def finding_repro(d):
-    """Reproducibility between two runs (make reproducibility)."""
-    r = load(d["repro"], ["summary_ratio_median_abs_delta_pp", "summary_ratio_overlap_cells", "summary_cells",
-                          "summary_goal_pp", "summary_met"], "make reproducibility")
-    s = r.iloc[0]
+def md_repro(rec):
+    """Finding R: reproducibility between two runs."""
     return "Reproducibility between two runs", [
         f"- Two interleaved runs of the grid: median |difference| of the paired time ratios "
-        f"{report.fmt_fixed(s['summary_ratio_median_abs_delta_pp'], 2)} pp (goal {fmt(s['summary_goal_pp'])} pp); the "
-        f"two runs' intervals overlap in {int(s['summary_ratio_overlap_cells'])} of {int(s['summary_cells'])} cells; "
-        "goal " + ("met." if bool(s["summary_met"]) else "not met.")]
+        f"{report.fmt_fixed(rec['median_pp'], 2)} pp (goal {fmt(rec['goal_pp'])} pp); the "
+        f"two runs' intervals overlap in {rec['overlap']} of {rec['cells']} cells; "
+        "goal " + ("met." if rec["met"] else "not met.")]
 
 
-def finding_rules(d):
-    """Which representative rule is compatible with the paper's slopes: the
-    tests repstudy.py made (chi^2 per rule with the degrees of freedom it
-    has left, Holm over the rules), read from rep-study-rules.csv."""
-    r = load(d["rep"], ["rule", "label", "fitted", "chi2", "dof", "p_value", "p_holm", "verdict"], "make rep-study")
+def md_rules(rec):
+    """Finding S: which representative rule is compatible with the paper's slopes."""
     words = {"incompatible": "incompatible with the paper's slopes",
              "not rejected": "not rejected (compatibility is not shown equality)", "no test": "no test"}
     lines = ["Slope ratios b_prec / b_conv (the renderer's kNN phase timers, t intervals over seeds) against the "
@@ -517,53 +823,44 @@ def finding_rules(d):
     lines += report.md_table(["rule", "chi^2", "dof", "p", "p (Holm)", "verdict"],
                              [[x["label"] + (" (fitted)" if x["fitted"] else ""), fmt(x["chi2"]), str(int(x["dof"])),
                                fmt(x["p_value"]), fmt(x["p_holm"]), words.get(x["verdict"], str(x["verdict"]))]
-                              for _, x in r.iterrows()])
+                              for x in rec["rows"]])
     return "Which photons are representatives", lines
 
 
-def finding_metric(d):
-    """The error metric: what NMSE changes against relMSE (metrics.PRIMARY)
-    on the same renders: the cells' order and the paired verdicts."""
-    r = load(d["runs"], ["role", "status", "method", "estimate", "photons", "nn", "seed", "relmse_ref", "nmse_ref"],
-             "make reproduce-table")
-    r = r[(r["role"] == "grid") & (r["status"] == "ok")]
+def md_metric(rec):
+    """Finding M: what NMSE changes against relMSE on the same renders."""
     lines = []
-    for est, g in r.groupby("estimate", sort=False):
-        means = g.groupby(["method", "photons", "nn"])[["relmse_ref", "nmse_ref"]].mean()
-        rho = sps.spearmanr(means["relmse_ref"], means["nmse_ref"]).statistic
-        verdicts = {}
-        for col in ("relmse_ref", "nmse_ref"):
-            comps, keys = [], []
-            for (ph, n), h in g.groupby(["photons", "nn"]):
-                a = h[h["method"] == "precomputed"].set_index("seed")[col]
-                b = h[h["method"] == "conventional"].set_index("seed")[col]
-                seeds = sorted(set(a.index) & set(b.index))
-                if seeds:
-                    comps.append(stats.paired_difference(a.loc[seeds].to_numpy(), b.loc[seeds].to_numpy()))
-                    keys.append(cell(ph, n))
-            verdicts[col] = dict(zip(keys, (c["verdict"] for c in stats.compare_family(comps))))
-        changed = [k for k in verdicts["relmse_ref"] if verdicts["relmse_ref"][k] != verdicts["nmse_ref"].get(k)]
-        ratio = (means["nmse_ref"] / means["relmse_ref"]).to_numpy(np.float64)
-        lines.append(f"- {est} estimate, {len(means)} cells x methods: Spearman rank correlation of the cells' mean "
-                     f"relMSE and mean NMSE {fmt(rho)}; NMSE / relMSE {fmt(np.min(ratio))}-{fmt(np.max(ratio))}; "
-                     f"the paired verdicts (Holm) differ in {len(changed)} of {len(verdicts['relmse_ref'])} cells"
-                     + (": " + ", ".join(f"{k} {verdicts['relmse_ref'][k]} -> {verdicts['nmse_ref'][k]}" for k in changed)
-                        if changed else "") + ".")
+    for e in rec["estimates"]:
+        changed = e["changed"]
+        lines.append(f"- {e['estimate']} estimate, {e['cells']} cells x methods: Spearman rank correlation of the cells' mean "
+                     f"relMSE and mean NMSE {fmt(e['rho'])}; NMSE / relMSE {fmt(e['ratio_min'])}-{fmt(e['ratio_max'])}; "
+                     f"the paired verdicts (Holm) differ in {len(changed)} of {e['compared']} cells"
+                     + (": " + ", ".join(f"{cell(*k)} {a} -> {b}" for k, a, b in changed) if changed else "") + ".")
     lines.append(f"- The primary error is {metrics.PRIMARY_DEFINITION}; NMSE (mean squared error over the "
                  "reference's mean square, relative at every brightness) is reported beside it.")
     return "The error metric", lines
 
 
-FINDINGS = ((1, finding1), (2, finding2), (3, finding3), (4, finding4), (5, finding5), (6, finding6),
-            (7, finding7), (8, finding8), (9, finding9), ("P", finding_scale), ("B", finding_beyond), ("R", finding_repro), ("S", finding_rules), ("M", finding_metric))
+# (number, record, writer, the title said when the record is missing)
+FINDINGS = ((1, "table", md_table, "The table's shape"), (2, "equal_error", md_equal_error, "Equal error"),
+            (3, "cost", md_cost, "What the speed costs in accuracy"),
+            (4, "bias", md_bias, "The estimator's bias in the analytic scene"),
+            (5, "caustic", md_caustic, "The caustic window's excess against the whole image's"),
+            (6, "scenes", md_scenes, "The scenes' speed-ups, quoted only where enough seeds stand behind an interval"),
+            (7, "resolution", md_resolution, "Small images"), (8, "baseline", md_baseline, "The baseline and the drift control"),
+            (9, "stability", md_stability, "Stability"), ("P", "scale", md_scale, "Performance at scale"),
+            ("B", "beyond", md_beyond, "Beyond the paper's rule"),
+            ("R", "repro", md_repro, "Reproducibility between two runs (make reproducibility)"),
+            ("S", "rules", md_rules, "Which representative rule is compatible with the paper's slopes"),
+            ("M", "metric", md_metric, "The error metric"))
 
 
-# ---- README's summary: one bullet per finding, every number read here
+# ---- README's summary: one bullet per record, every number read from it
 #
 # Written into README.md between SUMMARY_BEGIN and SUMMARY_END by
 # `make findings`; --check-readme fails when the block there is not the one
 # these functions write from the files now (a stale number included). Each
-# returns one Markdown bullet or raises Missing.
+# returns one Markdown bullet from its record or raises Missing.
 
 SUMMARY_BEGIN = "<!-- findings-summary: written by `make findings` from results/ (experiments/analysis/findings.py); " \
                 "edits here are overwritten -->"
@@ -592,67 +889,29 @@ def count_list(items):
     return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
 
 
-def summary_table(d):
-    t = load(d["table"], ["photons", "nn", "method", "paper_ratio_percent", "paired_ratio_percent",
-                          "paired_ratio_ci95_lo", "paired_ratio_ci95_hi", "pairs"], "make reproduce-table")
-    p = prec_rows(t)
-    phs = sorted(p["photons"].unique())
-
-    def iv(r):
-        return (r["paired_ratio_ci95_lo"], r["paired_ratio_ci95_hi"])
-    falls = 0
-    for ph in phs:
-        s = p[p["photons"] == ph].sort_values("nn")
-        falls += stats.rank(iv(s.iloc[-1]), iv(s.iloc[0])) == "lower"
-    s = p[p["photons"] == phs[0]].sort_values("nn")
-    a, b = s.iloc[0], s.iloc[-1]
-    known = p[np.isfinite(p["paper_ratio_percent"])]
-    inside = (known["paired_ratio_ci95_lo"] <= known["paper_ratio_percent"]) & \
-             (known["paper_ratio_percent"] <= known["paired_ratio_ci95_hi"])
-    per = []
-    for ph in phs:
-        m = known["photons"] == ph
-        per.append(f"{int(inside[m].sum())} of {int(m.sum())} cells at P_e = {k_of(ph)}")
-    out = known[~inside]
-    lower = int((out["paired_ratio_ci95_hi"] < out["paper_ratio_percent"]).sum())
-    shape = "reproduces" if falls == len(phs) else f"holds at {falls} of {len(phs)} photon counts"
-    level = "its level too" if inside.all() else ("its level in part" if inside.any() else "its level does not")
-    verb = "falls" if stats.rank(iv(b), iv(a)) == "lower" else "goes"
+def readme_table(rec):
+    phs = rec["photons"]
+    if not phs:
+        raise Missing("`table1.csv` has no precomputed row (`make reproduce-table`)")
+    first = rec["over_n"][phs[0]]
+    a, b = first["first"], first["last"]
+    per = [f"{k} of {m} cells at P_e = {k_of(ph)}" for ph, (k, m) in rec["inside"].items()]
+    shape = "reproduces" if rec["falls"] == len(phs) else f"holds at {rec['falls']} of {len(phs)} photon counts"
+    level = "its level too" if rec["inside_all"] else ("its level in part" if rec["inside_any"] else "its level does not")
+    verb = "falls" if first["rank"] == "lower" else "goes"
     return (f"- **The shape of Table 1 {shape}; {level}.** The paired time ratio precomputed / conventional (the "
-            f"renderer's own timer, {pairs_text(p['pairs'])}, 95% t interval) at P_e = {k_of(phs[0])} {verb} from "
-            f"{pct_ci(a['paired_ratio_percent'], a['paired_ratio_ci95_lo'], a['paired_ratio_ci95_hi'])} at "
-            f"n = {int(a['nn'])} to {pct_ci(b['paired_ratio_percent'], b['paired_ratio_ci95_lo'], b['paired_ratio_ci95_hi'])} "
-            f"at n = {int(b['nn'])} (the paper's {pct(a['paper_ratio_percent'])}% and {pct(b['paper_ratio_percent'])}%); "
+            f"renderer's own timer, {pairs_text(rec['pairs'])}, 95% t interval) at P_e = {k_of(phs[0])} {verb} from "
+            f"{pct_ci(a['ratio'], a['lo'], a['hi'])} at "
+            f"n = {int(a['nn'])} to {pct_ci(b['ratio'], b['lo'], b['hi'])} "
+            f"at n = {int(b['nn'])} (the paper's {pct(a['paper'])}% and {pct(b['paper'])}%); "
             f"the paper's value lies inside our interval in {', '.join(per)}; outside it, ours is the lower in "
-            f"{lower} of {len(out)} (`results/table1/table1.md`).")
+            f"{rec['outside_lower']} of {rec['outside']} (`results/table1/table1.md`).")
 
 
-def headline_of(e, est):
-    """The headline row of estimate EST in an equal-error CSV (the tightest
-    curve target at least equal_error.DEFINED_MIN of the resamples reach on
-    both fronts), or None."""
-    g = e[(e["estimate"] == est) & (e["kind"] == "curve")]
-    return ee.headline([r for _, r in g.iterrows()])
-
-
-def tightest_and_curve(e, est):
-    """(tightest row, (lowest, highest) curve rows where 95% of the resamples
-    reach both fronts, or None) of estimate EST in an equal-error CSV; Missing
-    when the fronts share no error."""
-    g = e[e["estimate"] == est]
-    t = g[g["kind"] == "tightest"]
-    if len(t) == 0:
-        raise Missing(f"the {est} estimate's fronts reach no common {metrics.PRIMARY}")
-    c = g[(g["kind"] == "curve") & (g["defined_fraction"] >= ee.DEFINED_MIN)]
-    span = (c.loc[c["speedup"].idxmin()], c.loc[c["speedup"].idxmax()]) if len(c) else None
-    return t.iloc[0], span
-
-
-def summary_equal_error(d):
-    e = load(d["equal_error"], EQUAL_ERROR_COLUMNS, "make reproduce-table")
-    t, span = tightest_and_curve(e, "paper")
-    curve = span is not None and \
-        stats.rank((span[0]["lo"], span[0]["hi"]), (span[1]["lo"], span[1]["hi"])) == "lower"
+def readme_equal_error(rec):
+    r = estimate_of(rec["estimates"], "paper")
+    t, span = r["tightest"], r["span"]
+    curve = span is not None and r["span_rank"] == "lower"
     head = "**The speed-up at equal error is a curve, not a number**" if curve else \
         "**The speed-up at equal error**"
     rest = (f"; where 95% of the resamples reach both fronts it runs from {fmt(span[0]['speedup'])} to "
@@ -661,57 +920,40 @@ def summary_equal_error(d):
     if span is not None and not curve:
         rest += " (the two ends' 95% intervals overlap, so no trend with the target is claimed)"
     return (f"- {head} (paper estimate; the curve starts at {primary_name()} {fmt(t['target'])}, the tightest both "
-            f"fronts reach): {headline_text(headline_of(e, 'paper'))}{rest} (`results/table1/equal-error.md`).")
+            f"fronts reach): {headline_text(r['headline'])}{rest} (`results/table1/equal-error.md`).")
 
 
-def summary_cost(d):
-    t = load(d["table"], ["photons", "nn", "method", "relmse_diff_mean", "relmse_diff_lo", "relmse_diff_hi",
-                          "relmse_diff_verdict", "pairs"], "make reproduce-table")
-    cells = load(d["cells"], ["method", "estimate", "photons", "nn", "relmse_ref_mean", "bias_ref"],
-                 "make reproduce-table")
-    p = prec_rows(t)
+def readme_cost(rec):
     words = {"higher": "higher", "equivalent": f"equivalent within {fmt(100 * stats.EQUIVALENCE_MARGIN)}%",
              "lower": "lower", "undetermined": "undetermined"}
-    parts = []
-    for v in ("higher", "equivalent", "lower", "undetermined"):
-        g = p[p["relmse_diff_verdict"].fillna("undetermined") == v]
-        if len(g):
-            parts.append(f"{words[v]} in {count_list([cell(r['photons'], r['nn']) for _, r in g.iterrows()])}")
+    groups = rec["verdicts"]["paper"]["groups"]
+    parts = [f"{words[v]} in {count_list([cell(c['photons'], c['nn']) for c in groups[v]])}"
+             for v in ("higher", "equivalent", "lower", "undetermined") if v in groups]
     worst = ""
-    hi = p[p["relmse_diff_verdict"] == "higher"]
-    if len(hi):
-        r = hi.loc[hi["relmse_diff_mean"].idxmax()]
-        c = cells[(cells["estimate"] == "paper") & (cells["photons"] == r["photons"]) & (cells["nn"] == r["nn"])]
-        q, v = c[c["method"] == "precomputed"], c[c["method"] == "conventional"]
-        share = ""
-        if len(q) and len(v):
-            ex, bx = excess_and_bias(q, v)
-            if ex > 0:
-                share = f", {pct(100 * bx / ex)}% of it bias"
-        worst = (f"; the largest excess is at {cell(r['photons'], r['nn'])}: "
-                 f"{ci(r['relmse_diff_mean'], r['relmse_diff_lo'], r['relmse_diff_hi'])}{share}")
-    return (f"- **What the speed costs**: per seed, paired ({pairs_text(p['pairs'])} per cell), Holm over the "
-            f"{len(p)} cells, the precomputed method's {primary_name()} (paper estimate) is "
+    w = rec["worst"]
+    if w is not None:
+        share = f", {pct(100 * w['share'])}% of it bias" if w["share"] is not None else ""
+        worst = (f"; the largest excess is at {cell(w['photons'], w['nn'])}: "
+                 f"{ci(w['mean'], w['lo'], w['hi'])}{share}")
+    return (f"- **What the speed costs**: per seed, paired ({pairs_text(rec['pairs'])} per cell), Holm over the "
+            f"{rec['cells']} cells, the precomputed method's {primary_name()} (paper estimate) is "
             + "; ".join(parts) + worst + " (`results/table1/table1.md`).")
 
 
-def summary_resolution(d):
-    files = resolution_files(d)
-    if len(files) < 2:
-        raise Missing(f"fewer than two `{os.path.relpath(d['resolution'], d['root'])}/equal-error-WxH.csv` "
-                      "(`make resolution`)")
+def readme_resolution(rec):
+    sizes = rec["sizes"]
+    if len(sizes) < 2:
+        raise Missing(f"fewer than two `{rec['dir']}/equal-error-WxH.csv` (`make resolution`)")
     est = "corrected"
     got = []
-    for f in (files[0], files[-1]):
-        e = load(f, EQUAL_ERROR_COLUMNS, "make resolution")
-        tightest_and_curve(e, est)
-        h = headline_of(e, est)
-        if h is None:
-            raise Missing(f"`{os.path.relpath(f, d['root'])}`: at no target do {100 * ee.DEFINED_MIN:.0f}% of the "
+    for s in (sizes[0], sizes[-1]):
+        r = estimate_of(s["estimates"], est)
+        if r["headline"] is None:
+            raise Missing(f"`{s['file']}`: at no target do {100 * ee.DEFINED_MIN:.0f}% of the "
                           "resamples reach both fronts (`make resolution` with more seeds)")
-        got.append((os.path.basename(f)[len("equal-error-"):-4], h))
-    (s0, a), (s1, b) = got
-    small = stats.rank((a["lo"], a["hi"]), (1.0, 1.0))
+        got.append((s["size"], r))
+    (s0, ra), (s1, rb) = got
+    a, b, small = ra["headline"], rb["headline"], ra["headline_vs_one"]
     head = {"lower": "Small images: the precomputation stops paying",
             "higher": "Small images: the precomputation still pays"}.get(small, "Small images: undetermined")
     said = {"lower": ", slower", "higher": ", faster"}.get(small, " (its interval contains 1)")
@@ -721,130 +963,110 @@ def summary_resolution(d):
             f"{fmt(b['target'])}) it is {ci(b['speedup'], b['lo'], b['hi'])}x (`results/resolution/resolution.md`).")
 
 
-def summary_bias(d):
-    b = load(d["bias"], ["n", "law_n_over_n_minus_1", "conventional_paper_mean", "conventional_paper_ci95",
-                         "conventional_corrected_mean", "conventional_corrected_ci95", "precomputed_corrected_mean",
-                         "precomputed_corrected_ci95"], "make estimator-bias")
-    at = (b[b["n"] == 10] if (b["n"] == 10).any() else b[b["n"] == b["n"].min()]).iloc[0]
-    k_in, k_all, _ = corrected_coverage(b)
-    law = at["law_n_over_n_minus_1"]
-    on_law = abs(at["conventional_paper_mean"] - law) <= at["conventional_paper_ci95"]
+def readme_bias(rec):
+    at = rec["quoted"]
+    k_in, k_all = rec["covered"], rec["intervals"]
     fix = ("removes it for both methods" if k_in == k_all else f"leaves 1 inside {k_in} of {k_all} intervals")
-    return (f"- **The paper's estimator is biased{' by a law' if on_law else ''}**: "
-            f"{fmt(at['conventional_paper_mean'], 5)} ± {fmt(at['conventional_paper_ci95'], 2)} at n = {int(at['n'])} "
-            f"in the analytic scene, where n/(n-1) gives {fmt(law, 5)}, and `--bias-correction` {fix} "
+    return (f"- **The paper's estimator is biased{' by a law' if at['on_law'] else ''}**: "
+            f"{fmt(at['mean'], 5)} ± {fmt(at['ci95'], 2)} at n = {int(at['n'])} "
+            f"in the analytic scene, where n/(n-1) gives {fmt(at['law'], 5)}, and `--bias-correction` {fix} "
             f"(1 inside {k_in} of {k_all} intervals; `results/estimator-bias/estimator-bias.md`).")
 
 
-def summary_rules(d):
-    r = load(d["rep"], ["rule", "label", "verdict"], "make rep-study")
-    bad = r[r["verdict"] == "incompatible"]
+def readme_rules(rec):
+    bad, n = rec["rejected"], len(rec["rows"])
     head = ("**Which photons are representatives is not settled by the paper's times**: no representative rule "
-            f"of the {len(r)} is rejected after Holm" if len(bad) == 0 else
-            f"**The paper's times reject {len(bad)} of the {len(r)} representative rules** after Holm "
-            f"({count_list(list(bad['label']))})")
+            f"of the {n} is rejected after Holm" if len(bad) == 0 else
+            f"**The paper's times reject {len(bad)} of the {n} representative rules** after Holm "
+            f"({count_list(bad)})")
     return (f"- {head}, with the paper's times taken as one measurement each, as noisy as our own single runs "
             "(`results/rep-study/rep-study.md`, which also gives the verdicts at half and twice that noise).")
 
 
-def summary_beyond(d):
-    b = load(d["beyond"], ["case", "variant", "estimate", "speedup", "lo", "hi", "defined_fraction", "seeds", "best",
-                           "above_one", "goal_met"], "make beyond")
-    b = b[(b["estimate"] == "paper") & b["best"].astype(bool)]
-    if len(b) == 0:
+def readme_beyond(rec):
+    if rec["best_rows"] == 0:
         raise Missing("`beyond.csv` has no best variant (`make beyond`)")
-    b = b[b["defined_fraction"].astype(float) >= ee.DEFINED_MIN]
-    if len(b) == 0:
+    r = rec["readme"]
+    if r is None:
         raise Missing(f"`beyond.csv` quotes every best variant at a target that fewer than {100 * ee.DEFINED_MIN:.0f}% "
                       "of the resamples reach on both fronts (`make beyond` again)")
-    margin = stats.EQUIVALENCE_MARGIN
-    met = b[b["goal_met"].astype(bool)]
-    thin = met[met["lo"] < 1.0 + margin]
     f3 = lambda x: report.fmt_fixed(x, 3)  # noqa: E731
-    hi, lo = b.loc[b["speedup"].idxmax()], b.loc[b["speedup"].idxmin()]
-    return (f"- **Beyond the paper's rule the variants {'hold everywhere' if len(met) == len(b) else 'do not yet hold everywhere'}**: "
-            f"of lazy evaluation, the plane-gated lookup and both together (`make beyond`, {int(b['seeds'].min())} "
+    hi, lo = r["largest"], r["smallest"]
+    return (f"- **Beyond the paper's rule the variants {'hold everywhere' if r['met'] == r['cases'] else 'do not yet hold everywhere'}**: "
+            f"of lazy evaluation, the plane-gated lookup and both together (`make beyond`, {r['seeds']} "
             f"seeds per case, each against the conventional renders of the same seeds), the best variant's interval "
-            f"lies above 1.0 in {len(met)} of {len(b)} cases"
-            + (f", {len(thin)} of them with its lower end within the {fmt(100 * margin)}% margin of 1.0" if len(thin) else "")
+            f"lies above 1.0 in {r['met']} of {r['cases']} cases"
+            + (f", {r['thin']} of them with its lower end within the {fmt(100 * stats.EQUIVALENCE_MARGIN)}% margin of 1.0"
+               if r["thin"] else "")
             + f"; the largest is {hi['case']}'s {ci(hi['speedup'], hi['lo'], hi['hi'], f3)}x, the smallest "
             f"{lo['case']}'s {ci(lo['speedup'], lo['lo'], lo['hi'], f3)}x (`results/beyond/beyond.md`).")
 
 
-def summary_repro(d):
-    r = load(d["repro"], ["summary_ratio_median_abs_delta_pp", "summary_ratio_max_abs_delta_pp",
-                          "summary_ratio_overlap_cells", "summary_cells", "summary_goal_pp", "summary_met"],
-             "make reproducibility")
-    s = r.iloc[0]
-    all_in = int(s["summary_ratio_overlap_cells"]) == int(s["summary_cells"])
-    head = ("A rerun lands inside the first run's intervals, within the goal" if all_in and bool(s["summary_met"])
+def readme_repro(rec):
+    all_in = rec["overlap"] == rec["cells"]
+    head = ("A rerun lands inside the first run's intervals, within the goal" if all_in and rec["met"]
             else "A rerun does not land inside the first run's intervals everywhere" if not all_in
             else "A rerun overlaps the first run, but beyond the goal")
-    return (f"- **{head}**: two interleaved runs of the grid overlap in {int(s['summary_ratio_overlap_cells'])} of "
-            f"{int(s['summary_cells'])} cells, with a median shift of the paired ratios of "
-            f"{report.fmt_fixed(s['summary_ratio_median_abs_delta_pp'], 2)} pp against the goal of "
-            f"{fmt(s['summary_goal_pp'])}; the largest shift is {report.fmt_fixed(s['summary_ratio_max_abs_delta_pp'], 2)} pp "
+    return (f"- **{head}**: two interleaved runs of the grid overlap in {rec['overlap']} of "
+            f"{rec['cells']} cells, with a median shift of the paired ratios of "
+            f"{report.fmt_fixed(rec['median_pp'], 2)} pp against the goal of "
+            f"{fmt(rec['goal_pp'])}; the largest shift is {report.fmt_fixed(rec['max_pp'], 2)} pp "
             "(`results/reproducibility/reproducibility.md`).")
 
 
-def summary_peers(d):
-    f = load(d["peers"], ["who", "order", "pe", "stored", "k", "queries", "rep", "seconds"], "make bench")
-    got = {}
-    for order, pe, _, k, _, med in bench_report.peer_medians(f):
-        if order == "tiles":
-            got[int(k)] = (pe, med)
-    if not got:
-        raise Missing(f"`{d['peers']}` has no tile-order cell (`make bench`)")
+def readme_peers(rec):
+    rows = rec["rows"]
+    if not rows:
+        raise Missing(f"`{rec['file']}` has no tile-order cell (`make bench`)")
     names = dict(bench_report.PEERS)
-    ks = sorted(got)
-    ratio, nano, who = [], [], []
-    for k in ks:
-        med = got[k][1]
-        best = bench_report.strongest_peer(med)
-        ratio.append(f"{report.fmt_fixed(med[best] / med['ours'], 2)}x")
-        nano.append(f"{report.fmt_fixed(med['nanoflann'] / med['ours'], 2)}x")
-        who.append(names[best])
+    ks = [r["k"] for r in rows]
+    who = [names[r["strongest"]] for r in rows]
     peer = f"{who[0]} at every k" if len(set(who)) == 1 else ", ".join(f"{w} at k = {k}" for w, k in zip(who, ks))
-    pe = got[ks[0]][0]
-    return (f"- **The kd-tree's k nearest against the peers**: on the {k_of(pe)} map in tile order ours answers "
-            f"{count_list(ratio)} as many queries per second as the strongest peer at k = {count_list([str(k) for k in ks])} "
-            f"({peer}; nanoflann: {count_list(nano)}), every neighbour set checked equal; these ratios "
+    return (f"- **The kd-tree's k nearest against the peers**: on the {k_of(rows[0]['pe'])} map in tile order ours answers "
+            f"{count_list([report.fmt_fixed(r['strongest_ratio'], 2) + 'x' for r in rows])} as many queries per second "
+            f"as the strongest peer at k = {count_list([str(k) for k in ks])} "
+            f"({peer}; nanoflann: {count_list([report.fmt_fixed(r['nanoflann_ratio'], 2) + 'x' for r in rows])}), "
+            "every neighbour set checked equal; these ratios "
             "move between bench runs on a shared machine (`results/bench/bench.md`).")
 
 
-def summary_scale(d):
-    sc = load(d["scaling"], ["method", "photons_emitted", "photons_stored", "threads", "total_s", "bytes_per_stored"],
-              "make bench-scaling")
-    th = load(d["threads"], ["photons_emitted", "pair", "threads", "trace_s", "build_s", "total_s"],
-              "make bench-threads")
-    c = sc[sc["method"] == "conventional"]
-    if len(c) == 0:
+def readme_scale(rec):
+    r = rec["conventional"]
+    if r is None:
         raise Missing("`scaling.csv` has no conventional row (`make bench-scaling`)")
-    r = c.loc[c["photons_emitted"].idxmax()]
-    g = th[th["photons_emitted"] == r["photons_emitted"]]
-    two = g[g["threads"] == 2]["total_s"]
-    tr, bu = threads.speedups(g, "trace_s"), threads.speedups(g, "build_s")
-    pairs = (f"{fmt(np.median(two))} s in total (median of {len(two)} pairs; {fmt(r['total_s'])} s in the scaling run)"
-             if len(two) else f"{fmt(r['total_s'])} s in total (the scaling run)")
-    speed = (f"; two threads against one: photon pass {fmt(np.median(tr))}x, build {fmt(np.median(bu))}x"
-             if len(tr) and len(bu) else "")
+    pairs = (f"{fmt(r['two_total_median'])} s in total (median of {r['two_total_pairs']} pairs; "
+             f"{fmt(r['total_s'])} s in the scaling run)"
+             if r["two_total_pairs"] else f"{fmt(r['total_s'])} s in total (the scaling run)")
+    speed = (f"; two threads against one: photon pass {fmt(r['trace'][0])}x, build {fmt(r['build'][0])}x"
+             if r["trace"] is not None and r["build"] is not None else "")
     return (f"- **At scale**: {int(r['photons_emitted']) // 1000000}M emitted photons ({int(r['photons_stored']):,} "
             f"stored), conventional, n = 100, 512x384, {int(r['threads'])} threads: {pairs}, peak memory "
             f"{fmt(r['bytes_per_stored'])} bytes per stored photon{speed} (`results/bench/threads.md`, "
             "`results/bench/scaling.md`).")
 
 
-SUMMARY = (summary_table, summary_equal_error, summary_cost, summary_resolution, summary_bias, summary_rules,
-           summary_beyond, summary_repro, summary_peers, summary_scale)
+# (record, writer), in the block's order
+SUMMARY = (("table", readme_table), ("equal_error", readme_equal_error), ("cost", readme_cost),
+           ("resolution", readme_resolution), ("bias", readme_bias), ("rules", readme_rules),
+           ("beyond", readme_beyond), ("repro", readme_repro), ("peers", readme_peers), ("scale", readme_scale))
 
 
-def summary(d):
-    """README's summary block: SUMMARY_BEGIN, one bullet per SUMMARY
-    function (a missing input is said as such), SUMMARY_END."""
+def write(rec, writer):
+    """WRITER applied to REC; Missing when the record is a Missing."""
+    if isinstance(rec, Missing):
+        raise rec
+    return writer(rec)
+
+
+def summary(d, recs=None):
+    """README's summary block from the records RECS (read from D when not
+    given): SUMMARY_BEGIN, one bullet per SUMMARY writer (a missing input is
+    said as such), SUMMARY_END."""
+    recs = records(d) if recs is None else recs
     out = [SUMMARY_BEGIN]
-    for fn in SUMMARY:
+    for name, writer in SUMMARY:
         try:
-            out.append(fn(d))
+            out.append(write(recs[name], writer))
         except Missing as e:
             out.append(f"- Not answered here: {e}.")
     return "\n".join(out + [SUMMARY_END])
@@ -870,19 +1092,20 @@ def paths(root):
             "beyond": j(root, "beyond", "beyond.csv"), "peers": j(root, "bench", "bench-peers.csv")}
 
 
-def markdown(d):
-    """The text of FINDINGS.md."""
+def markdown(d, recs=None):
+    """The text of FINDINGS.md from the records RECS (read from D when not given)."""
+    recs = records(d) if recs is None else recs
     out = ["# Findings, written by the data", "",
            f"Generated by `make findings` (experiments/analysis/findings.py) from the files under `{d['root']}/` "
            f"on {report.today()}, commit {report.commit()}. Every number below is read from those files; "
            "paired comparisons are worded from their Holm-corrected test (ranked, equivalent within delta = "
            f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}% of the conventional value, or undetermined), unpaired ones "
            f"rank only disjoint 95% intervals. Error: {metrics.PRIMARY_DEFINITION} (experiments/analysis/metrics.py).", ""]
-    for num, fn in FINDINGS:
+    for num, name, writer, missing_title in FINDINGS:
         try:
-            title, lines = fn(d)
+            title, lines = write(recs[name], writer)
         except Missing as e:
-            title, lines = fn.__doc__.split(":")[0].split(".")[0], [f"Not answered here: {e}."]
+            title, lines = missing_title, [f"Not answered here: {e}."]
         out += [f"## {num}. {title}", ""] + lines + [""]
     return "\n".join(out)
 
