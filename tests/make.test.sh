@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# make.test.sh: the make interface of the study targets, without rendering:
-# a dry run (make -n) of every target of `make help` works and writes
+# make.test.sh: the make interface of the study targets, rendering only one
+# tiny grid (paths with spaces): a dry run (make -n) of every target of `make help` works and writes
 # nothing; every study reads the same knobs (SIZE, SEEDS, SCENE, ...) and a
 # name it does not read is refused, not ignored; a study without a reference
 # stops before any render saying what to give. Ends with "N passed, N failed".
@@ -120,4 +120,12 @@ check "reproduce-table without a reference: exit non-zero, says REF= or make sce
            grep -q 'make scenes SCENES=' $TMP/noref.log && [ ! -e $R/runs ]"
 make -n reproduce-table SCENE="$TMP/my.scene" SIZE=32x24 REF="$TMP/my.exr" RESULTS="$R" > "$TMP/ref.log" 2>&1; rc=$?
 check "reproduce-table with REF=: runs (dry)" bash -c "[ $rc -eq 0 ] && grep -q 'runs/my-32x24-s2-t1 ' $TMP/ref.log"
+# paths with spaces: a scene, its reference and RESULTS in folders with a
+# space, rendered and analysed end to end (a tiny grid, one repeat)
+SP="$TMP/sp ace"; mkdir -p "$SP"; cp scenes/cornell.scene "$SP/my room.scene"
+build/photonmap render "$SP/my room.scene" --width 16 --height 12 --photons 20000 --nn 50 --quiet -o "$SP/ref.exr"
+make reproduce-table SCENE="$SP/my room.scene" SIZE=16x12 SEEDS=2 PHOTONS="2000 4000" NNS=10 REF="$SP/ref.exr" \
+  RESULTS="$SP/results" TIME_REPEATS=1 BOOTSTRAP=200 > "$TMP/space.log" 2>&1; rc=$?
+check "reproduce-table with spaces in SCENE, REF and RESULTS: exit 0, the table and 16 renders written" bash -c '
+  [ "$1" -eq 0 ] && [ -s "$2/table1/table1.md" ] && [ "$(ls "$2"/runs/*/*/seed*.run.json | wc -l)" -eq 16 ]' _ "$rc" "$SP/results"
 finish
