@@ -53,6 +53,16 @@ shape shape_rect(vec3 corner, vec3 edge1, vec3 edge2, int material)
         s.axis[i] = single_axis(v[i]);
     if (s.axis[0] == SHAPE_NO_AXIS || s.axis[1] == SHAPE_NO_AXIS || s.axis[2] == SHAPE_NO_AXIS)
         s.axis[0] = s.axis[1] = s.axis[2] = SHAPE_NO_AXIS;
+    if (s.axis[0] != SHAPE_NO_AXIS) {
+        double n[3] = {s.normal.x, s.normal.y, s.normal.z}, c[3] = {corner.x, corner.y, corner.z};
+        double e1[3] = {edge1.x, edge1.y, edge1.z}, e2[3] = {edge2.x, edge2.y, edge2.z};
+        s.aligned.na = n[s.axis[0]];
+        s.aligned.c0 = c[s.axis[0]];
+        s.aligned.c1 = c[s.axis[1]];
+        s.aligned.c2 = c[s.axis[2]];
+        s.aligned.e1 = e1[s.axis[1]];
+        s.aligned.e2 = e2[s.axis[2]];
+    }
     return s;
 }
 
