@@ -181,8 +181,9 @@ static inline int shape_intersect(const shape *s, const shape_ray *r, double tmi
 }
 
 /* shape_intersect with r's components also given as ra (shape_ray_axes_of(r)),
- * for loops that test one ray against many shapes. */
-static inline int shape_intersect_axes(const shape *s, const shape_ray *r, const shape_ray_axes *ra, double tmin,
+ * for loops that test one ray against many shapes (inlined always: the
+ * ray's values stay in registers across the loop). */
+static inline __attribute__((always_inline)) int shape_intersect_axes(const shape *s, const shape_ray *r, const shape_ray_axes *ra, double tmin,
                                        double tmax, double *t)
 {
     if (s->kind == SHAPE_SPHERE)
