@@ -264,7 +264,8 @@ void test_gather_lookup_bounded(void)
     /* 64 x 64 representatives on the plane z = 0, normal +z; a gather hit
      * on that plane whose normal is -z (the plane's other face) has no
      * agreeing representative anywhere: within the cap the lookup visits a
-     * few nodes, without one it walks the whole tree */
+     * few nodes (two searches: the first radius's, reps.h, then the cap's),
+     * without one it walks the whole tree */
     enum { SIDE = 64 };
     static float pos[SIDE * SIDE][3];
     for (int i = 0; i < SIDE * SIDE; i++) {
@@ -302,7 +303,7 @@ void test_gather_lookup_bounded(void)
     }
     printf("  lookup with no agreeing representative: %llu nodes uncapped, %llu within the cap\n",
            (unsigned long long)nodes[0], (unsigned long long)nodes[1]);
-    CHECK_MSG(nodes[1] < 64 && nodes[0] > 8 * nodes[1], "nodes: uncapped %llu, capped %llu",
+    CHECK_MSG(nodes[1] < 128 && nodes[0] > 8 * nodes[1], "nodes: uncapped %llu, capped %llu",
               (unsigned long long)nodes[0], (unsigned long long)nodes[1]);
     est_scratch_delete(s, 1);
     reps_free(&reps);
