@@ -55,11 +55,27 @@ shape shape_rect(vec3 corner, vec3 edge1, vec3 edge2, int material);
 
 /* The point at distance t along r on s, moved onto the surface (the sphere
  * or the rectangle's plane) so that its error does not grow along chains of
- * reflections. */
-vec3 shape_hit_point(const shape *s, const shape_ray *r, double t);
+ * reflections (inline, as shape_normal: every hit computes both). */
+static inline vec3 shape_hit_point(const shape *s, const shape_ray *r, double t)
+{
+    vec3 p = vec_madd(r->origin, r->dir, t);
+    if (s->kind == SHAPE_SPHERE) {
+        vec3 d = vec_sub(p, s->center);
+        double len = vec_len(d);
+        return len > 0.0 ? vec_madd(s->center, d, s->radius / len) : p;
+    }
+    return vec_madd(p, s->normal, -vec_dot(vec_sub(p, s->corner), s->normal));
+}
+
 /* Unit geometric normal of s at point p on it: outward for spheres, edge1 x
  * edge2 for rectangles (not oriented to any ray). */
-vec3 shape_normal(const shape *s, vec3 p);
+static inline vec3 shape_normal(const shape *s, vec3 p)
+{
+    if (s->kind == SHAPE_SPHERE)
+        return vec_scale(vec_sub(p, s->center), 1.0 / s->radius);
+    return s->normal;
+}
+
 /* Axis-aligned bounds of s. */
 void shape_bounds(const shape *s, vec3 *lo, vec3 *hi);
 
