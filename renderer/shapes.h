@@ -202,10 +202,10 @@ static inline int shape_intersect(const shape *s, const shape_ray *r, double tmi
 static inline __attribute__((always_inline)) int shape_intersect_axes(const shape *s, const shape_ray *r, const shape_ray_axes *ra, double tmin,
                                        double tmax, double *t)
 {
+    if (s->axis[0] != SHAPE_NO_AXIS) /* only axis-aligned rectangles have axes */
+        return shape_rect_aligned_intersect_(s, ra, tmin, tmax, t);
     if (s->kind == SHAPE_SPHERE)
         return shape_sphere_intersect_(s, r, tmin, tmax, t);
-    if (s->axis[0] != SHAPE_NO_AXIS)
-        return shape_rect_aligned_intersect_(s, ra, tmin, tmax, t);
     return shape_rect_intersect_(s, r, tmin, tmax, t);
 }
 
