@@ -730,11 +730,3 @@ int scene_occluded(const scene *s, const shape_ray *r, double tmax)
     uint64_t tests = 0;
     return scene_occluded_counted(s, r, tmax, &tests);
 }
-
-
-
-shape_ray scene_spawn(const scene_hit *h, vec3 dir, int same_side)
-{
-    shape_ray r = {vec_madd(h->p, h->n, same_side ? h->eps : -h->eps), dir};
-    return r;
-}
