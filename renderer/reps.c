@@ -176,6 +176,66 @@ static void free_values(reps_set *r)
     r->site_of = NULL;
 }
 
+typedef struct {
+    const reps_set *r;
+    vec3 n;
+} lookup_ctx;
+
+static int agrees(const reps_value *v, const lookup_ctx *c)
+{
+    return v->normal[0] * c->n.x + v->normal[1] * c->n.y + v->normal[2] * c->n.z > c->r->normal_cos;
+}
+
+/* Another representative than `self` whose normal agrees. */
+typedef struct {
+    lookup_ctx c;
+    uint32_t self;
+} other_ctx;
+
+static int pred_other(uint32_t i, const void *arg)
+{
+    const other_ctx *o = arg;
+    return i != o->self && agrees(&o->c.r->value[i], &o->c);
+}
+
+static int cmp_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
+/* Sets r->first_r2 (reps.h, REPS_FIRST_SCALE) from its separate tree and
+ * values' normals, adding the searches' work to *work; 0 when it would not
+ * be below max_r2. One thread, in a fixed order: the same for any thread
+ * count. */
+static pm_status first_radius2(reps_set *r, float max_r2, work_counts *work)
+{
+    r->first_r2 = 0.0f;
+    if (r->count < 2)
+        return PM_OK;
+    uint32_t step = (r->count + REPS_FIRST_SAMPLES - 1) / REPS_FIRST_SAMPLES, k = 0;
+    float *d2s = malloc(sizeof(float) * ((r->count + step - 1) / step));
+    if (!d2s)
+        return PM_ERR_NOMEM;
+    kd_work w = {0};
+    for (uint32_t i = 0; i < r->count; i += step) {
+        float p[3], d2;
+        kd_point(&r->own, i, p);
+        const float *nv = r->value[i].normal;
+        other_ctx o = {{r, vec_make(nv[0], nv[1], nv[2])}, i};
+        uint32_t j = kd_nearest_if_counted(&r->own, p, max_r2, pred_other, &o, KD_NONE, &d2, &w);
+        d2s[k++] = j == KD_NONE ? max_r2 : d2;
+    }
+    qsort(d2s, k, sizeof(float), cmp_float);
+    float f = REPS_FIRST_SCALE * d2s[(uint32_t)(REPS_FIRST_QUANTILE * (double)(k - 1))];
+    free(d2s);
+    work->rep_nodes += w.nodes;
+    work->rep_points += w.points;
+    if (f < max_r2)
+        r->first_r2 = f;
+    return PM_OK;
+}
+
 pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, unsigned threads, progress *prog)
 {
     unsigned nt = threads ? threads : 1;
@@ -221,6 +281,9 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
         memset(&r->work, 0, sizeof r->work);
         r->work.tree_points = r->rep_tree == CONFIG_REP_TREE_SEPARATE ? count : 0;
         est_scratch_work(scratch, nt, &r->work);
+        r->first_r2 = 0.0f;
+        if (r->rep_tree == CONFIG_REP_TREE_SEPARATE)
+            rc = first_radius2(r, (float)g->max_r2, &r->work);
     }
     if (rc == PM_OK && r->rep_eval == CONFIG_REP_EVAL_LAZY) {
         r->site_of = order; /* the lookup finds a value's site by it */
@@ -231,16 +294,6 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
     if (rc != PM_OK)
         free_values(r);
     return rc;
-}
-
-typedef struct {
-    const reps_set *r;
-    vec3 n;
-} lookup_ctx;
-
-static int agrees(const reps_value *v, const lookup_ctx *c)
-{
-    return v->normal[0] * c->n.x + v->normal[1] * c->n.y + v->normal[2] * c->n.z > c->r->normal_cos;
 }
 
 static int pred_separate(uint32_t i, const void *arg)
@@ -360,7 +413,11 @@ vec3 reps_lookup(const reps_set *r, const photons_map *m, vec3 x, vec3 n, const 
         }
     } else if (r->rep_tree == CONFIG_REP_TREE_SEPARATE) {
         /* the paper's: the nearest representative whose normal agrees */
-        uint32_t i = kd_nearest_if_counted(&r->own, q, max_r2, pred_separate, &c, s->last_rep, &d2, &s->rep_work);
+        uint32_t i = KD_NONE;
+        if (s->last_rep == KD_NONE && r->first_r2 > 0.0f && r->first_r2 < max_r2)
+            i = kd_nearest_if_counted(&r->own, q, r->first_r2, pred_separate, &c, KD_NONE, &d2, &s->rep_work);
+        if (i == KD_NONE)
+            i = kd_nearest_if_counted(&r->own, q, max_r2, pred_separate, &c, s->last_rep, &d2, &s->rep_work);
         if (i != KD_NONE)
             v = ready_value(r, m, i, s);
         s->last_rep = i;

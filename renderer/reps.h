@@ -36,6 +36,16 @@ typedef struct {
 /* How many of the nearest representatives the plane gate tries before it
  * falls back to the conventional estimate. */
 #define REPS_GATE_CANDIDATES 4u
+/* A lookup without a starting candidate (final gathering's) first searches
+ * within reps_set.first_r2 and searches again within the cap only when that
+ * finds nothing: the nearest agreeing representative within the cap is the
+ * same either way, and the small radius prunes most of the tree. first_r2
+ * is REPS_FIRST_SCALE times the REPS_FIRST_QUANTILE quantile of the squared
+ * distance from REPS_FIRST_SAMPLES representatives (evenly spaced in the
+ * tree's order) to their nearest other agreeing one. */
+#define REPS_FIRST_SAMPLES 1024u
+#define REPS_FIRST_QUANTILE 0.9
+#define REPS_FIRST_SCALE 2.5f
 
 /* The representatives' settings of cfg: none for the conventional method.
  * Never fails. */
@@ -88,6 +98,8 @@ typedef struct {
      * REPS_READY (published with release order); NULL when eager */
     atomic_uchar *state;
     uint32_t *site_of;  /* lazy, separate layout: value index -> site index */
+    float first_r2;     /* separate layout: a lookup's first radius squared (REPS_FIRST_SCALE), map frame;
+                           0: none (the cap at once) */
     work_counts work;   /* what reps_evaluate did: the representatives' tree, its queries and evaluations */
 } reps_set;
 

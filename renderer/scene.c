@@ -678,8 +678,9 @@ int scene_intersect_counted(const scene *s, const shape_ray *r, double tmax, sce
     } else {
         *tests += s->nshapes;
         double tt;
+        shape_ray_axes ra = shape_ray_axes_of(r);
         for (size_t i = 0; i < s->nshapes; i++) {
-            if (shape_intersect(&s->shapes[i], r, 0.0, tmax, &tt)) {
+            if (shape_intersect_axes(&s->shapes[i], r, &ra, 0.0, tmax, &tt)) {
                 tmax = tt;
                 best = (int)i;
             }
@@ -708,8 +709,9 @@ int scene_occluded_counted(const scene *s, const shape_ray *r, double tmax, uint
     if (s->accel)
         return bvh_occluded_counted(s->accel, s->shapes, r, tmax, tests);
     double t;
+    shape_ray_axes ra = shape_ray_axes_of(r);
     for (size_t i = 0; i < s->nshapes; i++)
-        if (shape_intersect(&s->shapes[i], r, 0.0, tmax, &t)) {
+        if (shape_intersect_axes(&s->shapes[i], r, &ra, 0.0, tmax, &t)) {
             *tests += i + 1;
             return 1;
         }
@@ -727,12 +729,4 @@ int scene_occluded(const scene *s, const shape_ray *r, double tmax)
 {
     uint64_t tests = 0;
     return scene_occluded_counted(s, r, tmax, &tests);
-}
-
-
-
-shape_ray scene_spawn(const scene_hit *h, vec3 dir, int same_side)
-{
-    shape_ray r = {vec_madd(h->p, h->n, same_side ? h->eps : -h->eps), dir};
-    return r;
 }

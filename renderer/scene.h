@@ -96,7 +96,11 @@ int scene_occluded_counted(const scene *s, const shape_ray *r, double tmax, uint
 /* A ray leaving the hit h in direction dir: from the side it came from
  * (same_side = 1: reflection) or through the surface (0: refraction), its
  * origin moved off the surface by h->eps so it cannot hit the surface it
- * leaves again. */
-shape_ray scene_spawn(const scene_hit *h, vec3 dir, int same_side);
+ * leaves again (inline: every gather ray and bounce spawns one). */
+static inline shape_ray scene_spawn(const scene_hit *h, vec3 dir, int same_side)
+{
+    shape_ray r = {vec_madd(h->p, h->n, same_side ? h->eps : -h->eps), dir};
+    return r;
+}
 
 #endif

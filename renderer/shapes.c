@@ -1,5 +1,5 @@
-/* shapes: constructors, bounds, normals and hit points of the two shapes
- * (the ray intersections themselves are inline in shapes.h). */
+/* shapes: constructors and bounds of the two shapes (hit points, normals
+ * and the ray intersections are inline in shapes.h). */
 #include "shapes.h"
 
 #include <assert.h>
@@ -53,25 +53,17 @@ shape shape_rect(vec3 corner, vec3 edge1, vec3 edge2, int material)
         s.axis[i] = single_axis(v[i]);
     if (s.axis[0] == SHAPE_NO_AXIS || s.axis[1] == SHAPE_NO_AXIS || s.axis[2] == SHAPE_NO_AXIS)
         s.axis[0] = s.axis[1] = s.axis[2] = SHAPE_NO_AXIS;
-    return s;
-}
-
-vec3 shape_hit_point(const shape *s, const shape_ray *r, double t)
-{
-    vec3 p = vec_madd(r->origin, r->dir, t);
-    if (s->kind == SHAPE_SPHERE) {
-        vec3 d = vec_sub(p, s->center);
-        double len = vec_len(d);
-        return len > 0.0 ? vec_madd(s->center, d, s->radius / len) : p;
+    if (s.axis[0] != SHAPE_NO_AXIS) {
+        double n[3] = {s.normal.x, s.normal.y, s.normal.z}, c[3] = {corner.x, corner.y, corner.z};
+        double e1[3] = {edge1.x, edge1.y, edge1.z}, e2[3] = {edge2.x, edge2.y, edge2.z};
+        s.aligned.na = n[s.axis[0]];
+        s.aligned.c0 = c[s.axis[0]];
+        s.aligned.c1 = c[s.axis[1]];
+        s.aligned.c2 = c[s.axis[2]];
+        s.aligned.e1 = e1[s.axis[1]];
+        s.aligned.e2 = e2[s.axis[2]];
     }
-    return vec_madd(p, s->normal, -vec_dot(vec_sub(p, s->corner), s->normal));
-}
-
-vec3 shape_normal(const shape *s, vec3 p)
-{
-    if (s->kind == SHAPE_SPHERE)
-        return vec_scale(vec_sub(p, s->center), 1.0 / s->radius);
-    return s->normal;
+    return s;
 }
 
 void shape_bounds(const shape *s, vec3 *lo, vec3 *hi)

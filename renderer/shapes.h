@@ -25,6 +25,14 @@ typedef struct {
     double magnitude;    /* largest |coordinate| of the shape's bounds: the scale of its rounding errors */
     int axis[3];         /* rectangle: the one axis of its normal, edge1, edge2 when each has only one
                             non-zero component (an axis-aligned rectangle), else SHAPE_NO_AXIS */
+    struct {             /* axis-aligned rectangle: the components its hit test reads (a = axis[0], a1 = axis[1], */
+        double na;       /*   a2 = axis[2]): normal[a] */
+        double c0;       /*   corner[a] */
+        double c1;       /*   corner[a1] */
+        double c2;       /*   corner[a2] */
+        double e1;       /*   edge1[a1] */
+        double e2;       /*   edge2[a2] */
+    } aligned;
 } shape;
 
 /* A ray: origin and unit direction. */
@@ -33,6 +41,13 @@ typedef struct {
     vec3 dir; /* unit length */
 } shape_ray;
 
+/* A ray's origin and direction as arrays, read by component index in the
+ * axis-aligned rectangle's test (shape_ray_axes_of makes it once per ray). */
+typedef struct {
+    double o[3];
+    double d[3];
+} shape_ray_axes;
+
 /* A sphere; radius > 0 (asserted). */
 shape shape_sphere(vec3 center, double radius, int material);
 /* A rectangle from a corner and two perpendicular non-zero edges (asserted). */
@@ -40,11 +55,27 @@ shape shape_rect(vec3 corner, vec3 edge1, vec3 edge2, int material);
 
 /* The point at distance t along r on s, moved onto the surface (the sphere
  * or the rectangle's plane) so that its error does not grow along chains of
- * reflections. */
-vec3 shape_hit_point(const shape *s, const shape_ray *r, double t);
+ * reflections (inline, as shape_normal: every hit computes both). */
+static inline vec3 shape_hit_point(const shape *s, const shape_ray *r, double t)
+{
+    vec3 p = vec_madd(r->origin, r->dir, t);
+    if (s->kind == SHAPE_SPHERE) {
+        vec3 d = vec_sub(p, s->center);
+        double len = vec_len(d);
+        return len > 0.0 ? vec_madd(s->center, d, s->radius / len) : p;
+    }
+    return vec_madd(p, s->normal, -vec_dot(vec_sub(p, s->corner), s->normal));
+}
+
 /* Unit geometric normal of s at point p on it: outward for spheres, edge1 x
  * edge2 for rectangles (not oriented to any ray). */
-vec3 shape_normal(const shape *s, vec3 p);
+static inline vec3 shape_normal(const shape *s, vec3 p)
+{
+    if (s->kind == SHAPE_SPHERE)
+        return vec_scale(vec_sub(p, s->center), 1.0 / s->radius);
+    return s->normal;
+}
+
 /* Axis-aligned bounds of s. */
 void shape_bounds(const shape *s, vec3 *lo, vec3 *hi);
 
@@ -93,46 +124,45 @@ static inline int shape_sphere_intersect_(const shape *s, const shape_ray *r, do
     return 0;
 }
 
-/* Component i of v. */
-static inline double shape_comp_(vec3 v, int i)
+static inline shape_ray_axes shape_ray_axes_of(const shape_ray *r)
 {
-    return i == 0 ? v.x : i == 1 ? v.y : v.z;
+    shape_ray_axes a = {{r->origin.x, r->origin.y, r->origin.z}, {r->dir.x, r->dir.y, r->dir.z}};
+    return a;
 }
 
 /* An axis-aligned rectangle: each dot product with its normal or an edge is
  * one product, exactly what the general code computes (the other terms are
  * products with exact zeros, which add nothing but the sign of a zero, and
  * no test below tells +0 from -0), so the result is the same to the bit. */
-static inline int shape_rect_aligned_intersect_(const shape *s, const shape_ray *r, double tmin, double tmax,
+static inline int shape_rect_aligned_intersect_(const shape *s, const shape_ray_axes *r, double tmin, double tmax,
                                                 double *t)
 {
     int a = s->axis[0], a1 = s->axis[1], a2 = s->axis[2];
-    double na = shape_comp_(s->normal, a);
-    double denom = shape_comp_(r->dir, a) * na;
+    double na = s->aligned.na;
+    double denom = r->d[a] * na;
     if (denom == 0.0)
         return 0;
-    double num = (shape_comp_(s->corner, a) - shape_comp_(r->origin, a)) * na;
+    double num = (s->aligned.c0 - r->o[a]) * na;
     if (tmin >= 0.0 && !(num > 0.0 ? denom > 0.0 : num < 0.0 && denom < 0.0))
         return 0;
     double th = num / denom;
     if (!(th > tmin && th < tmax))
         return 0;
-    double d1 = shape_comp_(r->origin, a1) + shape_comp_(r->dir, a1) * th - shape_comp_(s->corner, a1);
-    double u = d1 * shape_comp_(s->edge1, a1) * s->inv_len2_1;
+    double d1 = r->o[a1] + r->d[a1] * th - s->aligned.c1;
+    double u = d1 * s->aligned.e1 * s->inv_len2_1;
     if (u < 0.0 || u > 1.0)
         return 0;
-    double d2 = shape_comp_(r->origin, a2) + shape_comp_(r->dir, a2) * th - shape_comp_(s->corner, a2);
-    double v = d2 * shape_comp_(s->edge2, a2) * s->inv_len2_2;
+    double d2 = r->o[a2] + r->d[a2] * th - s->aligned.c2;
+    double v = d2 * s->aligned.e2 * s->inv_len2_2;
     if (v < 0.0 || v > 1.0)
         return 0;
     *t = th;
     return 1;
 }
 
+/* A rectangle that is not axis-aligned. */
 static inline int shape_rect_intersect_(const shape *s, const shape_ray *r, double tmin, double tmax, double *t)
 {
-    if (s->axis[0] != SHAPE_NO_AXIS)
-        return shape_rect_aligned_intersect_(s, r, tmin, tmax, t);
     double denom = vec_dot(r->dir, s->normal);
     if (denom == 0.0)
         return 0;
@@ -157,8 +187,26 @@ static inline int shape_rect_intersect_(const shape *s, const shape_ray *r, doub
  * on a hit, 0 on a miss (including a ray exactly parallel to a rectangle). */
 static inline int shape_intersect(const shape *s, const shape_ray *r, double tmin, double tmax, double *t)
 {
-    return s->kind == SHAPE_SPHERE ? shape_sphere_intersect_(s, r, tmin, tmax, t)
-                                   : shape_rect_intersect_(s, r, tmin, tmax, t);
+    if (s->kind == SHAPE_SPHERE)
+        return shape_sphere_intersect_(s, r, tmin, tmax, t);
+    if (s->axis[0] != SHAPE_NO_AXIS) {
+        shape_ray_axes ra = shape_ray_axes_of(r);
+        return shape_rect_aligned_intersect_(s, &ra, tmin, tmax, t);
+    }
+    return shape_rect_intersect_(s, r, tmin, tmax, t);
+}
+
+/* shape_intersect with r's components also given as ra (shape_ray_axes_of(r)),
+ * for loops that test one ray against many shapes (inlined always: the
+ * ray's values stay in registers across the loop). */
+static inline __attribute__((always_inline)) int shape_intersect_axes(const shape *s, const shape_ray *r, const shape_ray_axes *ra, double tmin,
+                                       double tmax, double *t)
+{
+    if (s->axis[0] != SHAPE_NO_AXIS) /* only axis-aligned rectangles have axes */
+        return shape_rect_aligned_intersect_(s, ra, tmin, tmax, t);
+    if (s->kind == SHAPE_SPHERE)
+        return shape_sphere_intersect_(s, r, tmin, tmax, t);
+    return shape_rect_intersect_(s, r, tmin, tmax, t);
 }
 
 

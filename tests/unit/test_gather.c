@@ -264,7 +264,8 @@ void test_gather_lookup_bounded(void)
     /* 64 x 64 representatives on the plane z = 0, normal +z; a gather hit
      * on that plane whose normal is -z (the plane's other face) has no
      * agreeing representative anywhere: within the cap the lookup visits a
-     * few nodes, without one it walks the whole tree */
+     * few nodes (two searches: the first radius's, reps.h, then the cap's),
+     * without one it walks the whole tree */
     enum { SIDE = 64 };
     static float pos[SIDE * SIDE][3];
     for (int i = 0; i < SIDE * SIDE; i++) {
@@ -302,7 +303,7 @@ void test_gather_lookup_bounded(void)
     }
     printf("  lookup with no agreeing representative: %llu nodes uncapped, %llu within the cap\n",
            (unsigned long long)nodes[0], (unsigned long long)nodes[1]);
-    CHECK_MSG(nodes[1] < 64 && nodes[0] > 8 * nodes[1], "nodes: uncapped %llu, capped %llu",
+    CHECK_MSG(nodes[1] < 128 && nodes[0] > 8 * nodes[1], "nodes: uncapped %llu, capped %llu",
               (unsigned long long)nodes[0], (unsigned long long)nodes[1]);
     est_scratch_delete(s, 1);
     reps_free(&reps);
@@ -368,4 +369,80 @@ void test_gather_maps(void)
     photons_list_free(&l);
     scene_free(ms);
     scene_free(sc);
+}
+
+void test_gather_lookup_first_radius(void)
+{
+    /* reps_lookup's first radius (reps.h) changes no answer: against a brute
+     * force over every representative (the nearest agreeing one within the
+     * cap by squared distance, as the tree computes it, then by index), on
+     * random points of the plane z = 0 whose representatives' normals are
+     * +z only in the strip x < 0.25, queried with either normal: the strip's
+     * edge needs the search within the cap after the first radius's found
+     * nothing, and the far side finds nothing at all */
+    enum { COUNT = 6000, QUERIES = 4000 };
+    static float pos[COUNT][3];
+    rng_stream g = rng_make(11, 0);
+    for (int i = 0; i < COUNT; i++) {
+        pos[i][0] = (float)rng_next_double(&g);
+        pos[i][1] = (float)rng_next_double(&g);
+        pos[i][2] = 0.0f;
+    }
+    photons_map m;
+    helper_map(&m, (const float(*)[3])pos, COUNT, vec_make(0, 0, -1), vec_make(0, 0, -1), 1.0f, PHOTONS_FLAG_REP);
+    config_render cfg = config_defaults();
+    cfg.method = CONFIG_METHOD_PRECOMPUTED;
+    cfg.nn = 8;
+    cfg.gather = 4;
+    est_gather g0 = est_gather_make(&m, cfg.nn, 0.05, 0);
+    reps_set reps;
+    CHECK(helper_reps(&m, &g0, CONFIG_REP_TREE_SEPARATE, 1, &reps) == PM_OK);
+    float max_r2 = (float)g0.max_r2;
+    CHECK_MSG(reps.first_r2 > 0.0f && reps.first_r2 < max_r2 / 4, "first_r2 %g, cap %g", reps.first_r2, max_r2);
+    for (uint32_t i = 0; i < reps.count; i++) {
+        float p[3];
+        kd_point(&reps.own, i, p);
+        if (m.centre.x + m.scale * p[0] < 0.25)
+            reps.value[i].normal[2] = 1.0f;
+    }
+    est_scratch *s = est_scratch_new(1, cfg.nn);
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    gather_params gp = gather_params_make(NULL, &cfg, &m, &reps, NULL, 0.05);
+    uint32_t differ = 0, beyond_first = 0, none = 0;
+    for (int k = 0; k < QUERIES; k++) {
+        /* half near the strip's edge */
+        double x = k % 2 ? 0.2 + 0.15 * rng_next_double(&g) : rng_next_double(&g);
+        vec3 y = vec_make(x, rng_next_double(&g), 0.0);
+        vec3 n = vec_make(0, 0, rng_next_u64(&g) & 1 ? 1 : -1);
+        float q[3];
+        photons_map_point(&m, y, q);
+        uint32_t best = KD_NONE;
+        float best_d2 = 0.0f;
+        for (uint32_t i = 0; i < reps.count; i++) {
+            float p[3];
+            kd_point(&reps.own, i, p);
+            float dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+            float d = dx * dx + dy * dy + dz * dz;
+            const float *nv = reps.value[i].normal;
+            if (d <= max_r2 && nv[0] * n.x + nv[1] * n.y + nv[2] * n.z > reps.normal_cos &&
+                (best == KD_NONE || d < best_d2)) {
+                best = i;
+                best_d2 = d;
+            }
+        }
+        gather_counts c = {0};
+        gather_estimate(&gp, y, n, s, &c);
+        differ += s->last_rep != best;
+        none += best == KD_NONE;
+        beyond_first += best != KD_NONE && best_d2 > reps.first_r2;
+    }
+    printf("  first radius %g of the cap %g: %u of %d answers beyond it, %u none, %u differ\n",
+           sqrt((double)reps.first_r2), sqrt((double)max_r2), beyond_first, QUERIES, none, differ);
+    CHECK(differ == 0);
+    CHECK(beyond_first > 10 && none > 10);
+    est_scratch_delete(s, 1);
+    reps_free(&reps);
+    photons_map_free(&m);
 }
