@@ -175,9 +175,10 @@ static qset shuffled(const qset *a, uint64_t seed)
 
 /* Our side: one kd_query state carried from query to query, as an eye-pass
  * thread carries its own (each query starts from the radius the previous
- * one needed; the results do not depend on it). */
-static uint64_t ours_knn_batch(const kd_tree *t, const float *q, uint32_t nq, uint32_t k, float max_d2,
-                               uint32_t *idx, float *d2, double *r2sum)
+ * one needed; the results do not depend on it); STATELESS: the state is
+ * forgotten before each query instead. */
+static uint64_t ours_knn_run(const kd_tree *t, const float *q, uint32_t nq, uint32_t k, float max_d2,
+                             uint32_t *idx, float *d2, double *r2sum, int stateless)
 {
     kd_query st;
     if (kd_query_init(&st, k) != PM_OK) {
@@ -188,12 +189,20 @@ static uint64_t ours_knn_batch(const kd_tree *t, const float *q, uint32_t nq, ui
     double s = 0.0;
     for (uint32_t i = 0; i < nq; i++) {
         float r2;
+        if (stateless)
+            kd_query_forget(&st);
         total += kd_query_knn(t, &st, q + 3 * (size_t)i, k, max_d2, idx, d2, &r2);
         s += r2;
     }
     kd_query_free(&st);
     *r2sum += s;
     return total;
+}
+
+static uint64_t ours_knn_batch(const kd_tree *t, const float *q, uint32_t nq, uint32_t k, float max_d2,
+                               uint32_t *idx, float *d2, double *r2sum)
+{
+    return ours_knn_run(t, q, nq, k, max_d2, idx, d2, r2sum, 0);
 }
 
 /* ours_knn_batch by packets of KD_PACKET consecutive queries
@@ -234,22 +243,7 @@ static uint64_t ours_knn_packets(const kd_tree *t, const float *q, uint32_t nq, 
 static uint64_t ours_knn_stateless(const kd_tree *t, const float *q, uint32_t nq, uint32_t k, float max_d2,
                                    uint32_t *idx, float *d2, double *r2sum)
 {
-    kd_query st;
-    if (kd_query_init(&st, k) != PM_OK) {
-        fprintf(stderr, "bench: out of memory\n");
-        exit(1);
-    }
-    uint64_t total = 0;
-    double s = 0.0;
-    for (uint32_t i = 0; i < nq; i++) {
-        float r2;
-        kd_query_forget(&st);
-        total += kd_query_knn(t, &st, q + 3 * (size_t)i, k, max_d2, idx, d2, &r2);
-        s += r2;
-    }
-    kd_query_free(&st);
-    *r2sum += s;
-    return total;
+    return ours_knn_run(t, q, nq, k, max_d2, idx, d2, r2sum, 1);
 }
 
 static uint64_t lookup_batch(const reps_set *r, const photons_map *m, const qset *q, uint32_t nq,
