@@ -45,7 +45,7 @@ TEST_SAN_OBJ := $(TEST_SRC:tests/unit/%.c=$(BUILD)/san/test_%.o)
 TEST_LIST := $(BUILD)/unit/tests.list.h
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
-.PHONY: calibrate
+.PHONY: calibrate results results-check
 .PHONY: all deps test check help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm evaluate beyond reproducibility findings bench-threads
 all: $(BUILD)/photonmap ## build build/photonmap
 deps: $(DEPS_STAMP) $(DEPS_TEST) $(DEPS_CLUSTER) ## install the missing Debian packages of every tier (scripts/install-deps.sh)
@@ -83,12 +83,17 @@ help: ## this list
 clean: ## remove the build (not results/ or reference/)
 	rm -rf $(BUILD)/obj $(BUILD)/dbg $(BUILD)/san $(BUILD)/unit $(BUILD)/photonmap $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 
+results: $(BUILD)/photonmap | $(DEPS_TEST) ## every study regenerated on one pinned renderer, resumable, each attempt logged -> results/, results/regeneration-log.md (RESULTS_ONLY="T ...", WHY="...")
+	@$(PYTHON) -m experiments.regenerate run --results $(RESULTS) $(if $(RESULTS_ONLY),--only $(RESULTS_ONLY)) $(if $(WHY),--why $(call shell_quote,$(WHY)))
+results-check: | $(DEPS_TEST) ## every render under results/runs by the pinned renderer, every results file naming one commit
+	@$(PYTHON) -m experiments.regenerate check --results $(RESULTS)
+
 calibrate: $(BUILD)/photonmap | $(DEPS_TEST) ## this machine's cost model: each phase's time per unit of its work counters, checked on held-out renders -> results/calibrate/
-	$(PYTHON) -m experiments.calibrate --pm $(BUILD)/photonmap --out $(RESULTS)/calibrate
+	$(PYTHON) -m experiments.calibrate --pm $(PM) --out $(RESULTS)/calibrate
 
 stability: $(BUILD)/photonmap | $(DEPS_TEST)
 	@mkdir -p $(STABILITY_DIR)
-	$(PYTHON) -m experiments.stability --pm $(BUILD)/photonmap > $(STABILITY_DIR)/stability-extremes.md.tmp
+	$(PYTHON) -m experiments.stability --pm $(PM) > $(STABILITY_DIR)/stability-extremes.md.tmp
 	mv $(STABILITY_DIR)/stability-extremes.md.tmp $(STABILITY_DIR)/stability-extremes.md
 
 # ---- the build ----

@@ -6,6 +6,8 @@
 # names refused with their successor there too).
 
 RESULTS ?= results
+# the renderer the targets outside the studies run (make results pins a copy)
+PM ?= $(BUILD)/photonmap
 # the analysis layer runs on Debian's python3 (numpy, scipy, pandas, OIIO)
 PYTHON ?= /usr/bin/python3
 STABILITY_DIR = $(RESULTS)/stability

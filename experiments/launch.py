@@ -6,7 +6,8 @@ command line (command) and makes one render's files in the run layout
 
     python3 -m experiments.launch --pm PM --scene SCENE --width W --height H \\
         --subpixels S --threads T --repeats R --of N --stem ESTIMATE-pP-nN/seedK \\
-        --member ROOT METHOD "EXTRA ARGS" K [--member ...] [--member-repeats ROOT METHOD R ...] [--dump-reps]
+        --member ROOT METHOD "EXTRA ARGS" K [--member ...] [--member-repeats ROOT METHOD R ...] [--dump-reps] \\
+        [--busy-loop]
 
 renders every member (the render ROOT/METHOD-ESTIMATE-pP-nN/seedK with the
 extra renderer options EXTRA ARGS, run K of the study's N) back to back,
@@ -34,6 +35,10 @@ combination, e.g. --bias-correction with --rep-every 1) its message.
 Everything is written to a temporary name and renamed, so a killed render
 leaves no result. Any other failure exits 1 and records nothing. Prints one
 progress line per render ("run K/N METHOD ESTIMATE P_e=.. n=.. seed ..").
+With --busy-loop a process spinning in a loop (busy_loop) runs from before
+the group's first render until after its last, the load of a neighbour on
+another core (make reproducibility's third run); each record says so
+("busy_loop": 1).
 """
 
 import argparse
@@ -90,10 +95,11 @@ def one_line(text):
     return re.sub(r"[\x00-\x08\x0b-\x1f]", "", text).rstrip(" ")
 
 
-def write_record(base, exit_code, user, sys_s, cpu, load, pair_pos, message, cmd):
+def write_record(base, exit_code, user, sys_s, cpu, load, pair_pos, message, cmd, busy=False):
     """The run record, written last (temporary name, then renamed)."""
     text = (f'{{\n  "exit": {exit_code},\n  "user_s": {user},\n  "sys_s": {sys_s},\n  "cpu_s": {cpu},\n'
-            f'  "loadavg_1min": {load},\n  "pair_pos": {pair_pos},\n  "message": {json_str(message)},\n'
+            f'  "loadavg_1min": {load},\n  "pair_pos": {pair_pos},\n  "busy_loop": {int(busy)},\n'
+            f'  "message": {json_str(message)},\n'
             f'  "command": {json_str(" ".join(cmd))}\n}}\n')
     with open(base + ".tmp.run", "w", encoding="utf-8") as f:
         f.write(text)
@@ -139,18 +145,23 @@ def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k, rep
             os.replace(base + ".tmp.reps.csv", base + ".reps.csv")
         os.remove(base + ".tmp.time")
         cpu = "%.2f" % (float(user) + float(sys_s))
-        write_record(base, 0, user, sys_s, cpu, load, pair_pos, "", cmd)
+        write_record(base, 0, user, sys_s, cpu, load, pair_pos, "", cmd, s.busy_loop)
         total = "%.2f" % layout.load_json(base + ".stats.json")["time_s"]["total"]
         print(f"{label}: total {total} s, cpu {cpu} s", flush=True)
         return 0
     if rc == 2:  # refused: the combination does not apply; recorded so that it is not retried
         os.replace(base + ".tmp.err", base + ".err")
         remove_tmp(base)
-        write_record(base, 2, "null", "null", "null", load, pair_pos, msg, cmd)
+        write_record(base, 2, "null", "null", "null", load, pair_pos, msg, cmd, s.busy_loop)
         print(f"{label}: not applicable (the renderer refused it, exit 2): {msg}", flush=True)
         return 2
     remove_tmp(base)
     raise LaunchError(f"{label} failed (exit {rc}): {' '.join(cmd)}\nlaunch.py: {msg}")
+
+
+def busy_loop():
+    """A process spinning in a loop until killed (the caller's to end)."""
+    return subprocess.Popen([sys.executable, "-c", "while True:\n    pass"])
 
 
 def run_group(s, members, repeats=None):
@@ -169,6 +180,7 @@ def run_group(s, members, repeats=None):
         if os.path.exists(r):
             os.remove(r)
     done = False
+    busy = busy_loop() if s.busy_loop else None
     try:
         for pos, i in enumerate(order, 1):
             root, method, extra, k = members[i]
@@ -176,6 +188,9 @@ def run_group(s, members, repeats=None):
                    (repeats or {}).get((root, method), s.repeats))
         done = True
     finally:
+        if busy:
+            busy.kill()
+            busy.wait()
         if not done:  # the group unfinished: none of its records stays
             for r in records:
                 if os.path.exists(r):
@@ -195,6 +210,7 @@ def main(argv=None):
     ap.add_argument("--of", type=int, required=True, help="the number of renders of the study (progress lines)")
     ap.add_argument("--stem", required=True, help="ESTIMATE-pPHOTONS-nNN/seedK")
     ap.add_argument("--dump-reps", action="store_true", help="each render's representatives to seedK.reps.csv")
+    ap.add_argument("--busy-loop", action="store_true", help="a busy loop runs beside the group's renders")
     ap.add_argument("--member", nargs=4, action="append", required=True, metavar=("ROOT", "METHOD", "ARGS", "K"))
     ap.add_argument("--member-repeats", nargs=3, action="append", default=[], metavar=("ROOT", "METHOD", "R"),
                     help="the member ROOT METHOD's --repeats instead of --repeats (e.g. 1 for a long render)")

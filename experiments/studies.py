@@ -152,6 +152,9 @@ class Grid:
         self.conv_files = conv.run_files if conv else []
         self.run_names = layout.run_names(self.photons, self.nns, self.methods, self.estimates, self.seeds)
         self.run_files = [layout.record_path(self.root, n) for n in self.run_names]
+        self.after = []  # records every render of the grid waits for (a sequential study: the grid before)
+        # BUSY_LOOP: a busy loop runs beside each of the grid's render jobs (launch.py --busy-loop)
+        self.busy_loop = k.get("BUSY_LOOP", "") not in ("", "0")
         # both methods: the two renders of one (cell, seed) are one job, back to back
         self.paired = sorted(set(self.methods) & {"conventional", "precomputed"}) == ["conventional", "precomputed"]
         self.ref, self.ref_fast = k["REF"], k["REF_FAST"]
@@ -194,7 +197,7 @@ class Grid:
         return [self.python, "-m", "experiments.launch", "--pm", self.pm, "--scene", self.scene,
                 "--width", self.width, "--height", self.height, "--subpixels", self.subpixels,
                 "--threads", self.threads_arg, "--repeats", self.time_repeats, "--of", len(self.run_names),
-                "--stem", stem]
+                "--stem", stem] + (["--busy-loop"] if self.busy_loop else [])
 
     def member_words(self, root, method, nn, k):
         """The launcher's words of one member: the render of METHOD at n = NN
@@ -313,11 +316,6 @@ class Study:
         self.knobs, self.given = k, set(given)
         self.results, self.pm, self.python = k["RESULTS"], k["PM"], k["PYTHON"]
         self.timed = 1 if decl.get("timed", True) else 0
-        # REPRO_TASKSET (interleaved studies): a CPU list, "last" (this
-        # machine's last CPU) or empty (not pinned)
-        self.taskset = k.get("REPRO_TASKSET", "")
-        if self.taskset == "last":
-            self.taskset = str(len(os.sched_getaffinity(0)) - 1)
         self.figures = k.get("FIGURES") or os.path.join(self.results, "figures")
         # a study whose files live in a directory of their own (studies.yaml
         # out: under RESULTS, {name} the scene's name), unless OUT is given
@@ -343,6 +341,7 @@ class Study:
                     conv = by_block[b["conv"]][len(grids) // len(grid_values(b, k, given))] if b.get("conv") else None
                     args = value_args(b, value, self.target, kk)
                     kk.update({n: knob_text(v).format(value=value, args=args) for n, v in (b.get("fixed") or {}).items()})
+                    kk.update({n: knob_text(v) for n, v in ((b.get("per_value") or {}).get(value) or {}).items()})
                     kk["VALUE"] = value
                     grids.append(Grid(self, decl, kk, grid_name(b, case, value), files, conv, b.get("root"), b))
             by_block[b.get("name", "")] = grids
@@ -351,6 +350,10 @@ class Study:
         self.by_name = {g.name: g for g in self.grids}
         self.by_root = {g.root: g for g in self.grids}
         self.run_files = [f for g in self.grids for f in g.run_files]
+        # sequential: true: each grid renders after every render of the one before
+        if decl.get("sequential"):
+            for before, g in zip(self.grids, self.grids[1:]):
+                g.after = before.run_files
 
     def block_files(self, files):
         """FILES (key: path under RESULTS or in FIGURES) with {tag} and

@@ -34,6 +34,30 @@ def test_reproducibility_compare():
     assert s["ratio_overlap_cells"] == 2 and not s["met"]
     s = reproducibility.summary(reproducibility.compare(a, b), 0.5)
     assert not s["met"]
+    # the largest |delta| (2 pp) above its bound; the drift control (the
+    # trace ratios 80/81, 40/41, 100/98) outside [97, 103] in two cells
+    s = reproducibility.summary(f, 3.0, max_pp=1.5)
+    assert s["ratio_max_abs_delta_pp"] == 2 and not s["met"]
+    s = reproducibility.summary(f, 3.0, drift=(97, 103))
+    assert s["drift_inside_cells"] == 1 and (s["drift_min"], s["drift_max"]) == (40, 100) and not s["met"]
+    assert reproducibility.summary(f, 3.0, max_pp=2, drift=(39, 101))["met"]
+
+
+def test_reproducibility_phase_load():
+    """Each phase's ratio busy / A over the renders both runs made: the
+    medians of known ratios; a render only one run made is left out."""
+    def runs(scale, seeds):
+        return pd.DataFrame([{"method": m, "estimate": "paper", "photons": 50000, "nn": 10, "seed": k, "status": "ok",
+                              "trace_s": 0.1 * scale[k - 1], "build_s": 0.05, "precompute_s": 0.0,
+                              "render_s": 1.0 * scale[k - 1], "total_s": 1.15 * scale[k - 1]}
+                             for m in ("conventional", "precomputed") for k in seeds])
+    rows = reproducibility.phase_load(runs([1, 1, 1, 1], (1, 2, 3)), runs([1.1, 1.3, 1.2, 9.0], (1, 2, 3, 4)))
+    by = {(r["method"], r["phase"]): r for r in rows}
+    assert by[("precomputed", "trace")]["renders"] == 3
+    assert abs(by[("precomputed", "trace")]["median_ratio"] - 1.2) < 1e-12
+    assert abs(by[("conventional", "render")]["max_ratio"] - 1.3) < 1e-12
+    assert by[("conventional", "build")]["median_ratio"] == 1.0
+    assert by[("conventional", "precompute")]["renders"] == 0  # 0 s: no ratio
 
 
 def test_reproducibility_prints_reference_error():
@@ -71,3 +95,13 @@ def test_reproducibility_prints_reference_error():
         with open(os.path.join(d, "r2.md")) as f:
             text = f.read()
         assert "its own error is not measured here" in text and "noise 0.000367" not in text
+        assert "busy loop" not in text
+        # a third run with a busy loop: its section, judged by its own goal
+        c = table1_frame([(85, 80, 90), (41, 39, 43), (98, 93, 103)], [(0.01, 0.0, 0.02)] * 3)
+        c.to_csv(os.path.join(d, "tc.csv"), index=False)
+        reproducibility.main(args + ["--table-busy", os.path.join(d, "tc.csv"), "--runs-busy", paths["rb"],
+                                     "--busy-goal-pp", "3", "--out", os.path.join(d, "r3")])
+        with open(os.path.join(d, "r3.md")) as f:
+            text = f.read()
+        assert "busy loop on the other core" in text and "median |delta| 2.00 pp" in text
+        assert list(pd.read_csv(os.path.join(d, "r3.csv"))["runs"]) == ["a-b"] * 3 + ["a-busy"] * 3

@@ -135,14 +135,19 @@ def test_beyond_cases_times_variants():
         studies.load("beyond", {"SCENES": "scenes/slabs.scene", "BEYOND_VARIANTS": "lazy fast"})
 
 
-def test_reproducibility_two_runs_pinned():
+def test_reproducibility_three_runs_in_sequence():
+    """Run a is Table 1's run root, b and busy their own, each after the one
+    before (every render of it), busy with the busy loop; control: Table 1's
+    grid waits for nothing and has no busy loop."""
     s = studies.load("reproducibility", {"RESULTS": "/r", "SIZE": "32x24", "SEEDS": "2", "REF": "x.exr"})
-    a, b = s.grids
-    assert (a.name, b.name) == ("a", "b") and a.root == "/r/runs/cornell-32x24-s2-t1-repro-a"
+    a, b, busy = s.grids
+    t = studies.load("table1", {"RESULTS": "/r", "SIZE": "32x24", "SEEDS": "2", "REF": "x.exr"}).grids[0]
+    assert (a.name, b.name, busy.name) == ("a", "b", "busy") and a.root == t.root == "/r/runs/cornell-32x24-s2-t1"
+    assert b.root == "/r/runs/cornell-32x24-s2-t1-repro-b" and busy.root.endswith("-repro-busy")
     assert b.files["runs_csv"] == "/r/reproducibility/runs-b.csv" and a.ref == b.ref == "x.exr"
-    assert s.taskset == str(len(os.sched_getaffinity(0)) - 1)  # last: this machine's last CPU
-    assert studies.load("reproducibility", {"REPRO_TASKSET": "", "REF": "x.exr"}).taskset == ""
-    assert studies.load("reproducibility", {"REPRO_TASKSET": "0", "REF": "x.exr"}).taskset == "0"
+    assert a.after == [] and b.after == a.run_files and busy.after == b.run_files and len(b.after) == 96
+    assert "--busy-loop" in busy.launch_words("paper-p50000-n10/seed1")
+    assert "--busy-loop" not in b.launch_words("paper-p50000-n10/seed1") and not t.busy_loop and t.after == []
     # no REF: the POV-Ray reference of 256x192, else our converged one at that size
     assert studies.load("reproducibility", {"SIZE": "256x192"}).grids[0].ref == \
         "reference/cornell/cornell-reference-256x192.exr"

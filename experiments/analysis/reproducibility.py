@@ -1,14 +1,20 @@
 #!/usr/bin/python3
-"""reproducibility.py: two runs of one grid -> how far their results lie apart.
+"""reproducibility.py: runs of one grid -> how far their results lie apart.
 
-Owns the comparison of runs A and B of `make reproducibility`
-(experiments/rules/reproducibility.smk: the same grid, commit and settings, the
-pairs of the two runs interleaved in time): per cell and estimate both runs'
-paired time ratios (precomputed / conventional, table.py's paired_ratio_*
+Owns the comparison of the runs of `make reproducibility`
+(experiments/rules/reproducibility.smk: the same grid, commit and settings,
+`make reproduce-table` as a user runs it: run A, then run B after every render
+of A, then a third run with a busy loop on the other core): per cell and
+estimate two runs' paired time ratios (precomputed / conventional, table.py's paired_ratio_*
 columns, and the drift control trace_ratio_*) and paired relMSE differences
 with their 95% intervals, whether the two intervals overlap, and the
-difference of the ratios in percentage points; the median |difference of
-the ratios| over the cells against the goal (REPRO_GOAL_PP). The images of
+difference of the ratios in percentage points; against the goals: every
+cell's intervals overlap, the median |difference of the ratios| over the
+cells at most REPRO_GOAL_PP and the largest at most REPRO_MAX_PP, the drift
+control inside REPRO_DRIFT in every cell of both runs. The busy run against
+A: the median |difference| against REPRO_BUSY_GOAL_PP, and what the load did
+to each phase (the median ratio busy / A of each phase's repeat-minimum time
+over the renders, per method). The images of
 one seed are the same bit for bit in both runs (the renderer is
 deterministic), so the error columns must agree exactly: the largest
 difference of any render's relMSE between the runs is reported, and a
@@ -92,11 +98,14 @@ def max_image_difference(runs_a, runs_b):
     return float(np.nanmax(np.abs(a.loc[both].to_numpy() - b.loc[both].to_numpy()))), len(both)
 
 
-def summary(frame, goal_pp):
+def summary(frame, goal_pp, max_pp=math.inf, drift=(-math.inf, math.inf)):
     """{median_abs_delta_pp, cells, overlap_cells, met, ...} over every
     (cell, estimate) row of FRAME for the main ratio (and the CPU ratio and
-    the drift control beside it)."""
-    out = {"cells": len(frame), "goal_pp": goal_pp}
+    the drift control beside it): met when every cell's intervals overlap,
+    the median |delta| is at most GOAL_PP, the largest at most MAX_PP and the
+    drift control's point estimate lies in DRIFT (lo, hi %) in every cell of
+    both runs."""
+    out = {"cells": len(frame), "goal_pp": goal_pp, "max_pp": max_pp, "drift_lo": drift[0], "drift_hi": drift[1]}
     for _, name in RATIOS:
         d = frame[f"{name}_delta_pp"].to_numpy(np.float64) if len(frame) else np.array([])
         d = d[np.isfinite(d)]
@@ -105,9 +114,42 @@ def summary(frame, goal_pp):
         out[f"{name}_mean_delta_pp"] = float(np.mean(d)) if d.size else math.nan
         out[f"{name}_overlap_cells"] = int(frame[f"{name}_overlap"].sum()) if len(frame) else 0
     out["relmse_diff_overlap_cells"] = int(frame["relmse_diff_overlap"].sum()) if len(frame) else 0
-    m = out["ratio_median_abs_delta_pp"]
-    out["met"] = bool(isnum(m) and m <= goal_pp and out["ratio_overlap_cells"] == out["cells"] and out["cells"] > 0)
+    tr = frame[["trace_ratio_a", "trace_ratio_b"]].to_numpy(np.float64) if len(frame) else np.zeros((0, 2))
+    out["drift_inside_cells"] = int(np.sum(np.all((tr >= drift[0]) & (tr <= drift[1]), axis=1)))
+    out["drift_min"] = float(np.nanmin(tr)) if tr.size else math.nan
+    out["drift_max"] = float(np.nanmax(tr)) if tr.size else math.nan
+    m, mx = out["ratio_median_abs_delta_pp"], out["ratio_max_abs_delta_pp"]
+    out["met"] = bool(isnum(m) and m <= goal_pp and isnum(mx) and mx <= max_pp
+                      and out["ratio_overlap_cells"] == out["cells"] and out["cells"] > 0
+                      and out["drift_inside_cells"] == out["cells"])
     return out
+
+
+PHASES = ("trace_s", "build_s", "precompute_s", "render_s", "total_s")
+
+
+def phase_load(runs_a, runs_c):
+    """One dict per (method, phase): the median and range over the renders
+    both runs made of the ratio C / A of the phase's time (each a repeat
+    minimum), the renders compared."""
+    keys = ["method", "estimate", "photons", "nn", "seed"]
+    a = runs_a[runs_a["status"] == "ok"].set_index(keys)
+    c = runs_c[runs_c["status"] == "ok"].set_index(keys)
+    both = a.index.intersection(c.index)
+    rows = []
+    for method in sorted({k[0] for k in both}):
+        idx = [k for k in both if k[0] == method]
+        for ph in PHASES:
+            if ph not in a.columns or ph not in c.columns:
+                continue
+            va, vc = a.loc[idx, ph].to_numpy(np.float64), c.loc[idx, ph].to_numpy(np.float64)
+            ok = (va > 0) & (vc > 0)
+            r = vc[ok] / va[ok]
+            rows.append({"method": method, "phase": ph[:-2], "renders": int(ok.sum()),
+                         "median_ratio": float(np.median(r)) if r.size else math.nan,
+                         "min_ratio": float(np.min(r)) if r.size else math.nan,
+                         "max_ratio": float(np.max(r)) if r.size else math.nan})
+    return rows
 
 
 def interval_text(row, name, run):
@@ -116,30 +158,54 @@ def interval_text(row, name, run):
            f"{fmt_fixed(row[f'{name}_{run}_hi'], 1)}]"
 
 
-def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, taskset, ref_text=""):
-    """The text of reproducibility.md."""
+def comparison_table(frame, other):
+    """The Markdown table of a comparison FRAME of run A against run OTHER."""
+    o = other.upper() if len(other) == 1 else other
+    header = ["estimate", "P_e", "n", "ratio A %", f"ratio {o} %", "delta pp", "overlap", "CPU A %", f"CPU {o} %",
+              "trace A %", f"trace {o} %", "relMSE diff A", f"relMSE diff {o}"]
+    rows = []
+    for _, r in frame.iterrows():
+        rows.append([r["estimate"], str(r["photons"]), str(r["nn"]), interval_text(r, "ratio", "a"),
+                     interval_text(r, "ratio", "b"), fmt_fixed(r["ratio_delta_pp"], 2),
+                     "yes" if r["ratio_overlap"] else "**no**", interval_text(r, "cpu_ratio", "a"),
+                     interval_text(r, "cpu_ratio", "b"), interval_text(r, "trace_ratio", "a"),
+                     interval_text(r, "trace_ratio", "b"),
+                     f"{fmt(r['relmse_diff_mean_a'])} [{fmt(r['relmse_diff_lo_a'])}, {fmt(r['relmse_diff_hi_a'])}]",
+                     f"{fmt(r['relmse_diff_mean_b'])} [{fmt(r['relmse_diff_lo_b'])}, {fmt(r['relmse_diff_hi_b'])}]"])
+    return report.md_table(header, rows)
+
+
+def load_text(runs):
+    """'median M, range LO-HI' of the 1-minute load averages at the renders' starts."""
+    load = runs["loadavg_1min"].to_numpy(np.float64)
+    return f"median {fmt(float(np.nanmedian(load)))}, range {fmt(float(np.nanmin(load)))}-{fmt(float(np.nanmax(load)))}"
+
+
+def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, ref_text="", busy=None):
+    """The text of reproducibility.md; BUSY: (frame, summary, phase rows,
+    runs) of the busy run against A, or None."""
     first = runs_a.iloc[0]
-    load = pd.concat([runs_a["loadavg_1min"], runs_b["loadavg_1min"]]).to_numpy(np.float64)
-    lines = ["# Reproducibility: the grid rendered twice", "",
-             f"Runs A and B: the same grid ({first['scene']} at {first['width']}x{first['height']}, "
-             f"{first['subpixels']}x{first['subpixels']} subpixels, {int(runs_a['seed'].nunique())} seeds, "
-             f"{first['threads']} thread(s)), their pairs interleaved in time (pair k of A, then of B, the order "
-             "alternating with k), "
-             + (f"every render pinned with `taskset -c {taskset}`" if taskset else "no CPU pinning") + ". "
-             f"Machine: {report.machine()}; 1-minute load average at the renders' starts: median "
-             f"{fmt(float(np.nanmedian(load)))}, range {fmt(float(np.nanmin(load)))}-{fmt(float(np.nanmax(load)))}; "
-             f"commit {report.commit()}; {report.today()}.", "",
+    lines = ["# Reproducibility: `make reproduce-table` rendered again", "",
+             f"Run A is Table 1's own renders; run B is the same grid ({first['scene']} at "
+             f"{first['width']}x{first['height']}, {first['subpixels']}x{first['subpixels']} subpixels, "
+             f"{int(runs_a['seed'].nunique())} seeds, {first['threads']} thread(s), the same `--repeats`) rendered "
+             "again after every render of A, as a second user would: not interleaved, not pinned. "
+             f"Machine: {report.machine()}; 1-minute load average at the renders' starts: A {load_text(runs_a)}, "
+             f"B {load_text(runs_b)}; commit {report.commit()}; {report.today()}.", "",
              "Ratios are table.py's paired ratios (per-seed log ratio of precomputed to conventional render "
-             "time, the renderer's own timer, 95% t interval over seeds), in %; the drift control is the same "
-             "ratio of the photon-trace phase (identical code in both methods). delta = A - B in percentage "
-             "points (pp).", ""]
-    goal = summ["goal_pp"]
-    lines += [f"**Goal**: every cell's two intervals overlap and the median |delta| of the time ratios is at most "
-              f"{fmt(goal)} pp. **Result**: median |delta| {fmt_fixed(summ['ratio_median_abs_delta_pp'], 2)} pp "
-              f"(largest {fmt_fixed(summ['ratio_max_abs_delta_pp'], 2)} pp, mean delta "
+             "time, each time the minimum of the render's repeats, 95% t interval over seeds), in %; the drift "
+             "control is the same ratio of the photon-trace phase (identical code in both methods, so 100% but "
+             "for noise). delta = A - B in percentage points (pp).", ""]
+    dl, dh = summ["drift_lo"], summ["drift_hi"]
+    lines += [f"**Goal**: in every cell the two intervals overlap, the median |delta| of the time ratios is at most "
+              f"{fmt(summ['goal_pp'])} pp and the largest at most {fmt(summ['max_pp'])} pp, and the drift control "
+              f"lies within [{fmt(dl)}%, {fmt(dh)}%] in every cell of both runs. **Result**: median |delta| "
+              f"{fmt_fixed(summ['ratio_median_abs_delta_pp'], 2)} pp, largest "
+              f"{fmt_fixed(summ['ratio_max_abs_delta_pp'], 2)} pp (mean delta "
               f"{fmt_fixed(summ['ratio_mean_delta_pp'], 2)} pp); the intervals overlap in "
-              f"{summ['ratio_overlap_cells']} of {summ['cells']} cells: the goal is "
-              + ("**met**." if summ["met"] else "**not met**."), "",
+              f"{summ['ratio_overlap_cells']} of {summ['cells']} cells; the drift control lies inside in "
+              f"{summ['drift_inside_cells']} of {summ['cells']} cells (range {fmt_fixed(summ['drift_min'], 1)}%-"
+              f"{fmt_fixed(summ['drift_max'], 1)}%): the goal is " + ("**met**." if summ["met"] else "**not met**."), "",
               f"CPU-time ratio (secondary): median |delta| {fmt_fixed(summ['cpu_ratio_median_abs_delta_pp'], 2)} pp, "
               f"overlap in {summ['cpu_ratio_overlap_cells']} of {summ['cells']} cells. Drift control: median "
               f"|delta| {fmt_fixed(summ['trace_ratio_median_abs_delta_pp'], 2)} pp.", ""]
@@ -153,18 +219,25 @@ def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, taskset, ref_text="")
                      ": **not zero**: the renderer was not deterministic between the runs (a bug, not noise)."),
                   f"The paired relMSE differences' intervals overlap in {summ['relmse_diff_overlap_cells']} of "
                   f"{summ['cells']} cells.", ""]
-    header = ["estimate", "P_e", "n", "ratio A %", "ratio B %", "delta pp", "overlap", "CPU A %", "CPU B %",
-              "trace A %", "trace B %", "relMSE diff A", "relMSE diff B"]
-    rows = []
-    for _, r in frame.iterrows():
-        rows.append([r["estimate"], str(r["photons"]), str(r["nn"]), interval_text(r, "ratio", "a"),
-                     interval_text(r, "ratio", "b"), fmt_fixed(r["ratio_delta_pp"], 2),
-                     "yes" if r["ratio_overlap"] else "**no**", interval_text(r, "cpu_ratio", "a"),
-                     interval_text(r, "cpu_ratio", "b"), interval_text(r, "trace_ratio", "a"),
-                     interval_text(r, "trace_ratio", "b"),
-                     f"{fmt(r['relmse_diff_mean_a'])} [{fmt(r['relmse_diff_lo_a'])}, {fmt(r['relmse_diff_hi_a'])}]",
-                     f"{fmt(r['relmse_diff_mean_b'])} [{fmt(r['relmse_diff_lo_b'])}, {fmt(r['relmse_diff_hi_b'])}]"])
-    lines += report.md_table(header, rows)
+    lines += ["## A against B", ""] + comparison_table(frame, "b") + [""]
+    if busy is not None:
+        bframe, bsumm, phases, runs_c = busy
+        lines += ["## A against the run with a busy loop on the other core", "",
+                  "The same grid a third time, after B, with a process spinning in a loop beside every render "
+                  f"(`launch.py --busy-loop`; load at the renders' starts {load_text(runs_c)}). "
+                  f"**Goal**: median |delta| at most {fmt(bsumm['goal_pp'])} pp. **Result**: median |delta| "
+                  f"{fmt_fixed(bsumm['ratio_median_abs_delta_pp'], 2)} pp, largest "
+                  f"{fmt_fixed(bsumm['ratio_max_abs_delta_pp'], 2)} pp, mean delta (A - busy) "
+                  f"{fmt_fixed(bsumm['ratio_mean_delta_pp'], 2)} pp; the intervals overlap in "
+                  f"{bsumm['ratio_overlap_cells']} of {bsumm['cells']} cells: the goal is "
+                  + ("**met**." if isnum(bsumm["ratio_median_abs_delta_pp"])
+                     and bsumm["ratio_median_abs_delta_pp"] <= bsumm["goal_pp"] else "**not met**."), "",
+                  "What the loop did to each phase: the ratio busy / A of the phase's time (the minimum of its "
+                  "repeats), over the renders both runs made (a phase of under 1 ms is noise):", ""]
+        lines += report.md_table(["method", "phase", "renders", "median busy / A", "range"],
+                                 [[r["method"], r["phase"], str(r["renders"]), fmt_fixed(r["median_ratio"], 3),
+                                   f"{fmt_fixed(r['min_ratio'], 3)}-{fmt_fixed(r['max_ratio'], 3)}"] for r in phases])
+        lines += ["", "### The table", ""] + comparison_table(bframe, "busy") + [""]
     return "\n".join(lines) + "\n"
 
 
@@ -175,12 +248,21 @@ def main(argv=None):
     ap.add_argument("--table-b", required=True)
     ap.add_argument("--runs-a", required=True)
     ap.add_argument("--runs-b", required=True)
-    ap.add_argument("--goal-pp", type=float, default=3.0)
-    ap.add_argument("--taskset", default="")
+    ap.add_argument("--table-busy", default="", help="the busy run's table1.csv (optional)")
+    ap.add_argument("--runs-busy", default="", help="the busy run's runs.csv (with --table-busy)")
+    ap.add_argument("--goal-pp", type=float, default=1.5)
+    ap.add_argument("--max-pp", type=float, default=4.0)
+    ap.add_argument("--busy-goal-pp", type=float, default=3.0)
+    ap.add_argument("--drift", default="97 103", help="'LO HI': the drift control's window, %%")
     ap.add_argument("--ref", default="", help="the reference EXR of the error columns (its JSON beside it, if any)")
     ap.add_argument("--equal-error-a", default="", help="run A's equal-error CSV: the tightest target the reference judges")
     ap.add_argument("--out", required=True, help="stem of OUT.md and OUT.csv")
     args = ap.parse_args(argv)
+    try:
+        drift = tuple(float(x) for x in args.drift.split())
+        assert len(drift) == 2
+    except (ValueError, AssertionError):
+        report.die(WHERE, f"--drift '{args.drift}': not 'LO HI' in %")
     need_t = ["photons", "nn", "method", "paired_ratio_percent", "paired_ratio_ci95_lo", "paired_ratio_ci95_hi"]
     ta = report.read_csv(args.table_a, need_t, WHERE)
     tb = report.read_csv(args.table_b, need_t, WHERE)
@@ -191,17 +273,30 @@ def main(argv=None):
     frame = compare(ta, tb)
     if frame.empty:
         report.die(WHERE, "the two tables share no precomputed cell")
-    summ = summary(frame, args.goal_pp)
+    summ = summary(frame, args.goal_pp, args.max_pp, drift)
     img_diff, img_n = max_image_difference(ra, rb)
     out = frame.copy()
+    out.insert(0, "runs", "a-b")
     for k, v in summ.items():
         out[f"summary_{k}"] = v
     out["max_relmse_ref_difference"] = img_diff
+    busy = None
+    if args.table_busy:
+        tc = report.read_csv(args.table_busy, need_t, WHERE)
+        rc = report.read_csv(args.runs_busy, need_r, WHERE)
+        bframe = compare(ta, tc)
+        bsumm = summary(bframe, args.busy_goal_pp)
+        busy = (bframe, bsumm, phase_load(ra, rc), rc)
+        bout = bframe.copy()
+        bout.insert(0, "runs", "a-busy")
+        for k, v in bsumm.items():
+            bout[f"summary_{k}"] = v
+        out = pd.concat([out, bout], ignore_index=True)
     report.write_csv_atomic(out, args.out + ".csv")
     ref_text = ""
     if args.ref:
         ref_text = reference.describe(args.ref, reference.tightest_of(args.equal_error_a) if args.equal_error_a else None)
-    report.write_atomic(args.out + ".md", markdown(frame, summ, img_diff, img_n, ra, rb, args.taskset, ref_text))
+    report.write_atomic(args.out + ".md", markdown(frame, summ, img_diff, img_n, ra, rb, ref_text, busy))
 
 
 if __name__ == "__main__":

@@ -5,8 +5,8 @@
 # order alternating with the seed, so that they are paired samples of one
 # machine state; otherwise one render is one job (rule render). A grouped
 # study renders one (cell, seed) of a case, every block's render, as one job
-# (rule group), an interleaved one pair k of each of its grids (rule
-# interleave). Renders
+# (rule group). In a sequential study (studies.yaml sequential: true) a
+# grid's renders wait for every render of the grid before it. Renders
 # whose times a study compares hold the resource `timed` (make passes
 # --resources timed=1: one at a time; analysis jobs and the renders of an
 # untimed study, `timed: false` in studies.yaml, run beside them). Jobs
@@ -17,12 +17,11 @@ from experiments.analysis import runs as layout
 
 NONE = "(?!)"  # a root regex that matches nothing
 GROUPED = STUDY.decl.get("grouped", False)
-INTERLEAVED = STUDY.decl.get("interleaved", False)
 
 def roots(paired):
     """The run roots of the study's grids that render both methods as one
     job (PAIRED) or one by one, as a regex (none in a grouped study)."""
-    rs = [re.escape(g.root) for g in STUDY.grids if g.paired == paired and not (GROUPED or INTERLEAVED)]
+    rs = [re.escape(g.root) for g in STUDY.grids if g.paired == paired and not GROUPED]
     return "|".join(rs) if rs else NONE
 PAIRED, SINGLE = roots(True), roots(False)
 
@@ -37,7 +36,7 @@ rule pair:
         "{root}/conventional-{estimate}-p{photons}-n{nn}/seed{seed}.run.json",
         "{root}/precomputed-{estimate}-p{photons}-n{nn}/seed{seed}.run.json",
     input:
-        lambda wc: STUDY.render_after,
+        lambda wc: STUDY.render_after + STUDY.by_root[wc.root].after,
     wildcard_constraints:
         root=PAIRED,
     resources:
@@ -52,7 +51,7 @@ rule render:
     output:
         "{root}/{method}-{estimate}-p{photons}-n{nn}/seed{seed}.run.json",
     input:
-        lambda wc: STUDY.render_after,
+        lambda wc: STUDY.render_after + STUDY.by_root[wc.root].after,
     wildcard_constraints:
         root=SINGLE,
         method="conventional|precomputed",
@@ -92,42 +91,6 @@ if GROUPED:
         group: "renders"
         params:
             cmd=group_command,
-        shell:
-            "{params.cmd}"
-
-# an interleaved study (studies.yaml interleaved: true; make
-# reproducibility): its grids (runs A and B, both methods) render pair k of
-# every run in one job, pair by pair, in the order of the blocks at odd k and
-# reversed at even k (k: the pair's place in the grid's order, seeds
-# outermost), each pair back to back as rule pair does, every render pinned
-# with taskset -c REPRO_TASKSET (empty: not pinned)
-if INTERLEAVED:
-    RUNS = STUDY.grids
-    PREFIX = os.path.commonprefix([g.root for g in RUNS])
-    STEM = "{estimate}-p{photons}-n{nn}/seed{seed}.run.json"
-    PAIRS = [n[len("x-"):] for n in layout.run_names(RUNS[0].photons, RUNS[0].nns, ["x"], RUNS[0].estimates, RUNS[0].seeds)]
-
-    def interleave_command(wc):
-        stem = f"{wc.estimate}-p{wc.photons}-n{wc.nn}/seed{wc.seed}"
-        k = PAIRS.index(stem) + 1
-        pin = ["taskset", "-c", STUDY.taskset] if STUDY.taskset else []
-        cmds = []
-        for g in (RUNS if k % 2 == 1 else RUNS[::-1]):
-            launch = g.launch_command(g.root, ["conventional", "precomputed"], wc.estimate, wc.photons, wc.nn, wc.seed)
-            cmds.append(f"echo {shell_words([f'reproducibility: run {g.name} pair {k}: {stem}'])} && "
-                        + (shell_words(pin) + " " if pin else "") + launch)
-        return " && ".join(cmds)
-
-    rule interleave:
-        output:
-            [f"{{prefix}}{g.root[len(PREFIX):]}/{m}-{STEM}" for g in RUNS for m in ("conventional", "precomputed")],
-        wildcard_constraints:
-            prefix=re.escape(PREFIX),
-        resources:
-            timed=STUDY.timed,
-        group: "renders"
-        params:
-            cmd=interleave_command,
         shell:
             "{params.cmd}"
 

@@ -1,0 +1,118 @@
+"""Unit tests of experiments/regenerate.py (`make results`): the pinned
+renderer, the log, and the check that every render and every results file
+came from one regeneration.
+
+Run by pytest from the repository root (tests/pytest.test.sh, part of
+`make test`); each check has its negative control.
+"""
+
+import hashlib
+import json
+import os
+import subprocess
+import tempfile
+
+import pytest
+
+from experiments import regenerate
+
+
+def write(path, text):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(text)
+
+
+def fake_results(d, commit="abcdef123456", render_commits=(("abcdef123456", "clean"),), md_commits=("abcdef1",)):
+    """A results directory with a pinned renderer of COMMIT, one render per
+    RENDER_COMMITS and one Markdown file per MD_COMMITS."""
+    binary = os.path.join(d, "runs", ".renderer", "photonmap")
+    write(binary, "binary")
+    sha = hashlib.sha256(b"binary").hexdigest()
+    write(binary + ".commit", f"commit {commit}0000\nsha256 {sha}\npinned now\n")
+    for i, (c, tree) in enumerate(render_commits):
+        write(os.path.join(d, "runs", "g", f"seed{i}.stats.json"), json.dumps({"provenance": {"commit": c, "tree": tree}}))
+    for i, c in enumerate(md_commits):
+        write(os.path.join(d, f"study{i}", "x.md"), f"Machine: x; commit `{c}`; 2026-12-05.\n")
+
+
+def test_check_one_regeneration():
+    """No problem when every render is the pinned commit's from a clean tree
+    and every file names one commit; controls: a render by another commit, a
+    dirty build, two commits among the files: each named."""
+    with tempfile.TemporaryDirectory() as d:
+        fake_results(d)
+        assert regenerate.check(d) == []
+    with tempfile.TemporaryDirectory() as d:
+        fake_results(d, render_commits=(("abcdef123456", "clean"), ("0123456789ab", "clean")))
+        (p,) = regenerate.check(d)
+        assert "1 render(s)" in p and "0123456789ab" in p
+    with tempfile.TemporaryDirectory() as d:
+        fake_results(d, render_commits=(("abcdef123456", "dirty"),))
+        assert "dirty" in regenerate.check(d)[0]
+    with tempfile.TemporaryDirectory() as d:
+        fake_results(d, md_commits=("abcdef1", "abcdef1", "9999999"))
+        (p,) = regenerate.check(d)
+        assert "name 2 commits" in p and "9999999: study2/x.md" in p
+
+
+def git(d, *args):
+    subprocess.run(["git", "-C", d, *args], check=True, capture_output=True)
+
+
+def test_pin_refuses_a_changed_renderer(monkeypatch):
+    """A pinned regeneration goes on while the renderer's sources are the
+    pinned commit's (a change elsewhere is fine) and stops, naming the file,
+    once they differ; control: an altered pinned binary is refused too."""
+    with tempfile.TemporaryDirectory() as d:
+        git(d, "init", "-q")
+        git(d, "config", "user.email", "t@t")
+        git(d, "config", "user.name", "t")
+        write(os.path.join(d, "renderer", "a.c"), "int a;\n")
+        write(os.path.join(d, "README.md"), "x\n")
+        git(d, "add", ".")
+        git(d, "commit", "-q", "-m", "one")
+        head = subprocess.run(["git", "-C", d, "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
+        res = os.path.join(d, "res")
+        fake_results(res, commit=head[:-4])  # fake_results appends 0000: write the full hash instead
+        binary = os.path.join(res, "runs", ".renderer", "photonmap")
+        sha = hashlib.sha256(b"binary").hexdigest()
+        write(binary + ".commit", f"commit {head}\nsha256 {sha}\n")
+        monkeypatch.chdir(d)
+        assert regenerate.pin(res) == (binary, head)
+        write(os.path.join(d, "README.md"), "y\n")
+        git(d, "commit", "-q", "-am", "docs")
+        assert regenerate.pin(res) == (binary, head)
+        write(os.path.join(d, "renderer", "a.c"), "int b;\n")
+        git(d, "commit", "-q", "-am", "renderer")
+        with pytest.raises(regenerate.RegenError, match=r"renderer changed since .*renderer/a\.c"):
+            regenerate.pin(res)
+        git(d, "reset", "-q", "--hard", "HEAD~1")
+        write(binary, "other")
+        with pytest.raises(regenerate.RegenError, match="not the binary pinned"):
+            regenerate.pin(res)
+
+
+def test_log_rows_round_trip():
+    """The log's rows read back as written, and its Markdown has one row per attempt."""
+    with tempfile.TemporaryDirectory() as d:
+        rows = [{"started": "t0", "ended": "", "target": "reproduce-table", "commit": "c", "renderer": "r",
+                 "status": "running", "renders": "", "seconds": "", "why": "a | b"}]
+        regenerate.write_log(d, rows)
+        assert regenerate.read_log(d) == rows
+        with open(os.path.join(d, "regeneration-log.md"), encoding="utf-8") as f:
+            md = f.read()
+        assert md.count("| reproduce-table |") == 1 and "a / b" in md
+
+
+def test_committed_results_are_one_regeneration():
+    """results/ as committed: when its log records every study target
+    finished on one pinned renderer, every file names one commit and every
+    render present was made by that renderer; skipped until then."""
+    rows = regenerate.read_log("results")
+    done = {r["target"] for r in rows if r["status"] == "ok"}
+    if not rows or set(regenerate.TARGETS) - done:
+        pytest.skip("results/ holds no finished regeneration yet (results/regeneration-log.csv)")
+    assert len({r["renderer"] for r in rows if r["status"] == "ok"}) == 1
+    problems = [p for p in regenerate.check("results") if "render(s)" not in p or os.path.isdir("results/runs")]
+    assert problems == []
