@@ -97,11 +97,11 @@ stability: $(BUILD)/photonmap | $(DEPS_TEST)
 	mv $(STABILITY_DIR)/stability-extremes.md.tmp $(STABILITY_DIR)/stability-extremes.md
 
 # ---- the build ----
-# provenance.o carries the commit, whether tracked files had changes, and
-# the flags of its build (the stats' "provenance"); $(BUILD)/.provenance
+# provenance.o carries the commit, whether tracked files outside results/ had
+# changes, and the flags of its build (the stats' "provenance"); $(BUILD)/.provenance
 # changes only when they do, and rebuilds it then
 PM_COMMIT := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)
-PM_TREE := $(if $(filter unknown,$(PM_COMMIT)),unknown,$(shell git status --porcelain --untracked-files=no 2>/dev/null | grep -q . && echo dirty || echo clean))
+PM_TREE := $(if $(filter unknown,$(PM_COMMIT)),unknown,$(shell git status --porcelain --untracked-files=no -- . ':!results' 2>/dev/null | grep -q . && echo dirty || echo clean))
 PROVENANCE = -DPM_COMMIT='"$(PM_COMMIT)"' -DPM_TREE='"$(PM_TREE)"' -DPM_FLAGS='"$(strip $(1))"'
 $(BUILD)/.provenance: FORCE
 	@mkdir -p $(BUILD); echo '$(PM_COMMIT) $(PM_TREE) $(CC) $(CFLAGS)' | cmp -s - $@ || echo '$(PM_COMMIT) $(PM_TREE) $(CC) $(CFLAGS)' > $@

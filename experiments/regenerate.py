@@ -112,7 +112,7 @@ def pin(results, build="build"):
                              f"({', '.join(changed.split())}): the renders made so far are an older binary's; "
                              f"remove {os.path.join(results, 'runs')} to start over on the new one")
         return binary, p["commit"]
-    dirty = git("status", "--porcelain", "--untracked-files=no")
+    dirty = git("status", "--porcelain", "--untracked-files=no", "--", ".", ":!results")
     if dirty:
         raise RegenError("uncommitted changes (" + ", ".join(line[3:] for line in dirty.splitlines()[:5])
                          + "): a regeneration pins a renderer built from a clean commit (its stats say so); "

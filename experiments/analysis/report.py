@@ -155,9 +155,10 @@ def loadavg_now():
 
 
 def commit():
-    """'`abc1234`' of HEAD, with a note when tracked files were modified."""
+    """'`abc1234`' of HEAD, with a note when tracked files other than the
+    results (results/, the outputs being written) were modified."""
     head = _run(["git", "rev-parse", "--short", "HEAD"]) or "unknown"
-    dirty = _run(["git", "status", "--porcelain", "--untracked-files=no"])
+    dirty = _run(["git", "status", "--porcelain", "--untracked-files=no", "--", ".", ":!results"])
     return f"`{head}`" + (" (the working tree had uncommitted changes)" if dirty else "")
 
 
