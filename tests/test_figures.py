@@ -193,6 +193,31 @@ def test_fig3_record(monkeypatch, tmp_path):
         figures.fig3_record(make_args(tmp_path, cells="1000:10 4000:10"))
 
 
+def test_glance_record(monkeypatch, tmp_path):
+    """glance.png's frames: a 1100-pixel-wide image halved twice (to 275),
+    each pixel the mean of its 4x4 block; the cell's two table rows; the
+    curves read per estimate in target order with what the resamples
+    reach; controls: no equal-error file gives no curve, a cell outside the
+    grid exits."""
+    got = images(monkeypatch, shape=(16, 1100, 3))
+    ee = pd.DataFrame([{"estimate": e, "kind": k, "target": t, "speedup": 2.0, "lo": 1.5, "hi": 2.5,
+                        "defined_fraction": d} for e in ("paper", "corrected") for k, t, d in
+                       (("curve", 0.02, 0.99), ("curve", 0.01, 0.5), ("tightest", 0.01, 0.5))])
+    ee.to_csv(tmp_path / "ee.csv", index=False)
+    rec = figures.glance_record(make_args(tmp_path, glance_cell="2000:20", equal_error=str(tmp_path / "ee.csv")))
+    ref = rec["images"]["reference"]
+    assert rec["factor"] == 4 and ref.shape == (4, 275, 3)
+    assert np.isclose(ref[1, 2, 0], got["ref.exr"][4:8, 8:12, 0].mean())
+    assert np.allclose(rec["images"]["precomputed"], 1.3 * ref)
+    assert rec["rows"]["conventional"]["nn"] == 20 and rec["rows"]["precomputed"]["method"] == "precomputed"
+    c = rec["curves"]["paper"]
+    assert list(c["target"]) == [0.01, 0.02] and list(c["defined_fraction"]) == [0.5, 0.99]
+    assert set(rec["curves"]) == {"paper", "corrected"} and rec["defined_min"] == 0.95
+    assert figures.glance_record(make_args(tmp_path, glance_cell="2000:20", equal_error=""))["curves"] == {}
+    with pytest.raises(SystemExit):
+        figures.glance_record(make_args(tmp_path, glance_cell="4000:20", equal_error=""))
+
+
 def test_fig3_errors_record(monkeypatch, tmp_path):
     """Each map's square averages to the render's relMSE (metrics.relmse, the
     blocks tile the frame), the map of an identical render is 0 (negative

@@ -19,6 +19,12 @@ Owns drawing, from the analysis layer's files and the renders they name:
                     with paired t intervals and the paper's.
   phases.png        per-phase times (trace, build, precompute, eye pass) of
                     every cell, both methods.
+  glance.png        the project at a glance (README): the whole frame of
+                    the reference and of both methods at one cell (--glance-
+                    cell, seed --seed) with time and error, and the speed-up
+                    at equal error against the target for both estimates
+                    (--equal-error), solid where at least 95% of the
+                    bootstrap resamples reach the target on both fronts.
 Tables are read with pandas by column name (table1.csv, runs.csv, cells.csv
 for the reference, rep-study-cells.csv), images with OpenImageIO
 (metrics.read_exr) from the paths runs.csv names;
@@ -820,8 +826,89 @@ def phases(args):
     draw_phases(phases_record(args), args)
 
 
+def downsample(img, f):
+    """IMG (H, W, 3) averaged over F x F blocks (the edge rows and columns
+    that do not fill a block dropped)."""
+    H, W = (img.shape[0] // f) * f, (img.shape[1] // f) * f
+    return img[:H, :W].reshape(H // f, f, W // f, f, 3).mean(axis=(1, 3))
+
+
+def glance_record(args):
+    """What glance.png shows: the reference and the two renders of
+    --glance-cell (paper estimate, seed --seed), whole frame, halved until
+    at most 512 wide, with their table rows; the equal-error curve of each
+    estimate (equal-error.csv, kind curve) with its band and which targets
+    at least equal_error.DEFINED_MIN of the resamples reach."""
+    from experiments.analysis import equal_error
+    (p, n), = parse_cells(args.glance_cell)
+    ref = read_image(args.ref, "the reference")
+    f = 1
+    while ref.shape[1] // f > 512:
+        f *= 2
+    imgs = {"reference": downsample(ref, f)}
+    for m in ("conventional", "precomputed"):
+        imgs[m] = downsample(read_image(image_path(args, m, p, n), f"{m} P_e={p} n={n} seed {args.seed}"), f)
+    curves = {}
+    if args.equal_error and os.path.isfile(args.equal_error):
+        e = read_csv(args.equal_error, ["estimate", "kind", "target", "speedup", "lo", "hi", "defined_fraction"],
+                     "run `make reproduce-table` first")
+        for est, g in e[e["kind"] == "curve"].groupby("estimate", sort=False):
+            g = g.sort_values("target")
+            curves[est] = {k: g[k].to_numpy(np.float64) for k in ("target", "speedup", "lo", "hi", "defined_fraction")}
+    t = args.table_frame
+    return {"cell": (p, n), "images": imgs, "factor": f, "rows": {m: table_row(t, p, n, m) for m in
+            ("conventional", "precomputed")}, "curves": curves, "defined_min": equal_error.DEFINED_MIN,
+            "footer": provenance(args, f" Equal error: {args.equal_error}.")}
+
+
+def draw_glance(rec, args):
+    """glance.png from its record."""
+    p, n = rec["cell"]
+    fig = plt.figure(figsize=(13.5, 8.6))
+    titles = {"reference": args.ref_label[0].upper() + args.ref_label[1:],
+              "conventional": f"conventional (eq. 1), P_e = {kilo(p)}, n = {n}",
+              "precomputed": f"precomputed (eq. 2), P_e = {kilo(p)}, n = {n}"}
+    for i, m in enumerate(("reference", "conventional", "precomputed")):
+        ax = fig.add_axes([0.01 + i * 0.33, 0.50, 0.31, 0.42])
+        ax.imshow(plotting.srgb(rec["images"][m]), interpolation="antialiased")
+        ax.set_axis_off()
+        ax.set_title(titles[m], fontsize=10)
+        if m != "reference":
+            r = rec["rows"][m]
+            ax.text(0.0, -0.03, f"{time_text(r, args)} (median over seeds)\n{error_text(r)} (mean ± 95% over seeds)",
+                    transform=ax.transAxes, va="top", fontsize=9)
+    ax = fig.add_axes([0.07, 0.10, 0.55, 0.28])
+    colours = {"paper": "#c0392b", "corrected": "#2471a3"}
+    for est, c in rec["curves"].items():
+        col = colours.get(est, "black")
+        ok = c["defined_fraction"] >= rec["defined_min"]
+        ax.fill_between(c["target"], c["lo"], c["hi"], where=ok, color=col, alpha=0.18, linewidth=0)
+        ax.plot(c["target"], c["speedup"], color=col, alpha=0.35, linestyle=":")
+        ax.plot(np.where(ok, c["target"], np.nan), np.where(ok, c["speedup"], np.nan), color=col,
+                label=f"{est} estimate (band: 95% bootstrap)")
+    ax.axhline(1.0, color="grey", linewidth=0.8)
+    ax.set_xscale("log")
+    ax.set_xlabel("relMSE target (error both methods must reach)")
+    ax.set_ylabel("speed-up at equal error\n(conventional / precomputed time)")
+    ax.set_title(f"What the precomputation buys on the paper's scene: solid where at least "
+                 f"{100 * rec['defined_min']:.0f}% of the resamples reach the target on both fronts, dotted elsewhere",
+                 fontsize=9.5)
+    if rec["curves"]:
+        ax.legend(fontsize=8.5, loc="best")
+    else:
+        ax.text(0.5, 0.5, "no equal-error curve (equal-error.csv missing)", transform=ax.transAxes, ha="center")
+    fig.suptitle("The paper's scene at a glance", fontsize=13, weight="bold", x=0.01, ha="left")
+    plotting.footer(fig, rec["footer"])
+    plotting.save(fig, os.path.join(args.out, "glance.png"))
+
+
+def glance(args):
+    """glance.png (glance_record, draw_glance)."""
+    draw_glance(glance_record(args), args)
+
+
 FIGURES = {"fig3": fig3, "fig3-errors": fig3_errors, "fig2": fig2, "tradeoff": tradeoff, "ratio-vs-n": ratio_vs_n,
-           "phases": phases}
+           "phases": phases, "glance": glance}
 
 
 def main():
@@ -848,6 +935,8 @@ def main():
     ap.add_argument("--scene", default="scenes/cornell.scene")
     ap.add_argument("--pm", default=scene_info.DEFAULT_PM, help="the renderer, for the scene's camera (photonmap info)")
     ap.add_argument("--rep-study-cells", default="", help="rep-study-cells.csv (optional)")
+    ap.add_argument("--equal-error", default="", help="the grid's equal-error.csv (glance.png; optional)")
+    ap.add_argument("--glance-cell", default="100000:100", help="glance.png's cell P_E:N")
     ap.add_argument("--time", default="cpu_s", choices=sorted(report.TIME_LABEL))
     ap.add_argument("--out", required=True, help="output directory")
     ap.add_argument("--only", default="", help="draw only these figures (space-separated names)")

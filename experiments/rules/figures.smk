@@ -23,6 +23,7 @@ rule figures:
             "--crop", K["FIG3_CROP"], "--crop-at", K["FIG3_CROP_AT"], "--error-block", K["FIG_ERROR_BLOCK"],
             "--time", K["TIME"], "--fig2-run", FIG2_RUN, "--fig2-plane", K["FIG2_PLANE"],
             "--fig2-window", K["FIG2_WINDOW"], "--scene", STUDY.scene, "--pm", STUDY.pm,
-            "--rep-study-cells", F["rep_study_cells"], "--out", STUDY.figures]),
+            "--rep-study-cells", F["rep_study_cells"], "--equal-error", T1["equal_error"] + ".csv",
+            "--glance-cell", K["GLANCE_CELL"], "--out", STUDY.figures]),
     shell:
         "{params.cmd}"
