@@ -35,6 +35,9 @@ smk_given = $(foreach v,$(sort $(.VARIABLES)),$(if $(filter-out $(SMK_OWN_VARS),
 smk_config = $(foreach v,$(smk_given),$(call shell_quote,$(v)=$(call yaml_quote,$(value $(v)))))
 # make -n: the engine's dry run (the recipe line runs under -n: it is marked +)
 smk_dry = $(if $(findstring n,$(firstword -$(MAKEFLAGS))),-n -p)
+# a dry run (make -n, or -n in SNAKEFLAGS): the Snakefile prints the wall
+# time the cost model predicts for the missing renders (experiments/prediction.py)
+smk_predict = $(if $(or $(smk_dry),$(filter -n --dry-run --dryrun -np -pn,$(SNAKEFLAGS))),PREDICT=1)
 # CLUSTER=slurm: every job through Slurm instead of this machine: submitted
 # with `sbatch --parsable` (SBATCH_OPTS: extra options, e.g. "--time=1:00:00
 # --partition=short"; logs in SLURM_DIR/logs/JOBID.out), its state asked of
@@ -60,7 +63,7 @@ smk_logs = $(if $(and $(filter slurm,$(CLUSTER)),$(if $(smk_dry),,y)),mkdir -p $
 # (another REF, BOOTSTRAP, ...)
 smk = $(smk_logs)$(SNAKEMAKE) -s experiments/Snakefile $(smk_where) \
   --rerun-triggers mtime --rerun-incomplete --nolock $(or $(smk_dry),-q) $(SNAKEFLAGS) \
-  --config STUDY=$(1) $(smk_config) $(if $(3),--forcerun $(3)) -- $(2)
+  --config STUDY=$(1) $(smk_predict) $(smk_config) $(if $(3),--forcerun $(3)) -- $(2)
 
 # the study targets: STUDY (studies.yaml), its report rule, its first analysis rule
 .PHONY: reproduce-table reproduce-runs list-runs caustic estimator-bias estimator-bias-runs figures sweep-slurm evaluate evaluate-references resolution resolution-runs scenes scenes-runs rep-study rep-study-runs beyond beyond-runs reproducibility reproducibility-runs reproducibility-runs gather gather-runs
