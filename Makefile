@@ -71,6 +71,7 @@ bench: ## kNN (against FLANN, cKDTree, nanoflann), lookup and eye-pass benchmark
 bench-quick: ## only the kNN against FLANN, cKDTree and nanoflann, about a minute, on stdout
 bench-scaling: ## each phase's cost and peak bytes per stored photon against the photons, log-log slopes -> results/bench/scaling.md (SCALING_PHOTONS)
 bench-threads: ## the two-thread speed-up of the photon pass and the build, paired -> results/bench/threads.md (THREADS_PHOTONS, THREADS_PAIRS)
+bench-repeats: ## the cost of repeats per study (from every render's stats under runs/) and the cost model per unit of work (results/calibrate/model.json) -> results/bench/repeats.md
 bench-peers: ## only the kNN against FLANN, cKDTree and nanoflann, both query streams -> results/bench/peers.md
 reference: ## re-render every POV-Ray reference in reference/ (committed; slow)
 reference-small: ## the POV-Ray references except the 1024x768 one

@@ -2,7 +2,8 @@
 # build/bench/bench (experiments/bench/bench.c on the renderer objects, plus
 # nanoflann behind experiments/bench/nano.cpp, FLANN behind flann.cpp:
 # its headers pull in lz4 for serialisation, hence -llz4) and writes results/bench/bench.md
-# via experiments/bench/run.sh (BENCH_REPS, BENCH_HEAVY_REPS tune it).
+# via experiments/bench/run.sh (BENCH_REPS, BENCH_HEAVY_REPS tune it), then
+# results/bench/repeats.{md,csv} (bench-repeats).
 
 $(BUILD)/bench/nano.o: experiments/bench/nano.cpp | $(DEPS_TEST)
 	@mkdir -p $(dir $@)
@@ -25,6 +26,7 @@ bench: bench-bin
 	SCALING_PHOTONS="$(SCALING_PHOTONS)" SCALING_THREADS="$(SCALING_THREADS)" \
 	  THREADS_PHOTONS="$(THREADS_PHOTONS)" THREADS_PAIRS="$(THREADS_PAIRS)" PYTHON="$(PYTHON)" \
 	  bash experiments/bench/run.sh
+	$(PYTHON) -m experiments.analysis.repeats_cost --results $(RESULTS) --out $(RESULTS)/bench/repeats
 
 # `make bench-quick`: the kNN against FLANN, cKDTree and nanoflann alone, in
 # about a minute, on stdout (results/bench.md untouched).
@@ -57,3 +59,14 @@ bench-peers: bench-bin
 bench-threads: $(BUILD)/photonmap
 	THREADS_PHOTONS="$(THREADS_PHOTONS)" THREADS_PAIRS="$(THREADS_PAIRS)" PYTHON="$(PYTHON)" \
 	  bash experiments/bench/threads.sh $(BUILD)/photonmap
+
+# `make bench-repeats` (also run by `make bench`, last): the cost of timing
+# with repeats, from the stats files of every render under RESULTS/runs/, per
+# study run root (renders, repeats per render, one run against the repeats'
+# time, how far the minima lie below the first run and the median per phase),
+# and the cost model of `make calibrate` per unit of work (RESULTS/calibrate/
+# model.json, or "not measured") -> RESULTS/bench/repeats.{md,csv}
+# (experiments/analysis/repeats_cost.py). Renders nothing: seconds.
+.PHONY: bench-repeats
+bench-repeats: | $(DEPS_TEST)
+	$(PYTHON) -m experiments.analysis.repeats_cost --results $(RESULTS) --out $(RESULTS)/bench/repeats

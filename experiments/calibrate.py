@@ -32,6 +32,7 @@ import re
 import subprocess
 import sys
 import tempfile
+import time
 
 import numpy as np
 from scipy.optimize import nnls
@@ -132,16 +133,18 @@ def part_error(model, rows, part):
     return float(np.median(errs)) if errs else float("nan")
 
 
-def write_model(path, model, median, largest, phase_errors, provenance, per_unit=None):
+def write_model(path, model, median, largest, phase_errors, provenance, per_unit=None, written=None):
     """model.json: per part its counters and coefficients (seconds; seconds
     per unit), the held-out validation (median and largest relative error
-    of the total, the median per phase), the machine's provenance and the
-    calibration renders' work per unit (work_per_unit); written to a
-    temporary name and renamed."""
+    of the total, the median per phase), the machine's provenance, the
+    calibration renders' work per unit (work_per_unit) and the UTC date it
+    is written (WRITTEN, default today: "written"); written to a temporary
+    name and renamed."""
     doc = {"parts": {p: {"counters": ["constant", *FEATURES[p]], "seconds_per_unit": [float(c) for c in model[p]]}
                      for p in PARTS},
            "validation": {"median": median, "largest": largest, "phases": phase_errors},
-           "provenance": provenance, "work_per_unit": per_unit or {}}
+           "provenance": provenance, "work_per_unit": per_unit or {},
+           "written": written or time.strftime("%Y-%m-%d", time.gmtime())}
     with open(path + ".tmp", "w", encoding="utf-8") as f:
         json.dump(doc, f, indent=1)
         f.write("\n")
@@ -167,6 +170,17 @@ def load_model(path=DEFAULT_MODEL):
     except (OSError, ValueError, KeyError, TypeError) as e:
         raise ModelError(f"{path}: not a cost model ({e.__class__.__name__}: {e}); run `make calibrate` again")
     return model, validation
+
+
+def model_date(path=DEFAULT_MODEL):
+    """The UTC date (YYYY-MM-DD) the model file PATH was written: its
+    "written" key, else the file's modification date."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            written = json.load(f).get("written")
+    except (OSError, ValueError, AttributeError) as e:
+        raise ModelError(f"{path}: not a cost model ({e}); run `make calibrate` again")
+    return str(written) if written else time.strftime("%Y-%m-%d", time.gmtime(os.path.getmtime(path)))
 
 
 def load_work_per_unit(path=DEFAULT_MODEL):

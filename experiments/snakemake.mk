@@ -23,7 +23,7 @@ SMK_ENV_KNOBS := SCENE SIZE SEEDS TIME_REPEATS PHOTONS NNS METHODS ESTIMATES SUB
   CONV_REF_PHOTONS CONV_REF_FACTOR CONV_REF_NN CONV_REF_SEEDS CONV_REF_DIRECT RES_SIZES RES_TARGETS RES_REF \
   SCENES SCENES_CELL FIGURES REP_RULES BEYOND_SIZES BEYOND_TAUS BEYOND_GATE BEYOND_VARIANTS \
   REPRO_GOAL_PP REPRO_MAX_PP REPRO_BUSY_GOAL_PP REPRO_DRIFT FIG3_CELLS FIG3_PAPER_CELLS FIG_SEED FIG3_CROP FIG3_CROP_AT FIG_ERROR_BLOCK FIG_REF \
-  FIG2_PHOTONS FIG2_NN FIG2_PLANE FIG2_WINDOW GLANCE_CELL EVAL_VARIANTS EVAL_CACHE EVAL_POV_SCENE OUT GATHERS GATHER_CORNELL_SIZES ONE_REPEAT_WORK
+  FIG2_PHOTONS FIG2_NN FIG2_PLANE FIG2_WINDOW GLANCE_CELL EVAL_VARIANTS EVAL_GATHERS EVAL_CACHE EVAL_POV_SCENE OUT GATHERS GATHER_CORNELL_SIZES ONE_REPEAT_WORK
 SMK_OWN_VARS := SNAKEMAKE CORES TIMED_AT_ONCE SNAKEFLAGS CLUSTER GROUP_RENDERS SLURM_JOBS SLURM_DIR SBATCH_OPTS SWEEP
 # shell_quote TEXT: TEXT as one single-quoted shell word
 shell_quote = '$(subst ','\'',$(1))'
@@ -35,6 +35,9 @@ smk_given = $(foreach v,$(sort $(.VARIABLES)),$(if $(filter-out $(SMK_OWN_VARS),
 smk_config = $(foreach v,$(smk_given),$(call shell_quote,$(v)=$(call yaml_quote,$(value $(v)))))
 # make -n: the engine's dry run (the recipe line runs under -n: it is marked +)
 smk_dry = $(if $(findstring n,$(firstword -$(MAKEFLAGS))),-n -p)
+# a dry run (make -n, or -n in SNAKEFLAGS): the Snakefile prints the wall
+# time the cost model predicts for the missing renders (experiments/prediction.py)
+smk_predict = $(if $(or $(smk_dry),$(filter -n --dry-run --dryrun -np -pn,$(SNAKEFLAGS))),PREDICT=1)
 # CLUSTER=slurm: every job through Slurm instead of this machine: submitted
 # with `sbatch --parsable` (SBATCH_OPTS: extra options, e.g. "--time=1:00:00
 # --partition=short"; logs in SLURM_DIR/logs/JOBID.out), its state asked of
@@ -60,7 +63,7 @@ smk_logs = $(if $(and $(filter slurm,$(CLUSTER)),$(if $(smk_dry),,y)),mkdir -p $
 # (another REF, BOOTSTRAP, ...)
 smk = $(smk_logs)$(SNAKEMAKE) -s experiments/Snakefile $(smk_where) \
   --rerun-triggers mtime --rerun-incomplete --nolock $(or $(smk_dry),-q) $(SNAKEFLAGS) \
-  --config STUDY=$(1) $(smk_config) $(if $(3),--forcerun $(3)) -- $(2)
+  --config STUDY=$(1) $(smk_predict) $(smk_config) $(if $(3),--forcerun $(3)) -- $(2)
 
 # the study targets: STUDY (studies.yaml), its report rule, its first analysis rule
 .PHONY: reproduce-table reproduce-runs list-runs caustic estimator-bias estimator-bias-runs figures sweep-slurm evaluate evaluate-references resolution resolution-runs scenes scenes-runs rep-study rep-study-runs beyond beyond-runs reproducibility reproducibility-runs reproducibility-runs gather gather-runs
@@ -105,7 +108,7 @@ figures: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,figures,figures)
 # make evaluate SCENE=my.scene (rules/evaluate.smk); evaluate-references: its stages 1-3
 evaluate: $(BUILD)/photonmap | $(DEPS_TEST)
-	+@$(call smk,evaluate,evaluate,collect collect_variant)
+	+@$(call smk,evaluate,evaluate,collect collect_variant collect_gather)
 evaluate-references: $(BUILD)/photonmap | $(DEPS_TEST)
 	+@$(call smk,evaluate,evaluate_references)
 

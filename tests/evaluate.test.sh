@@ -37,10 +37,13 @@ assert s["photons"] == 20 * 8000 and s["half_photons"] == 80000, s' "${ref%.exr}
 check "stage 3: the references agree on the right scene" /usr/bin/python3 -c '
 import json, sys; assert json.load(open(sys.argv[1]))["agree"] == "full"' "$OUT/crosscheck.json"
 check "stage 4: the grid and its variants" test -s "$OUT/grid/runs.csv" -a -s "$OUT/grid/equal-error.csv" -a -s "$OUT/grid/runs-lazy.csv" -a -s "$OUT/grid/runs-plane-lookup.csv"
+check "stage 4: the final-gathering grids (EVAL_GATHERS) against the map seen directly" test -s "$OUT/gather/runs-N4.csv" -a -s "$OUT/gather/runs-N16.csv" -a -s "$OUT/gather/gather.csv" -a -s "$OUT/gather/gather.md"
+check "stage 4: the gather grids ran --gather N" grep -q -- '--gather 16' "$OUT/gather/table-N16.md"
 check "stage 5: report and images" test -s "$OUT/report.md" -a -s "$OUT/difference.png" -a -s "$OUT/conventional.png" -a -s "$OUT/precomputed.png" -a -s "$OUT/equal-error.png"
-check "the report's sections" bash -c "for s in '## Verdict' '## Pilot' '## References' '### The reference' '## Images' '## Time ratios' '## Equal-error speed-up' '## Settings'; do grep -qF \"\$s\" '$OUT/report.md' || { echo \"missing \$s\"; exit 1; }; done"
+check "the report's sections" bash -c "for s in '## Verdict' '## Pilot' '## References' '### The reference' '## Images' '## Time ratios' '## Equal-error speed-up' '## Final gathering' '## Settings'; do grep -qF \"\$s\" '$OUT/report.md' || { echo \"missing \$s\"; exit 1; }; done"
 check "the report prints the reference's measured error" grep -q 'Its own error in relmse: noise [0-9.e-]* (from the seeds), kernel bias' "$OUT/report.md"
 check "the verdict is a sentence from the data" grep -qE 'corrected estimate: (at the tightest target|undetermined)' "$OUT/report.md"
+check "the verdict names final gathering and the cheapest configuration per target" grep -qE '^Final gathering \(--gather N.*The cheapest configuration per relMSE target over every mode' "$OUT/report.md"
 
 # a rerun renders no POV-Ray reference (cached) and no grid render
 rc=0

@@ -19,7 +19,10 @@ message when the study is meaningless or an input is wrong, 1 on a failure):
   crosscheck --ref OURS.exr --pov-ref POV.exr --pov-fast POVF.exr [--b2-ours X --b2-pov Y] --out FILE.json
       block metric and channel means (reference/README.md's) of our
       converged reference against POV-Ray, and the 2-bounce comparison
-  report ... --out DIR: DIR/report.md and DIR/*.png
+  report ... [--gather-csv GATHER.csv] --out DIR: DIR/report.md and DIR/*.png;
+      with GATHER.csv (analysis/gather.py over the final-gathering grids,
+      the main grid as the map seen directly) the verdict gains final
+      gathering's (gather_verdict) and the report its section
 """
 
 import argparse
@@ -382,6 +385,70 @@ def verdict_of(ee, estimate):
     return f"{estimate} estimate: " + "; ".join(parts) + "."
 
 
+def gather_verdict(g):
+    """(sentence, section lines) of final gathering from the rows G (a
+    DataFrame of analysis/gather.py's CSV): the equal-error speed-up of the
+    precomputed method over the conventional one under final gathering at
+    the targets enough resamples reach (gather.DEFINED_MIN), the gather
+    phase's own speed-up, and the cheapest configuration per relMSE target
+    over every mode (median time over seeds: the cheapest, not a ranking
+    by intervals)."""
+    from experiments.analysis import gather as gathermod
+    ee = g[g["kind"] == "equal_error"].sort_values("target")
+    counted = ee[ee["defined"] >= gathermod.DEFINED_MIN]
+    if ee.empty:
+        parts = ["the two methods' fronts share no relMSE range: no equal-error speed-up"]
+    elif counted.empty:
+        parts = [f"at no target do {100 * gathermod.DEFINED_MIN:.0f}% of the resamples reach both fronts: "
+                 "no speed-up is worded"]
+    else:
+        pays, loses = counted[counted["lo"] > 1], counted[counted["hi"] < 1]
+        und = counted[~((counted["lo"] > 1) | (counted["hi"] < 1))]
+        parts = []
+        if not pays.empty:
+            parts.append(f"the precomputed method pays (band above 1) at relMSE {fnum(pays['target'].min(), 2)}-"
+                         f"{fnum(pays['target'].max(), 2)}, by {fnum(pays['speedup'].min(), 2)}-"
+                         f"{fnum(pays['speedup'].max(), 2)}x")
+        if not loses.empty:
+            parts.append(f"is slower (band below 1) at relMSE {fnum(loses['target'].min(), 2)}-"
+                         f"{fnum(loses['target'].max(), 2)}")
+        if not und.empty:
+            parts.append(f"undetermined (band contains 1) at relMSE {fnum(und['target'].min(), 2)}-"
+                         f"{fnum(und['target'].max(), 2)}")
+    ph = g[g["kind"] == "gather_phase"]
+    if len(ph) and math.isfinite(ph.iloc[0]["speedup"]):
+        r = ph.iloc[0]
+        parts.append(f"the gather phase alone {fnum(r['speedup'], 2)}x [{fnum(r['lo'], 2)}, {fnum(r['hi'], 2)}]")
+    best = g[g["kind"] == "best"].sort_values("target", ascending=False)
+    picks = [f"{fnum(r['target'], 2)}: {r['mode']} {r['setting']} ({fnum(r['conventional_s'])} s)"
+             if isinstance(r["mode"], str) and r["mode"] else f"{fnum(r['target'], 2)}: none reaches it"
+             for _, r in best.iterrows()]
+    sentence = "Final gathering (--gather N, conventional time / precomputed time at equal relMSE): " + "; ".join(parts) + "."
+    if picks:
+        sentence += (" The cheapest configuration per relMSE target over every mode (median time over seeds): "
+                     + "; ".join(picks) + ".")
+    lines = ["## Final gathering", "",
+             "Both methods with `--gather N --direct shadow-rays` (the gather grid: `gather/gather.md`, "
+             "`gather/gather.csv`, `gather/gather.png`), against the same converged reference as the map seen "
+             "directly.", ""]
+    if len(ee):
+        lines += ["| relMSE target | conventional s | precomputed s | speed-up | 95% band | resamples defined |",
+                  "|---|---|---|---|---|---|"]
+        lines += [f"| {fnum(r['target'])} | {fnum(r['conventional_s'])} | {fnum(r['precomputed_s'])} | "
+                  f"{fnum(r['speedup'])} | [{fnum(r['lo'])}, {fnum(r['hi'])}] | {fnum(r['defined'], 2)}"
+                  + ("" if r["defined"] >= gathermod.DEFINED_MIN else " (not counted)") + " |"
+                  for _, r in ee.iterrows()] + [""]
+    if len(best):
+        lines += ["Which configuration to pick: the cheapest cell (median time over seeds) reaching each relMSE "
+                  "target over every mode, final gathering and the map seen directly (not a ranking: cells whose "
+                  "times overlap are not told apart).", "",
+                  "| relMSE target | mode | setting | time s |", "|---|---|---|---|"]
+        lines += [f"| {fnum(r['target'])} | {r['mode'] if isinstance(r['mode'], str) and r['mode'] else 'none reaches it'}"
+                  f" | {r['setting'] if isinstance(r['setting'], str) else ''} | {fnum(r['conventional_s'])} |"
+                  for _, r in best.iterrows()] + [""]
+    return sentence, lines
+
+
 def cmd_report(a):
     """Stage 5 (module docstring)."""
     import pandas as pd
@@ -415,6 +482,7 @@ def cmd_report(a):
     ref_img = metrics.read_exr(a.ref)
     lines = [f"# Does the precomputed method pay on `{a.scene}`?", ""]
     verdicts = [verdict_of(ee, e) for e in a.estimates.split()]
+    gather_sentence, gather_lines = gather_verdict(pd.read_csv(a.gather_csv)) if a.gather_csv else ("", [])
     agree = {"full": "the references (ours and POV-Ray) agree at full bounces",
              "b2": "the references agree at 2 bounces but not at full bounces (POV-Ray's high-order bounces)",
              "none": "the references DISAGREE (POV-Ray against ours): see References"}[cc["agree"]]
@@ -425,6 +493,8 @@ def cmd_report(a):
               + ("" if cc["agree"] == "full" else f", except on {cc['full']['where']}")
               + (f"; at 2 bounces p99 {cc['b2']['p99']:.3f}, means " + " ".join(f"{m:.3f}" for m in cc["b2"]["means"])
                  if "b2" in cc else "") + ".", ""]
+    if gather_sentence:
+        lines += [gather_sentence, ""]
     lines += ["## Pilot", "", f"`{pilot['command']}`: {pilot['verdict']}."]
     st = pilot["stats"]
     lines += [f"Photons escaped {st['photons_escaped']} of {st['photons_emitted']}, eye samples at the depth limit "
@@ -498,6 +568,7 @@ def cmd_report(a):
                 lines.append(f"| {r['kind']} | {fnum(r['target'])} | {fnum(r['speedup'])} | [{fnum(r['lo'])}, "
                              f"{fnum(r['hi'])}] | {fnum(r['defined_fraction'], 2)} |")
             lines.append("")
+    lines += gather_lines
     lines += ["## Settings", "", a.settings, ""]
     if os.path.exists(a.equal_error_png):
         import shutil
@@ -505,7 +576,8 @@ def cmd_report(a):
     with open(os.path.join(a.out, "report.md.tmp"), "w") as fh:
         fh.write("\n".join(lines))
     os.replace(os.path.join(a.out, "report.md.tmp"), os.path.join(a.out, "report.md"))
-    print(f"evaluate: [5/5] report: {os.path.join(a.out, 'report.md')}: " + " ".join(verdicts))
+    print(f"evaluate: [5/5] report: {os.path.join(a.out, 'report.md')}: " + " ".join(verdicts)
+          + (" " + gather_sentence if gather_sentence else ""))
 
 
 def main(argv=None):
@@ -533,6 +605,7 @@ def main(argv=None):
     r.add_argument("--estimates", default="paper corrected")
     r.add_argument("--time", default="total_s")
     r.add_argument("--variant", action="append", default=[], help="LABEL=TABLE.csv,RUNS.csv")
+    r.add_argument("--gather-csv", default="", help="analysis/gather.py's CSV of the final-gathering grids")
     a = ap.parse_args(argv)
     {"pilot": cmd_pilot, "thickness": cmd_thickness, "crosscheck": cmd_crosscheck, "report": cmd_report}[a.cmd](a)
     return 0

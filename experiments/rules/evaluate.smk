@@ -12,8 +12,13 @@
 #                in OUT/reference/KEY-pP-nN-DIRECT-seedsS/WxH.exr, checked
 #                against POV-Ray (OUT/crosscheck.json), at 2 bounces where the
 #                full-bounce check fails
-#   4 grid       both methods (block grid) and EVAL_VARIANTS (block variant),
-#                analysed by rules/grid.smk; no render before the check of 3
+#   4 grid       both methods (block grid), EVAL_VARIANTS (block variant) and
+#                final gathering, both methods with --gather N for each N of
+#                EVAL_GATHERS (block gather), analysed by rules/grid.smk; no
+#                render before the check of 3; then final gathering against
+#                the map seen directly (analysis/gather.py: OUT/gather/gather.
+#                {md,csv,png}, the equal-error speed-up and the best
+#                configuration per relMSE target over every mode)
 #   5 report     OUT/report.md and its images
 # `make evaluate-references`: stages 1-3 only (rule evaluate_references).
 import sys
@@ -57,12 +62,13 @@ REF_BUILD = [PY, "-m", "experiments.analysis.reference", "build", "--pm", STUDY.
              "--height", H, "--subpixels", 2, "--photons", REF_P, "--nn", K["CONV_REF_NN"], "--direct",
              K["CONV_REF_DIRECT"], "--seeds", K["CONV_REF_SEEDS"], "--grid-seeds", " ".join(map(str, G.seeds))]
 NO_SEED_LINES = "grep -v '^reference: .* seed '"
-VARIANTS = [g for g in STUDY.grids if g is not G]
+VARIANTS = [g for name, _, grids in STUDY.blocks if name == "variant" for g in grids]
+GATHERS = [g for name, _, grids in STUDY.blocks if name == "gather" for g in grids]
 NRENDERS = len(STUDY.run_files)
 
 include: "grid.smk"
 
-localrules: evaluate, evaluate_references, eval_report, eval_crosscheck, eval_thickness
+localrules: evaluate, evaluate_references, eval_report, eval_crosscheck, eval_thickness, eval_gather
 
 wildcard_constraints:
     preset="reference|fast",
@@ -142,7 +148,9 @@ def crosscheck_cmd():
     said = shell_words([PY, "-c", 'import json, sys; d = json.load(open(sys.argv[1])); '
                         'print("evaluate: [3/5] references:", d["sentence"])', CROSSCHECK])
     grid = (f"evaluate: [4/5] grid: {NRENDERS} renders (P_e {{{K['PHOTONS']}}} x n {{{K['NNS']}}} x both methods x "
-            f"{{{K['ESTIMATES']}}} x seeds 1..{K['SEEDS']}, variants {{{K['EVAL_VARIANTS']}}}), paired")
+            f"{{{K['ESTIMATES']}}} x seeds 1..{K['SEEDS']}, variants {{{K['EVAL_VARIANTS']}}}"
+            + (f"; final gathering N {{{K['EVAL_GATHERS']}}} x P_e {{{' '.join(GATHERS[0].photons)}}} x n "
+               f"{{{' '.join(GATHERS[0].nns)}}} x both methods" if GATHERS else "") + "), paired")
     return (shell_words(cc + ["--out", full]) + " > /dev/null && "
             f"if {agree}; then mv {shell_words([full, CROSSCHECK])}; else {b2}; fi && {said} && echo {shell_words([grid])}")
 
@@ -163,7 +171,11 @@ rule eval_crosscheck:
 def report_cmd():
     settings = (f"Scene `{SCENE}` (content hash {KEY}) at {SIZE}, 2x2 subpixels, threads: {K['THREADS'] or 'all'}; "
                 f"grid P_e in {{{K['PHOTONS']}}} x n in {{{K['NNS']}}} x both methods x estimates {{{K['ESTIMATES']}}} "
-                f"x seeds 1..{K['SEEDS']}, variants {{{K['EVAL_VARIANTS']}}}; time {K['TIME']}; POV-Ray scene "
+                f"x seeds 1..{K['SEEDS']}, variants {{{K['EVAL_VARIANTS']}}}"
+                + (f"; final gathering (--gather N --direct shadow-rays) N in {{{K['EVAL_GATHERS']}}} x P_e in "
+                   f"{{{' '.join(GATHERS[0].photons)}}} x n in {{{' '.join(GATHERS[0].nns)}}} x both methods x "
+                   f"estimates {{{' '.join(GATHERS[0].estimates)}}}" if GATHERS else "")
+                + f"; time {K['TIME']}; POV-Ray scene "
                 f"`{POV_SCENE}`; command: make evaluate SCENE={SCENE} SIZE={SIZE} SEEDS={K['SEEDS']} OUT={OUT}")
     words = [PY, "-m", "experiments.analysis.evaluate", "report", "--scene", SCENE, "--pilot",
              f"{OUT}/pilot/pilot.json", "--thickness", f"{OUT}/pov/thickness.json", "--crosscheck", CROSSCHECK,
@@ -172,7 +184,34 @@ def report_cmd():
              "--runroot", G.root, "--out", OUT, "--estimates", K["ESTIMATES"], "--time", K["TIME"]]
     for v in VARIANTS:
         words += ["--variant", f"{v.name}={v.files['table']}.csv,{v.files['runs_csv']}"]
+    if GATHERS:
+        words += ["--gather-csv", STUDY.files["gather"] + ".csv"]
     return shell_words(words + ["--settings", settings])
+
+
+def gather_cmd():
+    """analysis/gather.py over the gather grids, with the main grid as the
+    map seen directly (the same scene and size)."""
+    words = [PY, "-m", "experiments.analysis.gather"]
+    for g in GATHERS:
+        words += ["--grid", g.scene, g.size, g.knobs["GATHER"], g.files["runs_csv"]]
+    return shell_words(words + ["--direct", G.scene, G.size, G.files["runs_csv"], "--time", K["TIME"], "--out",
+                                STUDY.files["gather"], "--figure", STUDY.files["gather_figure"], "--bootstrap",
+                                K["BOOTSTRAP"], "--bootstrap-seed", K["BOOTSTRAP_SEED"], "--pm", STUDY.pm])
+
+
+rule eval_gather:
+    input:
+        [g.files["runs_csv"] for g in GATHERS],
+        G.files["runs_csv"],
+    output:
+        STUDY.files["gather"] + ".md",
+        STUDY.files["gather"] + ".csv",
+        STUDY.files["gather_figure"],
+    params:
+        cmd=lambda wc: gather_cmd(),
+    shell:
+        "{params.cmd}"
 
 
 rule eval_report:
@@ -181,6 +220,7 @@ rule eval_report:
         [g.files[f] for g in STUDY.grids for f in ("runs_csv",)],
         [g.files["table"] + ".csv" for g in STUDY.grids],
         G.files["equal_error"] + ".csv",
+        [STUDY.files["gather"] + ".csv"] if GATHERS else [],
     output:
         STUDY.files["report"],
     params:
