@@ -47,8 +47,31 @@ from experiments.bench import threads
 
 WHERE = "findings.py"
 # the smallest number of seeds whose percentile-bootstrap interval a finding
-# quotes (with 3 seeds such an interval covers about 90%, not 95%)
+# quotes (below it such an interval covers well under 95%: coverage.py
+# simulates how much, and the text quotes the simulation)
 MIN_SEEDS_QUOTED = 5
+# the estimate every summary bullet quotes; the other one is given beside it
+# only where its verdict words differ (PRIMARY_ESTIMATE_REASON says why)
+PRIMARY_ESTIMATE = "paper"
+OTHER_ESTIMATE = {"paper": "corrected", "corrected": "paper"}[PRIMARY_ESTIMATE]
+PRIMARY_ESTIMATE_REASON = (
+    "The paper's estimate (its eq. 1 and eq. 2 as the paper uses them) is the primary one, because every claim "
+    "under test, Table 1's times and Figure 3's images, was made with it; the corrected estimate (the n/(n-1) bias "
+    "removed) is ours, and is given beside it only where its verdict differs.")
+# the equivalence margin of the estimator-bias intervals around 1 (the exact
+# radiance): 1%, below the law's bias n/(n-1) - 1 at every n the paper uses
+# (1.01% at its largest, n = 100), so an interval inside 1 +- BIAS_MARGIN
+# rules out the uncorrected bias at every such n
+BIAS_MARGIN = 0.01
+BIAS_MARGIN_REASON = "below the law's bias n/(n-1) - 1 at every n the paper uses (1.01% at n = 100)"
+# the paper's Figure 3 statements: the cell (P_e, n) and what the paper says
+# of the two methods' images there
+FIGURE3 = ((50000, 10, "differ"), (100000, 100, "alike"), (500000, 100, "alike"))
+
+
+def sfx(est):
+    """The column suffix of estimate EST in a table1.csv ('' for the paper's)."""
+    return "" if est == "paper" else f"_{est}"
 
 
 class Missing(Exception):
@@ -156,6 +179,85 @@ def tightest_and_curve(e, est):
     return t.iloc[0], span
 
 
+REGION_WORDS = {"above": "it pays (the interval lies wholly above 1)",
+                "below": "it does not pay (wholly below 1)",
+                "contains": "undetermined (the interval contains 1)"}
+
+
+def curve_regions(c):
+    """Runs of the curve rows C (one estimate, kind `curve`) by target, at
+    the targets where at least equal_error.DEFINED_MIN of the resamples
+    reach both fronts: [{class, first, last, count}] with class `above`
+    (the interval wholly above 1: the precomputation pays), `below` (wholly
+    below 1) or `contains` (it contains 1, or an end is nan)."""
+    c = c[c["defined_fraction"] >= ee.DEFINED_MIN].sort_values("target")
+    runs = []
+    for _, r in c.iterrows():
+        k = {"higher": "above", "lower": "below"}.get(stats.rank((r["lo"], r["hi"]), (1.0, 1.0)), "contains")
+        if runs and runs[-1]["class"] == k:
+            runs[-1].update(last=r["target"], count=runs[-1]["count"] + 1)
+        else:
+            runs.append({"class": k, "first": r["target"], "last": r["target"], "count": 1})
+    return runs
+
+
+def crossing_of(runs):
+    """Where a curve_regions list crosses 1: (direction, a, b), the curve
+    wholly below 1 up to target a and wholly above it from b on
+    ('up'), or the reverse ('down'); None without both kinds of target, or
+    when they interleave."""
+    below = [x for x in runs if x["class"] == "below"]
+    above = [x for x in runs if x["class"] == "above"]
+    if not below or not above:
+        return None
+    if max(x["last"] for x in below) < min(x["first"] for x in above):
+        return ("up", max(x["last"] for x in below), min(x["first"] for x in above))
+    if max(x["last"] for x in above) < min(x["first"] for x in below):
+        return ("down", max(x["last"] for x in above), min(x["first"] for x in below))
+    return None
+
+
+def regions_text(runs):
+    """Where on the curve the precomputation pays and where not, from a
+    curve_regions list: 'at relMSE a-b (k targets) it pays ...; ...'."""
+    if not runs:
+        return f"at no target of the curve do {100 * ee.DEFINED_MIN:.0f}% of the resamples reach both fronts"
+    parts = []
+    for k in ("above", "below", "contains"):
+        rs = [x for x in runs if x["class"] == k]
+        if rs:
+            where = ", ".join(f"{fmt(x['first'])}" if x["count"] == 1 else f"{fmt(x['first'])} to {fmt(x['last'])}"
+                              for x in rs)
+            parts.append(f"{REGION_WORDS[k]} at {primary_name()} {where} ({sum(x['count'] for x in rs)} targets)")
+    out = "; ".join(parts)
+    cr = crossing_of(runs)
+    if cr is not None:
+        d, a, b = cr
+        out += (f"; it crosses 1 between {fmt(a)} and {fmt(b)}, slower at the tighter targets"
+                if d == "up" else f"; it crosses 1 between {fmt(a)} and {fmt(b)}, faster at the tighter targets")
+    return out
+
+
+def trend_text(r):
+    """The one wording of the equal-error curve's dependence on the target
+    (README's summary and FINDINGS.md both use it), from the test of its
+    two extremes: the smallest and the largest speed-up where 95% of the
+    resamples reach both fronts, ranked only when their 95% intervals are
+    disjoint (record key span_rank)."""
+    span = r["span"]
+    if span is None:
+        return (f"at no target of the curve do {100 * ee.DEFINED_MIN:.0f}% of the resamples reach both fronts, so "
+                "no trend with the target is tested")
+    a, b = span
+    ends = (f"from {ci(a['speedup'], a['lo'], a['hi'])}x at {fmt(a['target'])} to "
+            f"{ci(b['speedup'], b['lo'], b['hi'])}x at {fmt(b['target'])}")
+    if r["span_rank"] in ("lower", "higher"):
+        return (f"where 95% of the resamples reach both fronts the speed-up runs {ends}, and these two 95% intervals "
+                "are disjoint: the speed-up depends on the target, and no single target stands for the curve")
+    return (f"where 95% of the resamples reach both fronts the speed-up runs {ends}; these two 95% intervals "
+            "overlap, so no trend with the target is claimed")
+
+
 def equal_error_record(e):
     """Per estimate of an equal-error frame E (equal_error.py's kinds
     `tightest` and `curve`), in file order: the tightest row (None when the
@@ -167,7 +269,7 @@ def equal_error_record(e):
         c = g[g["kind"] == "curve"]
         r = {"estimate": est, "curve_targets": len(c), "curve_min": c["target"].min(),
              "curve_max": c["target"].max(), "tightest": None, "span": None, "span_rank": None,
-             "headline": None, "headline_vs_one": None}
+             "headline": None, "headline_vs_one": None, "regions": curve_regions(c)}
         try:
             t, span = tightest_and_curve(g, est)
         except Missing:
@@ -241,11 +343,32 @@ def record_equal_error(d):
 VERDICTS = ("higher", "lower", "equivalent", "undetermined")
 
 
+def changed_verdicts(primary, other):
+    """[(key, primary's verdict, other's verdict)] of the keys of two
+    {key: verdict} maps whose verdict words differ (keys in both only)."""
+    return [(k, v, other[k]) for k, v in sorted(primary.items()) if k in other and other[k] != v]
+
+
+def share_interval(bias, excess, lo, hi):
+    """(share, share_lo, share_hi, defined) of the bias term BIAS in an
+    excess EXCESS with the paired interval [LO, HI]: the share BIAS / EXCESS
+    and its interval BIAS / [HI, LO], holding BIAS fixed (a cell's bias has
+    one value, from its mean image). Not defined (nan ends) when the share
+    is negative (the bias term falls while the error rises: the split of
+    the excess into bias and variance says nothing there) or when the
+    excess's interval reaches 0."""
+    share = bias / excess if excess > 0 else np.nan
+    if not (excess > 0 and bias >= 0 and lo > 0):
+        return share, np.nan, np.nan, False
+    return share, bias / hi, bias / lo, True
+
+
 def record_cost(d):
     """What the speed costs in accuracy: the paired relMSE verdicts per
-    estimate and cell, the bias share of the excess where the precomputed
-    method ranks worse, and what more photons remove of the difference from
-    the conventional image at each n."""
+    estimate and cell (and the cells where the two estimates' verdicts
+    differ), the bias share of the excess with its interval where the
+    precomputed method ranks worse, and what more photons remove of the
+    difference from the conventional image at each n."""
     t = load(d["table"], ["photons", "nn", "method", "relmse_diff_mean", "relmse_diff_lo", "relmse_diff_hi",
                           "relmse_diff_verdict", "relmse_conv_mean", "relmse_conv_ci95", "pairs"],
              "make reproduce-table")
@@ -254,16 +377,24 @@ def record_cost(d):
     p = prec_rows(t)
     verdicts = {}
     for est in ("paper", "corrected"):
-        sfx = "" if est == "paper" else f"_{est}"
-        col = f"relmse_diff_verdict{sfx}"
+        x = sfx(est)
+        col = f"relmse_diff_verdict{x}"
         if col not in p.columns:
             continue
         groups = {}
         for _, r in p.iterrows():
             groups.setdefault(str(r[col]) if isinstance(r[col], str) else "undetermined", []).append(
-                {"photons": r["photons"], "nn": r["nn"], "mean": r[f"relmse_diff_mean{sfx}"],
-                 "lo": r[f"relmse_diff_lo{sfx}"], "hi": r[f"relmse_diff_hi{sfx}"]})
-        verdicts[est] = {"pairs": span_of(p[f"pairs{sfx}"]), "groups": groups}
+                {"photons": r["photons"], "nn": r["nn"], "mean": r[f"relmse_diff_mean{x}"],
+                 "lo": r[f"relmse_diff_lo{x}"], "hi": r[f"relmse_diff_hi{x}"]})
+        verdicts[est] = {"pairs": span_of(p[f"pairs{x}"]), "groups": groups}
+    by_cell = {est: {(c["photons"], c["nn"]): k for k, cs in v["groups"].items() for c in cs}
+               for est, v in verdicts.items()}
+    changed = changed_verdicts(by_cell.get(PRIMARY_ESTIMATE, {}), by_cell.get(OTHER_ESTIMATE, {}))
+
+    def paired(est, ph, n):
+        r = p[(p["photons"] == ph) & (p["nn"] == n)]
+        x = sfx(est)
+        return (r.iloc[0][f"relmse_diff_lo{x}"], r.iloc[0][f"relmse_diff_hi{x}"]) if len(r) else (np.nan, np.nan)
     # bias share of the excess, per cell where the paired test ranks the
     # precomputed method worse (a share of a difference that may be zero is
     # no number)
@@ -276,25 +407,33 @@ def record_cost(d):
             if len(c) and len(q) and (est, ph, n) in worse:
                 ex, bx = excess_and_bias(q, c)
                 if ex > 0:
+                    share, lo, hi, ok = share_interval(bx, ex, *paired(est, ph, n))
                     shares.setdefault(est, []).append({"photons": ph, "nn": n, "excess": ex, "bias": bx,
-                                                       "share": bx / ex})
+                                                       "share": share, "lo": lo, "hi": hi, "defined": ok})
     bias_share = [{"estimate": est, "cells": len(sh), "min": min(s["share"] for s in sh),
-                   "max": max(s["share"] for s in sh), "largest": max(sh, key=lambda s: s["excess"])}
+                   "max": max(s["share"] for s in sh), "largest": max(sh, key=lambda s: s["excess"]),
+                   "rows": sorted(sh, key=lambda s: (s["photons"], s["nn"]))}
                   for est, sh in shares.items()]
-    # the largest excess of the paper estimate where it ranks worse, with its bias share
+    # the largest excess of the primary estimate where it ranks worse, with its bias share
     worst = None
-    hi = p[p["relmse_diff_verdict"] == "higher"]
+    x = sfx(PRIMARY_ESTIMATE)
+    hi = p[p[f"relmse_diff_verdict{x}"] == "higher"] if f"relmse_diff_verdict{x}" in p.columns else p.iloc[:0]
     if len(hi):
-        r = hi.loc[hi["relmse_diff_mean"].idxmax()]
-        c = cells[(cells["estimate"] == "paper") & (cells["photons"] == r["photons"]) & (cells["nn"] == r["nn"])]
+        r = hi.loc[hi[f"relmse_diff_mean{x}"].idxmax()]
+        c = cells[(cells["estimate"] == PRIMARY_ESTIMATE) & (cells["photons"] == r["photons"]) &
+                  (cells["nn"] == r["nn"])]
         q, v = c[c["method"] == "precomputed"], c[c["method"] == "conventional"]
-        share = None
+        share = share_lo = share_hi = None
         if len(q) and len(v):
             ex, bx = excess_and_bias(q, v)
             if ex > 0:
-                share = bx / ex
-        worst = {"photons": r["photons"], "nn": r["nn"], "mean": r["relmse_diff_mean"], "lo": r["relmse_diff_lo"],
-                 "hi": r["relmse_diff_hi"], "share": share}
+                sh, lo, up, ok = share_interval(bx, ex, r[f"relmse_diff_lo{x}"], r[f"relmse_diff_hi{x}"])
+                share = sh
+                if ok:
+                    share_lo, share_hi = lo, up
+        worst = {"photons": r["photons"], "nn": r["nn"], "mean": r[f"relmse_diff_mean{x}"],
+                 "lo": r[f"relmse_diff_lo{x}"], "hi": r[f"relmse_diff_hi{x}"], "share": share,
+                 "share_lo": share_lo, "share_hi": share_hi}
     # the difference from the conventional image of the same seed: n against P_e
     conv = p[["photons", "nn", "relmse_conv_mean", "relmse_conv_ci95"]]
     phs = sorted(conv["photons"].unique())
@@ -311,7 +450,7 @@ def record_cost(d):
                 more["per_n"].append({"nn": n, "removed": 1 - b["relmse_conv_mean"] / a["relmse_conv_mean"],
                                       "disjoint": r in ("lower", "higher")})
     return {"pairs": span_of(p["pairs"]), "cells": len(p), "verdicts": verdicts, "bias_share": bias_share,
-            "worst": worst, "more_photons": more}
+            "worst": worst, "more_photons": more, "changed": changed}
 
 
 def record_bias(d):
@@ -612,16 +751,10 @@ def equal_error_lines(recs):
             "reach (the larger of the two fronts' smallest errors" \
             + ("; fewer than 95% of the bootstrap resamples reach it on both fronts, so no speed-up is quoted there"
                if t["defined_fraction"] < ee.DEFINED_MIN else "") + f"); {headline_text(r['headline'])}"
+        s += f". Over the {r['curve_targets']} targets of the curve ({fmt(r['curve_min'])} to " \
+             f"{fmt(r['curve_max'])}), {trend_text(r)}"
         if span is not None:
-            a, b = span
-            s += f". Over the {r['curve_targets']} targets of the curve ({fmt(r['curve_min'])} to {fmt(r['curve_max'])}), " \
-                 f"where at least 95% of the resamples reach the target the speed-up runs from " \
-                 f"{ci(a['speedup'], a['lo'], a['hi'])} (at {fmt(a['target'])}) to " \
-                 f"{ci(b['speedup'], b['lo'], b['hi'])} (at {fmt(b['target'])}): it depends on the target, " \
-                 "and no single target stands for the curve"
-        else:
-            s += "; at no target of the curve do 95% of the resamples reach it on both fronts, so every interval " \
-                 "of the curve is conditional"
+            s += f". Along the curve, {regions_text(r['regions'])}"
         lines.append(s + ".")
     return lines
 
@@ -645,12 +778,20 @@ def md_cost(rec):
         lines.append(f"- {est} estimate, paired {metrics.PRIMARY} difference precomputed - conventional per seed "
                      f"({v['pairs'][0]} pairs per cell): " + "; ".join(parts) + ".")
     for s in rec["bias_share"]:
-        k = s["largest"]
+        parts = []
+        for k in s["rows"]:
+            if k["defined"]:
+                parts.append(f"{cell(k['photons'], k['nn'])} {pct(100 * k['share'])}% [{pct(100 * k['lo'])}, "
+                             f"{pct(100 * k['hi'])}]")
+            elif k["share"] < 0:
+                parts.append(f"{cell(k['photons'], k['nn'])} {pct(100 * k['share'])}%: negative, the bias term "
+                             "falls where the error rises, so the split into bias and variance is not defined there")
+            else:
+                parts.append(f"{cell(k['photons'], k['nn'])}: the excess's interval reaches 0, no share")
         lines.append(f"- {s['estimate']} estimate: where the paired test ranks the precomputed method's error above the "
-                     f"conventional one ({s['cells']} cells), the bias term's share of the excess runs from "
-                     f"{pct(100 * s['min'])}% to {pct(100 * s['max'])}% (cells.csv "
-                     f"bias_ref); at {cell(k['photons'], k['nn'])}, the largest excess, {fmt(k['excess'])} of which "
-                     f"{fmt(k['bias'])} ({pct(100 * k['share'])}%) is bias.")
+                     f"conventional one ({s['cells']} cells), the bias term's share of the excess (cells.csv bias_ref "
+                     "over the paired excess; the interval is the paired excess's 95% interval with the bias term "
+                     "held fixed, since a cell's bias has one value, from its mean image): " + "; ".join(parts) + ".")
     m = rec["more_photons"]
     if m is not None:
         lines.append(f"- The precomputed image's {metrics.PRIMARY} against the conventional image of the same seed: "
@@ -908,59 +1049,108 @@ def readme_table(rec):
             f"{rec['outside_lower']} of {rec['outside']} (`results/table1/table1.md`).")
 
 
+VS_ONE = {"higher": "faster", "lower": "slower"}
+
+
+def vs_one_word(v):
+    """'faster', 'slower' or 'undetermined' of an interval's rank against 1."""
+    return VS_ONE.get(v, "undetermined")
+
+
 def readme_equal_error(rec):
-    r = estimate_of(rec["estimates"], "paper")
-    t, span = r["tightest"], r["span"]
-    curve = span is not None and r["span_rank"] == "lower"
-    head = "**The speed-up at equal error is a curve, not a number**" if curve else \
-        "**The speed-up at equal error**"
-    rest = (f"; where 95% of the resamples reach both fronts it runs from {fmt(span[0]['speedup'])} to "
-            f"{fmt(span[1]['speedup'])} with the target" if span is not None else
-            "; at no target do 95% of the resamples reach both fronts")
-    if span is not None and not curve:
-        rest += " (the two ends' 95% intervals overlap, so no trend with the target is claimed)"
-    return (f"- {head} (paper estimate; the curve starts at {primary_name()} {fmt(t['target'])}, the tightest both "
-            f"fronts reach): {headline_text(r['headline'])}{rest} (`results/table1/equal-error.md`).")
+    r = estimate_of(rec["estimates"], PRIMARY_ESTIMATE)
+    t = r["tightest"]
+    head = "**The speed-up at equal error is a curve, not a number**" if r["span_rank"] in ("lower", "higher") \
+        else "**The speed-up at equal error**"
+    beside = ""
+    try:
+        o = estimate_of(rec["estimates"], OTHER_ESTIMATE)
+        if vs_one_word(o["headline_vs_one"]) != vs_one_word(r["headline_vs_one"]):
+            beside = f" (the {OTHER_ESTIMATE} estimate: {headline_text(o['headline'])}, {vs_one_word(o['headline_vs_one'])})"
+    except Missing:
+        pass
+    return (f"- {head} ({PRIMARY_ESTIMATE} estimate; the curve starts at {primary_name()} {fmt(t['target'])}, the "
+            f"tightest both fronts reach): {headline_text(r['headline'])}{beside}; {trend_text(r)} "
+            "(`results/table1/equal-error.md`).")
+
+
+def verdict_changes_text(changed, word=None):
+    """'; the OTHER estimate's verdict differs in (50k, 10) (higher), ...'
+    of a changed_verdicts list of cells, or '' when none differs."""
+    if not changed:
+        return ""
+    word = word or (lambda v: v)
+    return (f"; the {OTHER_ESTIMATE} estimate's verdict differs in " +
+            count_list([f"{cell(*k)} ({word(b)})" for k, _, b in changed]))
 
 
 def readme_cost(rec):
     words = {"higher": "higher", "equivalent": f"equivalent within {fmt(100 * stats.EQUIVALENCE_MARGIN)}%",
              "lower": "lower", "undetermined": "undetermined"}
-    groups = rec["verdicts"]["paper"]["groups"]
+    if PRIMARY_ESTIMATE not in rec["verdicts"]:
+        raise Missing(f"`table1.csv` has no {PRIMARY_ESTIMATE}-estimate verdicts (`make reproduce-table`)")
+    groups = rec["verdicts"][PRIMARY_ESTIMATE]["groups"]
     parts = [f"{words[v]} in {count_list([cell(c['photons'], c['nn']) for c in groups[v]])}"
              for v in ("higher", "equivalent", "lower", "undetermined") if v in groups]
     worst = ""
     w = rec["worst"]
     if w is not None:
-        share = f", {pct(100 * w['share'])}% of it bias" if w["share"] is not None else ""
+        share = ""
+        if w["share_lo"] is not None:
+            share = f", {pct(100 * w['share'])}% [{pct(100 * w['share_lo'])}, {pct(100 * w['share_hi'])}] of it bias"
+        elif w["share"] is not None and w["share"] < 0:
+            share = ", with a negative bias share (the split into bias and variance is not defined there)"
         worst = (f"; the largest excess is at {cell(w['photons'], w['nn'])}: "
                  f"{ci(w['mean'], w['lo'], w['hi'])}{share}")
     return (f"- **What the speed costs**: per seed, paired ({pairs_text(rec['pairs'])} per cell), Holm over the "
-            f"{rec['cells']} cells, the precomputed method's {primary_name()} (paper estimate) is "
-            + "; ".join(parts) + worst + " (`results/table1/table1.md`).")
+            f"{rec['cells']} cells, the precomputed method's {primary_name()} ({PRIMARY_ESTIMATE} estimate) is "
+            + "; ".join(parts) + worst + verdict_changes_text(rec["changed"], lambda v: words.get(v, v))
+            + " (`results/table1/table1.md`).")
+
+
+def regions_head(runs):
+    """The bullet's head of where on the curve of a small image the
+    precomputation pays, from its curve_regions list."""
+    kinds = {x["class"] for x in runs}
+    cr = crossing_of(runs)
+    if kinds == {"above"}:
+        return "Small images: the precomputation still pays at every target enough resamples reach"
+    if kinds == {"below"}:
+        return "Small images: the precomputation stops paying at every target enough resamples reach"
+    if cr is not None and cr[0] == "up":
+        return "Small images: the precomputation pays at the looser targets, not at the tightest"
+    if cr is not None:
+        return "Small images: the precomputation pays at the tighter targets, not at the looser"
+    if "above" in kinds or "below" in kinds:
+        return "Small images: the precomputation pays at some targets and is undetermined at the others"
+    return "Small images: undetermined at every target"
 
 
 def readme_resolution(rec):
     sizes = rec["sizes"]
     if len(sizes) < 2:
         raise Missing(f"fewer than two `{rec['dir']}/equal-error-WxH.csv` (`make resolution`)")
-    est = "corrected"
     got = []
     for s in (sizes[0], sizes[-1]):
-        r = estimate_of(s["estimates"], est)
+        r = estimate_of(s["estimates"], PRIMARY_ESTIMATE)
         if r["headline"] is None:
             raise Missing(f"`{s['file']}`: at no target do {100 * ee.DEFINED_MIN:.0f}% of the "
                           "resamples reach both fronts (`make resolution` with more seeds)")
         got.append((s["size"], r))
     (s0, ra), (s1, rb) = got
-    a, b, small = ra["headline"], rb["headline"], ra["headline_vs_one"]
-    head = {"lower": "Small images: the precomputation stops paying",
-            "higher": "Small images: the precomputation still pays"}.get(small, "Small images: undetermined")
-    said = {"lower": ", slower", "higher": ", faster"}.get(small, " (its interval contains 1)")
-    return (f"- **{head}**: at {s0} and the tightest target that {100 * ee.DEFINED_MIN:.0f}% of the resamples "
-            f"reach on both fronts ({primary_name()} {fmt(a['target'])}, {est} estimate) the precomputed method's "
-            f"speed-up is {ci(a['speedup'], a['lo'], a['hi'])}x{said}; at {s1} (its own such target, "
-            f"{fmt(b['target'])}) it is {ci(b['speedup'], b['lo'], b['hi'])}x (`results/resolution/resolution.md`).")
+    b = rb["headline"]
+    beside = ""
+    try:
+        o = estimate_of(sizes[0]["estimates"], OTHER_ESTIMATE)
+        if regions_head(o["regions"]) != regions_head(ra["regions"]):
+            beside = f" (the {OTHER_ESTIMATE} estimate: {regions_text(o['regions'])})"
+    except Missing:
+        pass
+    return (f"- **{regions_head(ra['regions'])}**: at {s0}, {PRIMARY_ESTIMATE} estimate, where at least "
+            f"{100 * ee.DEFINED_MIN:.0f}% of the resamples reach both fronts, {regions_text(ra['regions'])}{beside}; "
+            f"at {s1}, at the tightest such target ({fmt(b['target'])}), the speed-up is "
+            f"{ci(b['speedup'], b['lo'], b['hi'])}x, {vs_one_word(rb['headline_vs_one'])} "
+            "(`results/resolution/resolution.md`).")
 
 
 def readme_bias(rec):
