@@ -503,6 +503,120 @@ def record_figure3(d):
     return {"rows": rows, "floor": floor}
 
 
+# per study that judges images: (name, the make target, its cells files
+# under results/, each naming its reference in the column `ref`)
+STUDY_REFERENCES = (("Table 1", "make reproduce-table", "table1/cells.csv"),
+                    ("representative rules", "make rep-study", "rep-study/cells-rep-*.csv"),
+                    ("caustic window", "make caustic", "caustic/caustic-cells.csv"),
+                    ("scenes", "make scenes", "scenes/cells-*.csv"),
+                    ("resolution", "make resolution", "resolution/cells-*.csv"),
+                    ("reproducibility", "make reproducibility", "reproducibility/cells-*.csv"),
+                    ("beyond", "make beyond", "beyond/studies/cells-*.csv"))
+# the studies that judge no image against a reference image, and what judges them
+NO_REFERENCE_IMAGE = (("estimator bias", "make estimator-bias",
+                       "the exact radiance of the analytic scene (1), known in closed form"),
+                      ("bench, scaling, threads", "make bench",
+                       "none: they time the code and check the neighbour sets, not images"),
+                      ("stability", "make stability", "the image mean's expected value, no reference image"))
+# why a study is judged by each kind of reference
+REFERENCE_WHY = {
+    "POV-Ray": "an independent renderer, as the paper judges its images, but made once per scene at one size "
+               "and with its own noise and bias unmeasured (finding E)",
+    "converged photonmap": "our conventional method with the corrected estimate at many times the grid's photon "
+                           "count (reference.py): made at whatever scene and size the study renders, with its "
+                           "noise and kernel bias measured, but by the method family it judges",
+    "pbrt-v3": "an independent path tracer", "unknown": "a reference this script does not recognise"}
+
+
+def reference_kind(path):
+    """The kind of a reference image by its path: 'POV-Ray' (reference/...),
+    'converged photonmap' (a convref or refhigh render), 'pbrt-v3', or
+    'unknown'."""
+    b = str(path).lower()
+    if "pbrt" in b:
+        return "pbrt-v3"
+    if "convref" in b or "refhigh" in b:
+        return "converged photonmap"
+    if b.startswith("reference/"):
+        return "POV-Ray"
+    return "unknown"
+
+
+def beyond_case(path):
+    """'cornell-512x384' of a beyond/studies file name '...-cornell-512x384-variant.csv'."""
+    stem = os.path.basename(path)[:-4]
+    parts = stem.split("-")
+    return "-".join(parts[-3:-1]) if len(parts) >= 4 else stem
+
+
+def quoted_reference_error(root, ref):
+    """(noise, bias, file) of the reference REF as a study's Markdown under
+    ROOT quotes it (reference.describe's sentence 'Reference `REF`: ... Its
+    own error in relmse: noise X ..., kernel bias Y'), or None when no file
+    quotes it."""
+    import re
+    pat = re.compile(re.escape(f"Reference `{ref}`") + r"[^\n]*?Its own error in \w+: noise ([0-9.eE+-]+)"
+                     r"[^\n]*?kernel bias ([0-9.eE+-]+)")
+    for dirpath, _, files in sorted(os.walk(root)):
+        for f in sorted(files):
+            if f.endswith(".md") and f != "FINDINGS.md":
+                path = os.path.join(dirpath, f)
+                with open(path, encoding="utf-8", errors="replace") as fh:
+                    m = pat.search(fh.read())
+                if m:
+                    return float(m.group(1)), float(m.group(2)), os.path.relpath(path, root)
+    return None
+
+
+def record_judges(d):
+    """Per study, the kinds of reference its cells files name (column ref)
+    and why; the studies that judge no image; and for every converged
+    reference beyond/ uses, its noise and bias from the JSON beside it
+    (reference.py; None when there is none) with the tightest target it
+    judges there."""
+    from experiments.analysis import reference
+    root = d["root"]
+    repo = os.path.dirname(os.path.abspath(root))
+    studies = []
+    for name, make, pattern in STUDY_REFERENCES:
+        files = sorted(glob.glob(os.path.join(root, pattern)))
+        refs = set()
+        for f in files:
+            try:
+                c = pd.read_csv(f, comment="#")
+            except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError):
+                continue
+            if "ref" in c.columns:
+                refs |= {str(x) for x in c["ref"].dropna()}
+        studies.append({"study": name, "make": make, "files": len(files), "pattern": pattern,
+                        "kinds": sorted({reference_kind(r) for r in refs})})
+    beyond = {}
+    for f in sorted(glob.glob(os.path.join(root, "beyond", "studies", "cells-*.csv"))):
+        try:
+            c = pd.read_csv(f, comment="#")
+        except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError):
+            continue
+        for r in set(c["ref"].dropna()) if "ref" in c.columns else ():
+            beyond.setdefault(str(r), set()).add(beyond_case(f))
+    refs = []
+    for r, cases in sorted(beyond.items()):
+        info = reference.load(os.path.join(repo, r))
+        ts = [reference.tightest_of(e) for case in cases
+              for e in glob.glob(os.path.join(root, "beyond", "studies", f"equal-error-{case}-*.csv"))]
+        ts = [t for t in ts if t is not None]
+        noise = bias = src = None
+        if info is not None:
+            noise, bias, src = info.get("noise"), info.get("bias"), reference.sidecar(r)
+        else:
+            q = quoted_reference_error(root, r)
+            if q is not None:
+                noise, bias, src = q
+        refs.append({"ref": r, "cases": sorted(cases), "kind": reference_kind(r), "noise": noise, "bias": bias,
+                     "source": src, "tightest": min(ts) if ts else None})
+    return {"studies": studies, "none": [{"study": a, "make": b, "by": c} for a, b, c in NO_REFERENCE_IMAGE],
+            "beyond": refs}
+
+
 def record_equal_error(d):
     """The table's equal-error curve, per estimate (equal_error_record)."""
     return {"estimates": equal_error_record(load(d["equal_error"], EQUAL_ERROR_COLUMNS, "make reproduce-table"))}
@@ -836,7 +950,7 @@ def record_peers(d):
 
 
 RECORDS = {"table": record_table, "precompute": record_precompute, "reference_error": record_reference_error,
-           "figure3": record_figure3, "equal_error": record_equal_error, "cost": record_cost, "bias": record_bias,
+           "figure3": record_figure3, "judges": record_judges, "equal_error": record_equal_error, "cost": record_cost, "bias": record_bias,
            "caustic": record_caustic, "scenes": record_scenes, "resolution": record_resolution,
            "baseline": record_baseline, "scale": record_scale, "stability": record_stability,
            "beyond": record_beyond, "repro": record_repro, "rules": record_rules, "metric": record_metric,
@@ -1146,6 +1260,33 @@ def readme_figure3(rec):
             f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}%): " + "; ".join(parts) + " (`results/FINDINGS.md`).")
 
 
+def md_judges(rec):
+    """Finding J: which reference judges which study, and the converged references' own error."""
+    lines = report.md_table(["study", "judged by", "why"], [
+        [f"{x['study']} (`{x['make']}`)", ", ".join(x["kinds"]) or f"no cells file (`{x['pattern']}`)",
+         "; ".join(REFERENCE_WHY[k] for k in x["kinds"]) or "not run here"] for x in rec["studies"]]
+        + [[f"{x['study']} (`{x['make']}`)", x["by"], "no reference image"] for x in rec["none"]])
+    lines.append("")
+    lines.append("pbrt-v3 judges no study. The converged references beyond/ uses, with their own error in "
+                 f"{primary_name()} (the JSON beside each, written by reference.py, else a study's Markdown that "
+                 "quotes it):")
+    lines.append("")
+    if not rec["beyond"]:
+        lines.append("- beyond/ names no reference (`make beyond`).")
+    for r in rec["beyond"]:
+        if r["noise"] is None:
+            lines.append(f"- {count_list(r['cases'])}: `{r['ref']}`: its JSON is missing here (the references live "
+                         "under results/runs/, which is not committed; `make beyond` writes them) and no study's "
+                         "Markdown quotes its error, so its noise and bias are not reported.")
+            continue
+        t = r["tightest"]
+        share = (f"; the tightest target it judges there is {fmt(t)}: noise {pct(100 * r['noise'] / t)}%, bias "
+                 f"{pct(100 * r['bias'] / t)}% of it" if t else "")
+        lines.append(f"- {count_list(r['cases'])}: noise {fmt(r['noise'])}, kernel bias {fmt(r['bias'])} "
+                     f"(`{r['source']}`){share}.")
+    return "What judges what", lines
+
+
 def md_baseline(rec):
     """Finding 8: the baseline and the drift control."""
     return "The baseline, and drift between runs", [
@@ -1275,7 +1416,8 @@ def md_metric(rec):
 FINDINGS = ((1, "table", md_table, "The table's shape"),
             ("T", "precompute", md_precompute, "Where the precomputed method's time goes"),
             ("E", "reference_error", md_reference_error, "Table 1's reference and its own error"),
-            ("F", "figure3", md_figure3, "The paper's Figure 3 claim"), (2, "equal_error", md_equal_error, "Equal error"),
+            ("F", "figure3", md_figure3, "The paper's Figure 3 claim"),
+            ("J", "judges", md_judges, "What judges what"), (2, "equal_error", md_equal_error, "Equal error"),
             (3, "cost", md_cost, "What the speed costs in accuracy"),
             (4, "bias", md_bias, "The estimator's bias in the analytic scene"),
             (5, "caustic", md_caustic, "The caustic window's excess against the whole image's"),
