@@ -827,7 +827,19 @@ def record_scale(d):
         t2 = g[g["threads"] == 2]["total_s"]
         conv = {**row_dict(r), "two_total_median": np.median(t2) if len(t2) else None, "two_total_pairs": len(t2),
                 "trace": speedup_stats(g, "trace_s"), "build": speedup_stats(g, "build_s")}
-    return {"largest": largest, "two_threads": two, "conventional": conv}
+    # both methods at the largest map they share: the totals and each phase's difference
+    both = None
+    c, q = sc[sc["method"] == "conventional"], sc[sc["method"] == "precomputed"]
+    common = sorted(set(c["photons_emitted"]) & set(q["photons_emitted"]))
+    if common:
+        a = c[c["photons_emitted"] == common[-1]].iloc[0]
+        b = q[q["photons_emitted"] == common[-1]].iloc[0]
+        phases = {k: float(b[f"{k}_s"] - a[f"{k}_s"]) for k in ("trace", "build", "precompute", "eye")}
+        both = {"photons_emitted": common[-1], "photons_stored": a["photons_stored"], "threads": a["threads"],
+                "conventional": float(a["total_s"]), "precomputed": float(b["total_s"]),
+                "precompute_s": float(b["precompute_s"]), "phases": phases,
+                "largest_phase": max(phases, key=lambda k: abs(phases[k]))}
+    return {"largest": largest, "two_threads": two, "conventional": conv, "both": both}
 
 
 def record_stability(d):
@@ -1308,6 +1320,12 @@ def md_scale(rec):
                      f"{fmt(r['trace_s'])}, build {fmt(r['build_s'])}, precompute {fmt(r['precompute_s'])}, eye pass "
                      f"{fmt(r['eye_s'])} s; one render, `bench/scaling.csv`), peak memory "
                      f"{fmt(r['bytes_per_stored'])} bytes per stored photon.")
+    b = rec.get("both")
+    if b is not None:
+        lines.append(f"- At {int(b['photons_emitted']):,} emitted photons the precomputed method's total exceeds the "
+                     f"conventional one's by {fmt(b['precomputed'] - b['conventional'])} s; per phase (precomputed "
+                     "minus conventional): " + ", ".join(f"{k} {fmt(v)} s" for k, v in b["phases"].items())
+                     + f"; the largest difference is the {b['largest_phase']}.")
     for t in rec["two_threads"]:
         if t["trace_s"] is None:
             continue
@@ -1706,9 +1724,20 @@ def readme_scale(rec):
              if r["two_total_pairs"] else f"{fmt(r['total_s'])} s in total (the scaling run)")
     speed = (f"; two threads against one: photon pass {fmt(r['trace'][0])}x, build {fmt(r['build'][0])}x"
              if r["trace"] is not None and r["build"] is not None else "")
+    b = rec["both"]
+    methods = ""
+    if b is not None:
+        ph = b["phases"]
+        methods = (f"; in the scaling run at {int(b['photons_emitted']) // 1000000}M the precomputed method took "
+                   f"{fmt(b['precomputed'])} s against the conventional {fmt(b['conventional'])} s (one render each): "
+                   f"the difference is its precompute, {fmt(b['precompute_s'])} s, of which its eye pass wins back "
+                   f"{fmt(-ph['eye'])} s" if b["largest_phase"] == "precompute" else
+                   f"; in the scaling run at {int(b['photons_emitted']) // 1000000}M the precomputed method took "
+                   f"{fmt(b['precomputed'])} s against the conventional {fmt(b['conventional'])} s (one render each), "
+                   f"the largest phase difference in its {b['largest_phase']} ({fmt(ph[b['largest_phase']])} s)")
     return (f"- **At scale**: {int(r['photons_emitted']) // 1000000}M emitted photons ({int(r['photons_stored']):,} "
             f"stored), conventional, n = 100, 512x384, {int(r['threads'])} threads: {pairs}, peak memory "
-            f"{fmt(r['bytes_per_stored'])} bytes per stored photon{speed} (`results/bench/threads.md`, "
+            f"{fmt(r['bytes_per_stored'])} bytes per stored photon{speed}{methods} (`results/bench/threads.md`, "
             "`results/bench/scaling.md`).")
 
 
