@@ -969,15 +969,40 @@ RECORDS = {"table": record_table, "precompute": record_precompute, "reference_er
            "peers": record_peers}
 
 
+# the figures each finding shows, relative to the results directory (a
+# pattern may match several; a file that is not there is left out)
+FIGURES = {"table": ("figures/ratio-vs-n.png",), "precompute": ("figures/phases.png",),
+           "figure3": ("figures/fig3.png", "figures/fig3-errors.png"),
+           "equal_error": ("table1/equal-error.png", "figures/tradeoff.png"), "caustic": ("figures/caustic.png",),
+           "scenes": ("figures/scenes.png",), "resolution": ("resolution/equal-error-*.png",),
+           "scale": ("figures/bench-scaling.png",), "beyond": ("figures/beyond.png",),
+           "rules": ("figures/rep-study.png", "figures/fig2.png")}
+
+
+def figures_of(d):
+    """{finding: [figure paths relative to D's root]} of the FIGURES that exist."""
+    root = d["root"]
+    out = {}
+    for name, pats in FIGURES.items():
+        got = []
+        for pat in pats:
+            got += sorted(os.path.relpath(f, root) for f in glob.glob(os.path.join(root, pat)))
+        if got:
+            out[name] = got
+    return out
+
+
 def records(d):
     """Every finding's record from the results files D names: name -> the
-    record, or the Missing that says why there is none."""
+    record, or the Missing that says why there is none; under "figures",
+    figures_of(D)."""
     out = {}
     for name, fn in RECORDS.items():
         try:
             out[name] = fn(d)
         except Missing as e:
             out[name] = e
+    out["figures"] = figures_of(d) if "root" in d else {}
     return out
 
 
@@ -1322,8 +1347,8 @@ def md_scale(rec):
                      f"{fmt(r['bytes_per_stored'])} bytes per stored photon.")
     b = rec.get("both")
     if b is not None:
-        lines.append(f"- At {int(b['photons_emitted']):,} emitted photons the precomputed method's total exceeds the "
-                     f"conventional one's by {fmt(b['precomputed'] - b['conventional'])} s; per phase (precomputed "
+        lines.append(f"- At {int(b['photons_emitted']):,} emitted photons the precomputed method's total minus the "
+                     f"conventional one's is {fmt(b['precomputed'] - b['conventional'])} s; per phase (precomputed "
                      "minus conventional): " + ", ".join(f"{k} {fmt(v)} s" for k, v in b["phases"].items())
                      + f"; the largest difference is the {b['largest_phase']}.")
     for t in rec["two_threads"]:
@@ -1797,13 +1822,43 @@ def markdown(d, recs=None):
            "paired comparisons are worded from their Holm-corrected test (ranked, equivalent within delta = "
            f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}% of the conventional value, or undetermined), unpaired ones "
            f"rank only disjoint 95% intervals. Error: {metrics.PRIMARY_DEFINITION} (experiments/analysis/metrics.py).", ""]
+    out += opener(recs) + [""]
+    figs = recs.get("figures", {})
     for num, name, writer, missing_title in FINDINGS:
         try:
             title, lines = write(recs[name], writer)
         except Missing as e:
             title, lines = missing_title, [f"Not answered here: {e}."]
-        out += [f"## {num}. {title}", ""] + lines + [""]
+        pics = [f"![{os.path.basename(f)}]({f})" for f in figs.get(name, [])]
+        out += [f'<a id="{anchor(num)}"></a>', "", f"## {num}. {title}", ""] + lines + [""] \
+            + ([" ".join(pics), ""] if pics else [])
     return "\n".join(out)
+
+
+def anchor(num):
+    """The HTML anchor of finding NUM: 'finding-1', 'finding-T'."""
+    return f"finding-{num}"
+
+
+def opener(recs):
+    """FINDINGS.md's summary: the estimate that is primary and why, then
+    README's summary bullets (the same writers, the same records), each
+    linked to its finding's section; a bullet whose record is missing is
+    left to its section."""
+    num_of = {name: num for num, name, _, _ in FINDINGS}
+    out = ["## In short", "", PRIMARY_ESTIMATE_REASON, ""]
+    for name, writer in SUMMARY:
+        try:
+            text = write(recs[name], writer)
+        except Missing:
+            continue
+        cut = text.rfind(" (`results/")
+        if cut > 0 and text.endswith(").") and name in num_of:
+            text = text[:cut] + "."
+        if name in num_of:
+            text += f" [Finding {num_of[name]}](#{anchor(num_of[name])})."
+        out.append(text)
+    return out
 
 
 NUMBER = r"(?<![\w.])[0-9]+(?:[.,][0-9]+)*"
