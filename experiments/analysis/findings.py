@@ -520,8 +520,8 @@ NO_REFERENCE_IMAGE = (("estimator bias", "make estimator-bias",
                       ("stability", "make stability", "the image mean's expected value, no reference image"))
 # why a study is judged by each kind of reference
 REFERENCE_WHY = {
-    "POV-Ray": "an independent renderer, as the paper judges its images, but made once per scene at one size "
-               "and with its own noise and bias unmeasured (finding E)",
+    "POV-Ray": "an independent renderer, as the paper judges its images, at the sizes reference/ holds, with "
+               "its own noise and bias unmeasured (finding E)",
     "converged photonmap": "our conventional method with the corrected estimate at many times the grid's photon "
                            "count (reference.py): made at whatever scene and size the study renders, with its "
                            "noise and kernel bias measured, but by the method family it judges",
@@ -1140,10 +1140,8 @@ def md_bias(rec):
     lo, hi = rec["lowest"], rec["highest"]
     if lo is None:
         raise Missing("`estimator-bias.csv` has no finite corrected interval (`make estimator-bias`)")
-    lines.append(f"- With `--bias-correction`, 1 (the exact radiance) lies inside {rec['covered']} of the "
-                 f"{rec['intervals']} intervals (both methods, every n); the means run from {fmt(lo[0], 5)} ± "
-                 f"{fmt(lo[1], 2)} to {fmt(hi[0], 5)} ± {fmt(hi[1], 2)}.")
-    lines.append("- With `--bias-correction` " + bias_equivalence_text(rec) + ".")
+    lines.append("- With `--bias-correction` " + bias_equivalence_text(rec) + f"; the means run from "
+                 f"{fmt(lo[0], 5)} ± {fmt(lo[1], 2)} to {fmt(hi[0], 5)} ± {fmt(hi[1], 2)}.")
     wide = [e for e in rec["equivalence"] if not e["equivalent"]]
     if wide:
         lines.append("- Not shown equivalent (the interval reaches beyond the margin): " + "; ".join(
