@@ -582,7 +582,8 @@ def test_curve_regions():
     assert findings.crossing_of(runs) == ("up", 0.002, 0.004)
     text = findings.regions_text(runs)
     assert "crosses 1 between 0.002 and 0.004, slower at the tighter targets" in text
-    assert findings.regions_head(runs) == "Small images: the precomputation pays at the looser targets, not at the tightest"
+    assert findings.regions_head(runs) == \
+        "Small images: the precomputation pays at the looser targets, not at the tightest"
     up = findings.curve_regions(pd.DataFrame(curve_rows([(0.001, 1.1, 1.3, 1.0), (0.002, 1.2, 1.4, 1.0)])))
     assert findings.crossing_of(up) is None and "crosses" not in findings.regions_text(up)
     assert findings.regions_head(up).startswith("Small images: the precomputation still pays")
@@ -660,7 +661,8 @@ def test_reference_error_and_figure3():
             e = findings.record_reference_error({"table": path, "equal_error": os.path.join(d, "none.csv")})
             assert e["floor"] == 6e-4 and e["tightest"] is None
             p = e["estimates"]["paper"]
-            assert [(c["photons"], c["verdict"], c["widened"]) for c in p["changed"]] == [(500000, "lower", "equivalent")]
+            assert [(c["photons"], c["verdict"], c["widened"]) for c in p["changed"]] == \
+                [(500000, "lower", "equivalent")]
             assert p["judged"] == 2 and abs(p["times"][0] - 3) < 1e-9
 
 

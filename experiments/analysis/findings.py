@@ -388,7 +388,8 @@ def record_precompute(d):
         rest = (ours_total - ours_pre) / conv
         paper_pre = c["paper_s"] - c["paper_conv_s"] * rest
         reps = c[f"representatives{x}"]
-        cells.append({"photons": c["photons"], "nn": c["nn"], "paper_s": c["paper_s"], "paper_conv_s": c["paper_conv_s"],
+        cells.append({"photons": c["photons"], "nn": c["nn"], "paper_s": c["paper_s"],
+                      "paper_conv_s": c["paper_conv_s"],
                       "rest": rest, "paper_pre": paper_pre, "paper_share": paper_pre / c["paper_s"],
                       "ours_share": ours_pre / ours_total, "paper_per_rep": paper_pre / reps if reps > 0 else np.nan,
                       "ours_pre": ours_pre, "machine": c["paper_conv_s"] / conv})
@@ -962,7 +963,8 @@ def record_peers(d):
 
 
 RECORDS = {"table": record_table, "precompute": record_precompute, "reference_error": record_reference_error,
-           "figure3": record_figure3, "judges": record_judges, "equal_error": record_equal_error, "cost": record_cost, "bias": record_bias,
+           "figure3": record_figure3, "judges": record_judges, "equal_error": record_equal_error,
+           "cost": record_cost, "bias": record_bias,
            "caustic": record_caustic, "scenes": record_scenes, "resolution": record_resolution,
            "baseline": record_baseline, "scale": record_scale, "stability": record_stability,
            "beyond": record_beyond, "repro": record_repro, "rules": record_rules, "metric": record_metric,
@@ -1571,7 +1573,8 @@ def readme_equal_error(rec):
     try:
         o = estimate_of(rec["estimates"], OTHER_ESTIMATE)
         if vs_one_word(o["headline_vs_one"]) != vs_one_word(r["headline_vs_one"]):
-            beside = f" (the {OTHER_ESTIMATE} estimate: {headline_text(o['headline'])}, {vs_one_word(o['headline_vs_one'])})"
+            beside = (f" (the {OTHER_ESTIMATE} estimate: {headline_text(o['headline'])}, "
+                      f"{vs_one_word(o['headline_vs_one'])})")
     except Missing:
         pass
     return (f"- {head} ({PRIMARY_ESTIMATE} estimate; the curve starts at {primary_name()} {fmt(t['target'])}, the "
@@ -1765,7 +1768,8 @@ def readme_scale(rec):
 
 
 # (record, writer), in the block's order
-SUMMARY = (("table", readme_table), ("precompute", readme_precompute), ("figure3", readme_figure3), ("equal_error", readme_equal_error), ("cost", readme_cost),
+SUMMARY = (("table", readme_table), ("precompute", readme_precompute), ("figure3", readme_figure3),
+           ("equal_error", readme_equal_error), ("cost", readme_cost),
            ("resolution", readme_resolution), ("bias", readme_bias), ("rules", readme_rules),
            ("beyond", readme_beyond), ("repro", readme_repro), ("peers", readme_peers), ("scale", readme_scale))
 
