@@ -755,3 +755,22 @@ def test_peers_stateless_and_coverage_quoted():
         assert "has no stateless run" in findings.readme_peers(r)
     assert "covers the truth 74.5% of the time" in findings.few_seeds("x", 3, "make scenes", 0.745)
     assert "covers" not in findings.few_seeds("x", 3, "make scenes")
+
+
+def test_record_repro_runs_a_b_busy():
+    """A reproducibility.csv that names its runs: the a-b rows give the
+    summary, the a-busy rows the busy run's, said in FINDINGS.md; negative
+    control: without a-b rows the finding is missing, not a busy number."""
+    def row(runs, med, met):
+        return {"runs": runs, "summary_ratio_median_abs_delta_pp": med, "summary_ratio_max_abs_delta_pp": 2 * med,
+                "summary_ratio_overlap_cells": 12, "summary_cells": 12, "summary_goal_pp": 3, "summary_met": met}
+    with tempfile.TemporaryDirectory() as d:
+        r = findings.record_repro({"repro": write_csv(d, "r.csv", [row("a-b", 1.5, True), row("a-b", 1.5, True),
+                                                                    row("a-busy", 4.5, False)])})
+        assert r["median_pp"] == 1.5 and r["met"] and r["busy"]["median_pp"] == 4.5 and not r["busy"]["met"]
+        assert "busy loop: median |difference| 4.50 pp" in "\n".join(findings.md_repro(r)[1])
+        try:
+            findings.record_repro({"repro": write_csv(d, "r.csv", [row("a-busy", 4.5, False)])})
+            assert False, "a file without runs a-b answered"
+        except findings.Missing as e:
+            assert "a-b" in str(e)
