@@ -1267,8 +1267,9 @@ def md_reference_error(rec):
         s += ("no verdict changes" if not e["changed"] else "the verdicts change in " + count_list(
             [f"{cell(r['photons'], r['nn'])} ({r['verdict']} -> {r['widened']})" for r in e["changed"]]))
         lines.append(s + ".")
-    lines.append(f"- The primary metric is {primary_name()}: the paper's comparison and every study's targets are "
-                 "in it (experiments/analysis/metrics.py); where NMSE changes the verdicts is finding M.")
+    lines.append(f"- The primary metric is {primary_name()}: every study's targets and every earlier table are in "
+                 "it (experiments/analysis/metrics.py says why); NMSE, relative at every brightness, is reported "
+                 "beside it, and where it changes the paired verdicts is finding M.")
     return "Table 1's reference and its own error", lines
 
 
@@ -1305,8 +1306,10 @@ def readme_figure3(rec):
             a = r[PRIMARY_ESTIMATE]
             o = r.get(OTHER_ESTIMATE)
             beside = f", {OTHER_ESTIMATE} estimate {o['word']}" if o is not None and o["word"] != a["word"] else ""
+            wide = (f" (within the reference's own error: {a['wide']})"
+                    if a["wide"] is not None and a["wide"] != a["word"] else "")
             parts.append(f"at {cell(r['photons'], r['nn'])} the paper says {r['said']}, the paired data say "
-                         f"{a['word']}{beside}")
+                         f"{a['word']}{wide}{beside}")
     if not parts:
         raise Missing("`table1.csv` has none of Figure 3's cells (`make reproduce-table`)")
     return (f"- **The paper's Figure 3 claim, against the paired {primary_name()}** ({PRIMARY_ESTIMATE} estimate; "
@@ -1604,13 +1607,15 @@ def readme_equal_error(rec):
             "(`results/table1/equal-error.md`).")
 
 
-def verdict_changes_text(changed, word=None):
+def verdict_changes_text(changed, word=None, cells=None):
     """'; the OTHER estimate's verdict differs in (50k, 10) (higher), ...'
-    of a changed_verdicts list of cells, or '' when none differs."""
+    of a changed_verdicts list of cells (with 'k of CELLS cells' when CELLS
+    is given), or '' when none differs."""
     if not changed:
         return ""
     word = word or (lambda v: v)
-    return (f"; the {OTHER_ESTIMATE} estimate's verdict differs in " +
+    of = f" {len(changed)} of {cells} cells:" if cells else ""
+    return (f"; the {OTHER_ESTIMATE} estimate's verdict differs in{of} " +
             count_list([f"{cell(*k)} ({word(b)})" for k, _, b in changed]))
 
 
@@ -1634,7 +1639,7 @@ def readme_cost(rec):
                  f"{ci(w['mean'], w['lo'], w['hi'])}{share}")
     return (f"- **What the speed costs**: per seed, paired ({pairs_text(rec['pairs'])} per cell), Holm over the "
             f"{rec['cells']} cells, the precomputed method's {primary_name()} ({PRIMARY_ESTIMATE} estimate) is "
-            + "; ".join(parts) + worst + verdict_changes_text(rec["changed"], lambda v: words.get(v, v))
+            + "; ".join(parts) + worst + verdict_changes_text(rec["changed"], lambda v: words.get(v, v), rec["cells"])
             + " (`results/table1/table1.md`).")
 
 
