@@ -2,7 +2,7 @@
 
 Owns the simulation behind the findings' note on few-seed intervals: draw N
 values from a normal distribution (mean 0), take the percentile bootstrap
-interval of their mean (stats.percentile_interval over RESAMPLES resamples
+interval of their mean (the quantiles stats.percentile_interval takes, over RESAMPLES resamples
 of the N values, with replacement), and count how often it contains 0 over
 TRIALS draws. With N = 3 a 95% interval covers about three times in four,
 since the resampled means cannot spread wider than the three values do.
