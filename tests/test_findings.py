@@ -483,3 +483,294 @@ def test_writers_read_only_the_record():
     assert md_text.count("Not answered here: absent.") == len(findings.FINDINGS) - 1
     recs["repro"] = {**rec, "overlap": 9}
     assert "overlap in 9 of 9 cells" in findings.summary({"root": "x"}, recs)
+
+
+def test_primary_estimate_and_changed_verdicts():
+    """One primary estimate, the other beside it only where the verdict
+    words differ: a cell with the same verdict in both is not listed."""
+    assert findings.PRIMARY_ESTIMATE in ("paper", "corrected")
+    assert findings.OTHER_ESTIMATE != findings.PRIMARY_ESTIMATE
+    a = {(50000, 10): "higher", (50000, 100): "equivalent", (500000, 10): "lower"}
+    b = {(50000, 10): "higher", (50000, 100): "undetermined", (500000, 10): "lower"}
+    assert findings.changed_verdicts(a, b) == [((50000, 100), "equivalent", "undetermined")]
+    assert findings.changed_verdicts(a, dict(a)) == []
+    assert findings.verdict_changes_text([]) == ""
+    assert "(50k, 100) (undetermined)" in findings.verdict_changes_text(findings.changed_verdicts(a, b))
+
+
+def table_with_paper(ratio_500k_10, paper_500k_10):
+    """A table1.csv frame whose (500k, 10) cell has our paired ratio
+    RATIO_500K_10 = (r, lo, hi) and the paper's PAPER_500K_10."""
+    t = table1_frame([(80, 75, 85), (40, 38, 42), ratio_500k_10], [(0.01, 0.005, 0.02)] * 3)
+    t.loc[(t["photons"] == 500000) & (t["nn"] == 10) & (t["method"] == "precomputed"),
+          "paper_ratio_percent"] = paper_500k_10
+    return t
+
+
+def test_table_reversal():
+    """Where the paper's method is slower (its ratio above 100%) and our
+    interval lies wholly below 100%, the summary says so; negative control:
+    our interval reaching 100% is no reversal."""
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "table1.csv")
+        table_with_paper((85, 76, 94), 119.0).to_csv(path, index=False)
+        r = findings.record_table({"table": path})
+        assert [(x["photons"], x["nn"]) for x in r["reversed"]] == [(500000, 10)]
+        assert r["ours_faster"] == 3 and r["cells"] == 3
+        text = findings.readme_table(r)
+        assert "One feature does not reproduce: at P_e = 500k with n = 10 the paper's method is slower (119.0%)" in text
+        assert "except at P_e = 500k with n = 10" in text
+        table_with_paper((95, 88, 101), 119.0).to_csv(path, index=False)
+        r = findings.record_table({"table": path})
+        assert r["reversed"] == [] and "does not reproduce" not in findings.readme_table(r)
+
+
+def test_record_precompute():
+    """The stated model at a cell of known answer: paper 100 s, its
+    conventional 80 s; ours 10 s with a 2 s precompute against a 16 s
+    conventional: the rest is 8/16 = 0.5 of the conventional time, so the
+    paper's precompute is 100 - 80 x 0.5 = 60 s (60%), ours 20%, and per
+    representative (1000) 60 ms against runs.csv's 2 ms; negative control:
+    a paper time below its conventional rest gives a negative precompute,
+    listed as where the model says nothing."""
+    def table(paper_s):
+        rows = []
+        for ph, n in ((50000, 10), (500000, 10)):
+            rows.append({"photons": ph, "nn": n, "method": "precomputed", "paper_s": paper_s, "paper_conv_s": 80.0,
+                         "total_median_s": 10.0, "precompute_median_s": 2.0, "conv_total_median_s": 16.0,
+                         "representatives": 1000})
+            rows.append({"photons": ph, "nn": n, "method": "conventional", "paper_s": 80.0, "paper_conv_s": 80.0,
+                         "total_median_s": 16.0, "precompute_median_s": 0.0, "conv_total_median_s": 16.0,
+                         "representatives": 0})
+        return rows
+    runs = [{"role": "grid", "status": "ok", "method": m, "estimate": findings.PRIMARY_ESTIMATE, "photons": ph,
+             "precompute_s": pre, "representatives": reps}
+            for ph in (50000, 500000) for m, pre, reps in (("precomputed", 2.0, 1000), ("precomputed", 4.0, 1000),
+                                                          ("conventional", 0.0, 0))]
+    with tempfile.TemporaryDirectory() as d:
+        rp = write_csv(d, "runs.csv", runs)
+        r = findings.record_precompute({"table": write_csv(d, "table1.csv", table(100.0)), "runs": rp})
+        c = r["cells"][-1]
+        assert r["top"] == 500000 and abs(c["rest"] - 0.5) < 1e-12 and abs(c["paper_pre"] - 60) < 1e-9
+        assert abs(c["paper_share"] - 0.6) < 1e-12 and abs(c["ours_share"] - 0.2) < 1e-12
+        assert abs(r["paper_per_rep"] - 0.06) < 1e-12 and abs(r["ours_per_rep"] - 0.003) < 1e-12
+        assert abs(r["machine"] - 5.0) < 1e-12 and abs(r["paper_per_rep_here"] - 0.012) < 1e-12
+        assert r["negative"] == []
+        assert "60.0-60.0% of its time" in findings.readme_precompute(r)
+        r = findings.record_precompute({"table": write_csv(d, "table1.csv", table(30.0)), "runs": rp})
+        assert r["negative"] == [(50000, 10), (500000, 10)]
+        assert "says nothing" in "\n".join(findings.md_precompute(r)[1])
+
+
+def curve_rows(spec, est="paper"):
+    """Equal-error curve rows of estimate EST from SPEC = [(target, lo, hi, defined)]."""
+    return [{"estimate": est, "kind": "curve", "target": t, "speedup": (lo + hi) / 2, "lo": lo, "hi": hi,
+             "defined_fraction": f} for t, lo, hi, f in spec]
+
+
+def test_curve_regions():
+    """Where the curve pays: intervals wholly below 1 at the tight targets,
+    containing 1 in between, wholly above at the loose ones; a target that
+    fewer than 95% of the resamples reach is left out; the crossing lies
+    between the last target below and the first above. Negative control: a
+    curve wholly above 1 has no crossing and a different head."""
+    spec = [(0.001, 0.5, 0.8, 0.99), (0.002, 0.6, 0.9, 0.99), (0.003, 0.9, 1.2, 0.99),
+            (0.004, 1.1, 1.5, 0.99), (0.005, 0.2, 0.3, 0.5), (0.006, 1.2, 1.9, 1.0)]
+    runs = findings.curve_regions(pd.DataFrame(curve_rows(spec)))
+    assert [(x["class"], x["first"], x["last"], x["count"]) for x in runs] == [
+        ("below", 0.001, 0.002, 2), ("contains", 0.003, 0.003, 1), ("above", 0.004, 0.006, 2)]
+    assert findings.crossing_of(runs) == ("up", 0.002, 0.004)
+    text = findings.regions_text(runs)
+    assert "crosses 1 between 0.002 and 0.004, slower at the tighter targets" in text
+    assert findings.regions_head(runs) == \
+        "Small images: the precomputation pays at the looser targets, not at the tightest"
+    up = findings.curve_regions(pd.DataFrame(curve_rows([(0.001, 1.1, 1.3, 1.0), (0.002, 1.2, 1.4, 1.0)])))
+    assert findings.crossing_of(up) is None and "crosses" not in findings.regions_text(up)
+    assert findings.regions_head(up).startswith("Small images: the precomputation still pays")
+
+
+def test_one_wording_of_the_curve():
+    """README's summary and FINDINGS.md word the curve's trend with the same
+    sentence (trend_text), and which sentence follows the test of its two
+    ends: disjoint intervals say it depends on the target, overlapping ones
+    that no trend is claimed (negative control: the other sentence absent)."""
+    rows = [{"estimate": "paper", "kind": "tightest", "target": 0.01, "speedup": 1.5, "lo": 1.2, "hi": 1.8,
+             "defined_fraction": 0.99}]
+    for hi_end, claim in (((2.5, 2.1, 2.9), "depends on the target"), ((1.9, 1.5, 2.3), "no trend with the target")):
+        spec = [(0.01, 1.2, 1.8, 0.99), (0.02, hi_end[1], hi_end[2], 0.99)]
+        with tempfile.TemporaryDirectory() as d:
+            path = write_csv(d, "equal-error.csv", rows + curve_rows(spec))
+            rec = findings.record_equal_error({"equal_error": path})
+        r = findings.estimate_of(rec["estimates"], "paper")
+        sentence = findings.trend_text(r)
+        assert claim in sentence
+        other = "no trend with the target" if claim == "depends on the target" else "depends on the target"
+        assert other not in sentence
+        if findings.PRIMARY_ESTIMATE == "paper":
+            assert sentence in findings.readme_equal_error(rec)
+        assert any(sentence in x for x in findings.equal_error_lines(rec["estimates"]))
+
+
+def test_bias_equivalence_and_share_interval():
+    """The corrected intervals are equivalent to 1 only when wholly inside
+    1 +- BIAS_MARGIN (negative control: an interval containing 1 but reaching
+    beyond the margin is not); a bias share's interval holds the bias fixed
+    over the excess's interval, and is not defined where the share is
+    negative or the excess's interval reaches 0."""
+    m = findings.BIAS_MARGIN
+    b = pd.DataFrame([{"n": 10, "conventional_corrected_mean": 1.0, "conventional_corrected_ci95": m / 2,
+                       "precomputed_corrected_mean": 1.0, "precomputed_corrected_ci95": 3 * m}])
+    eq = findings.equivalence_to_one(b, m)
+    assert [(e["method"], e["equivalent"]) for e in eq] == [("conventional", True), ("precomputed", False)]
+    assert all(e["equivalent"] for e in findings.equivalence_to_one(b, 4 * m))
+    share, lo, hi, ok = findings.share_interval(0.5, 1.0, 0.5, 2.0)
+    assert ok and (share, lo, hi) == (0.5, 0.25, 1.0)
+    assert findings.share_interval(-0.1, 1.0, 0.5, 2.0)[3] is False
+    assert findings.share_interval(0.5, 1.0, -0.1, 2.0)[3] is False
+
+
+def test_reference_error_and_figure3():
+    """The margin widened to the reference's own error: an interval inside
+    it becomes equivalent, one wholly beyond it stays ranked, one across its
+    edge is undetermined; Figure 3's statements agree or not with the
+    paired verdicts (negative control: a ranked cell is 'differ', never
+    'alike')."""
+    assert findings.verdict_at_margin(-0.0003, -0.0002, 0.0006) == "equivalent"
+    assert findings.verdict_at_margin(0.001, 0.002, 0.0006) == "higher"
+    assert findings.verdict_at_margin(-0.002, -0.001, 0.0006) == "lower"
+    assert findings.verdict_at_margin(0.0004, 0.0008, 0.0006) == "undetermined"
+    assert findings.verdict_at_margin(float("nan"), 0.1, 0.0006) == "undetermined"
+    rows = []
+    for (ph, n, _), (m, lo, hi, v) in zip(findings.FIGURE3, ((0.03, 0.02, 0.04, "higher"),
+                                                             (-1e-5, -5e-5, 3e-5, "equivalent"),
+                                                             (-1.5e-4, -1.8e-4, -1.2e-4, "lower"))):
+        rows.append({"photons": ph, "nn": n, "method": "precomputed", "relmse_diff_mean": m, "relmse_diff_lo": lo,
+                     "relmse_diff_hi": hi, "relmse_diff_delta": 2e-4, "relmse_diff_verdict": v,
+                     "relmse_ref_floor": 6e-4})
+        rows.append({"photons": ph, "nn": n, "method": "conventional", "relmse_ref_floor": 6e-4})
+    with tempfile.TemporaryDirectory() as d:
+        path = write_csv(d, "table1.csv", rows)
+        r = findings.record_figure3({"table": path})
+        words = [x[findings.PRIMARY_ESTIMATE]["word"] for x in r["rows"]] if findings.PRIMARY_ESTIMATE == "paper" \
+            else None
+        if words is not None:
+            assert words == ["differ", "alike", "differ"]
+            assert [x["paper"]["wide"] for x in r["rows"]] == ["differ", "alike", "alike"]
+            text = "\n".join(findings.md_figure3(r)[1])
+            assert "the paper says alike" in text and "so the data disagree" in text and "so the data agree" in text
+            e = findings.record_reference_error({"table": path, "equal_error": os.path.join(d, "none.csv")})
+            assert e["floor"] == 6e-4 and e["tightest"] is None
+            p = e["estimates"]["paper"]
+            assert [(c["photons"], c["verdict"], c["widened"]) for c in p["changed"]] == \
+                [(500000, "lower", "equivalent")]
+            assert p["judged"] == 2 and abs(p["times"][0] - 3) < 1e-9
+
+
+def test_record_judges():
+    """Which reference judges which study, from the cells files' ref column,
+    and a converged reference's noise and bias as a study's Markdown quotes
+    it; negative control: without that Markdown (and no JSON) they are None
+    and the section says they are missing."""
+    conv = "results/runs/cornell-convref-p1000-n200-s2-seeds9/64x48.exr"
+    with tempfile.TemporaryDirectory() as d:
+        root = os.path.join(d, "results")
+        write_csv(root, "table1/cells.csv", [{"ref": "reference/cornell/cornell-reference-64x48.exr"}])
+        write_csv(root, "resolution/cells-64x48.csv", [{"ref": conv}])
+        write_csv(root, "beyond/studies/cells-cornell-64x48-paper.csv", [{"ref": conv}])
+        write_csv(root, "beyond/studies/equal-error-cornell-64x48-paper.csv",
+                  [{"kind": "tightest", "target": 0.004}, {"kind": "curve", "target": 0.005}])
+        md = os.path.join(root, "resolution", "resolution.md")
+        with open(md, "w", encoding="utf-8") as f:
+            f.write(f"- 64x48: Reference `{conv}`: conventional method. Its own error in relmse: noise 0.0002 "
+                    "(from the seeds), kernel bias 1e-05 (from halving P_e).\n")
+        r = findings.record_judges({"root": root})
+        kinds = {x["study"]: x["kinds"] for x in r["studies"]}
+        assert kinds["Table 1"] == ["POV-Ray"] and kinds["resolution"] == ["converged photonmap"]
+        assert kinds["beyond"] == ["converged photonmap"] and kinds["scenes"] == []
+        (b,) = r["beyond"]
+        assert b["cases"] == ["cornell-64x48"] and (b["noise"], b["bias"], b["tightest"]) == (0.0002, 1e-05, 0.004)
+        assert "noise 5.0%" in "\n".join(findings.md_judges(r)[1])
+        os.remove(md)
+        (b,) = findings.record_judges({"root": root})["beyond"]
+        assert b["noise"] is None and b["bias"] is None
+        assert "is missing here" in "\n".join(findings.md_judges(findings.record_judges({"root": root}))[1])
+
+
+def test_scale_both_methods():
+    """The scaling bullet gives both methods at the largest map and names
+    the phase that makes the difference (the precompute, 3 s of the 2 s
+    more, the eye pass winning 1 s back); negative control: without a
+    precomputed row the bullet names no difference."""
+    rows = [{"method": m, "photons_emitted": 9000, "photons_stored": 18000, "threads": 2, "trace_s": 1, "build_s": 1,
+             "precompute_s": pre, "eye_s": eye, "total_s": 2 + pre + eye, "bytes_per_stored": 40}
+            for m, pre, eye in (("conventional", 0.0, 2.0), ("precomputed", 3.0, 1.0))]
+    th = [{"photons_emitted": 9000, "pair": 1, "threads": t, "trace_s": 1.0, "build_s": 1.0, "total_s": 4.0 / t}
+          for t in (1, 2)]
+    with tempfile.TemporaryDirectory() as d:
+        tp = write_csv(d, "threads.csv", th)
+        r = findings.record_scale({"scaling": write_csv(d, "scaling.csv", rows), "threads": tp})
+        assert r["both"]["largest_phase"] == "precompute" and r["both"]["phases"]["eye"] == -1.0
+        text = findings.readme_scale(r)
+        assert "the precomputed method took 6 s against the conventional 4 s" in text
+        assert "the difference is its precompute, 3 s, of which its eye pass wins back 1 s" in text
+        r = findings.record_scale({"scaling": write_csv(d, "scaling.csv", rows[:1]), "threads": tp})
+        assert r["both"] is None and "precomputed method took" not in findings.readme_scale(r)
+
+
+def test_opener_anchors_figures():
+    """FINDINGS.md opens with the summary, each bullet linked to its
+    section's anchor, and shows a section's figures; a missing record's
+    bullet is left out of the opener (negative control) and a figure that
+    is not there is not linked."""
+    rec = {"median_pp": 1.234, "max_pp": 5.678, "overlap": 7, "cells": 9, "goal_pp": 2, "met": False}
+    recs = {name: findings.Missing("absent") for name in findings.RECORDS}
+    recs["repro"] = rec
+    recs["figures"] = {"repro": ["figures/x.png"]}
+    text = findings.markdown({"root": "x"}, recs)
+    assert text.index("## In short") < text.index('<a id="finding-R"></a>')
+    assert "[Finding R](#finding-R)." in text and "![x.png](figures/x.png)" in text
+    assert "[Finding 1](#finding-1)" not in text
+    assert findings.PRIMARY_ESTIMATE_REASON in text
+    with tempfile.TemporaryDirectory() as d:
+        assert findings.figures_of({"root": d}) == {}
+        os.makedirs(os.path.join(d, "figures"))
+        open(os.path.join(d, "figures", "beyond.png"), "wb").close()
+        assert findings.figures_of({"root": d}) == {"beyond": ["figures/beyond.png"]}
+
+
+def test_peers_stateless_and_coverage_quoted():
+    """The kNN bullet names the asymmetry and quotes the stateless ratio
+    when the file has a stateless run (negative control: without it, says
+    so); a few-seed line quotes the simulated coverage it is given."""
+    peers = [{"who": w, "order": "tiles", "pe": 50000, "stored": 1000, "k": 10, "queries": 10, "rep": rep,
+              "seconds": s} for w, s in (("ours", 1.0), ("flann-knn", 3.0), ("flann-radius", 5.0), ("ckdtree", 2.0),
+                                         ("nanoflann", 4.0), ("ours-stateless", 1.6)) for rep in (0, 1)]
+    with tempfile.TemporaryDirectory() as d:
+        r = findings.record_peers({"peers": write_csv(d, "peers.csv", peers)})
+        assert r["rows"][0]["stateless_ratio"] == 1.25
+        text = findings.readme_peers(r)
+        assert "carries its state" in text and "AVX2" in text and "without the carried state ours answers 1.25x" in text
+        r = findings.record_peers({"peers": write_csv(d, "peers.csv", [p for p in peers
+                                                                      if p["who"] != "ours-stateless"])})
+        assert "has no stateless run" in findings.readme_peers(r)
+    assert "covers the truth 74.5% of the time" in findings.few_seeds("x", 3, "make scenes", 0.745)
+    assert "covers" not in findings.few_seeds("x", 3, "make scenes")
+
+
+def test_record_repro_runs_a_b_busy():
+    """A reproducibility.csv that names its runs: the a-b rows give the
+    summary, the a-busy rows the busy run's, said in FINDINGS.md; negative
+    control: without a-b rows the finding is missing, not a busy number."""
+    def row(runs, med, met):
+        return {"runs": runs, "summary_ratio_median_abs_delta_pp": med, "summary_ratio_max_abs_delta_pp": 2 * med,
+                "summary_ratio_overlap_cells": 12, "summary_cells": 12, "summary_goal_pp": 3, "summary_met": met}
+    with tempfile.TemporaryDirectory() as d:
+        r = findings.record_repro({"repro": write_csv(d, "r.csv", [row("a-b", 1.5, True), row("a-b", 1.5, True),
+                                                                    row("a-busy", 4.5, False)])})
+        assert r["median_pp"] == 1.5 and r["met"] and r["busy"]["median_pp"] == 4.5 and not r["busy"]["met"]
+        assert "busy loop: median |difference| 4.50 pp" in "\n".join(findings.md_repro(r)[1])
+        try:
+            findings.record_repro({"repro": write_csv(d, "r.csv", [row("a-busy", 4.5, False)])})
+            assert False, "a file without runs a-b answered"
+        except findings.Missing as e:
+            assert "a-b" in str(e)

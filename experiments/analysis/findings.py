@@ -15,10 +15,16 @@ from its test, never from a reading of the numbers:
 A speed-up at equal error is quoted only at a target where at least 95% of
 the bootstrap resamples reach both fronts (equal_error.headline); the
 tightest target both fronts reach is named as where the curve starts.
-A finding whose input file or column is missing says so, with the target
-that makes it, instead of a number. The findings are numbered as the
+One estimate is primary (PRIMARY_ESTIMATE, the paper's: every claim under
+test was made with it); every summary bullet quotes it, and gives the other
+beside it only where the verdict words differ. The equal-error curve's
+dependence on the target is worded by one function (trend_text) for both
+texts. A finding whose input file or column is missing says so, with the
+target that makes it, instead of a number. The findings are numbered as the
 hand-written ones of results/README.md that they replace (1-9), each with
-the question the review asked of it.
+the question the review asked of it, and lettered beyond them. FINDINGS.md
+opens with README's summary bullets, each linked to its section, and each
+section shows its figures (FIGURES) that exist under the results directory.
 
 Three layers, one concern each: a record function per finding (record_*)
 loads its results files once and returns a plain dict with every number and
@@ -37,6 +43,7 @@ import numpy as np
 import pandas as pd
 from scipy import stats as sps
 
+from experiments.analysis import coverage
 from experiments.analysis import equal_error as ee
 from experiments.analysis import metrics
 from experiments.analysis import report
@@ -47,8 +54,31 @@ from experiments.bench import threads
 
 WHERE = "findings.py"
 # the smallest number of seeds whose percentile-bootstrap interval a finding
-# quotes (with 3 seeds such an interval covers about 90%, not 95%)
+# quotes (below it such an interval covers well under 95%: coverage.py
+# simulates how much, and the text quotes the simulation)
 MIN_SEEDS_QUOTED = 5
+# the estimate every summary bullet quotes; the other one is given beside it
+# only where its verdict words differ (PRIMARY_ESTIMATE_REASON says why)
+PRIMARY_ESTIMATE = "paper"
+OTHER_ESTIMATE = {"paper": "corrected", "corrected": "paper"}[PRIMARY_ESTIMATE]
+PRIMARY_ESTIMATE_REASON = (
+    "The paper's estimate (its eq. 1 and eq. 2 as the paper uses them) is the primary one, because every claim "
+    "under test, Table 1's times and Figure 3's images, was made with it; the corrected estimate (the n/(n-1) bias "
+    "removed) is ours, and is given beside it only where its verdict differs.")
+# the equivalence margin of the estimator-bias intervals around 1 (the exact
+# radiance): 1%, below the law's bias n/(n-1) - 1 at every n the paper uses
+# (1.01% at its largest, n = 100), so an interval inside 1 +- BIAS_MARGIN
+# rules out the uncorrected bias at every such n
+BIAS_MARGIN = 0.01
+BIAS_MARGIN_REASON = "below the law's bias n/(n-1) - 1 at every n the paper uses (1.01% at n = 100)"
+# the paper's Figure 3 statements: the cell (P_e, n) and what the paper says
+# of the two methods' images there
+FIGURE3 = ((50000, 10, "differ"), (100000, 100, "alike"), (500000, 100, "alike"))
+
+
+def sfx(est):
+    """The column suffix of estimate EST in a table1.csv ('' for the paper's)."""
+    return "" if est == "paper" else f"_{est}"
 
 
 class Missing(Exception):
@@ -129,6 +159,21 @@ def corrected_coverage(b):
     return k_in, k_all, vals
 
 
+def equivalence_to_one(b, margin):
+    """Per corrected interval of an estimator-bias CSV (both methods, every
+    n): {method, n, mean, half, equivalent}, equivalent when the whole 95%
+    interval lies inside [1 - MARGIN, 1 + MARGIN] (two one-sided tests at
+    2.5% each: conservative)."""
+    out = []
+    for m in ("conventional", "precomputed"):
+        for _, r in b.iterrows():
+            mean, half = r[f"{m}_corrected_mean"], r[f"{m}_corrected_ci95"]
+            if np.isfinite(mean) and np.isfinite(half):
+                out.append({"method": m, "n": int(r["n"]), "mean": mean, "half": half,
+                            "equivalent": bool(1 - margin <= mean - half and mean + half <= 1 + margin)})
+    return out
+
+
 def resolution_files(d):
     """The resolution study's equal-error-WxH.csv files, smallest width first."""
     return sorted(glob.glob(os.path.join(d["resolution"], "equal-error-*.csv")),
@@ -156,6 +201,85 @@ def tightest_and_curve(e, est):
     return t.iloc[0], span
 
 
+REGION_WORDS = {"above": "it pays (the interval lies wholly above 1)",
+                "below": "it does not pay (wholly below 1)",
+                "contains": "undetermined (the interval contains 1)"}
+
+
+def curve_regions(c):
+    """Runs of the curve rows C (one estimate, kind `curve`) by target, at
+    the targets where at least equal_error.DEFINED_MIN of the resamples
+    reach both fronts: [{class, first, last, count}] with class `above`
+    (the interval wholly above 1: the precomputation pays), `below` (wholly
+    below 1) or `contains` (it contains 1, or an end is nan)."""
+    c = c[c["defined_fraction"] >= ee.DEFINED_MIN].sort_values("target")
+    runs = []
+    for _, r in c.iterrows():
+        k = {"higher": "above", "lower": "below"}.get(stats.rank((r["lo"], r["hi"]), (1.0, 1.0)), "contains")
+        if runs and runs[-1]["class"] == k:
+            runs[-1].update(last=r["target"], count=runs[-1]["count"] + 1)
+        else:
+            runs.append({"class": k, "first": r["target"], "last": r["target"], "count": 1})
+    return runs
+
+
+def crossing_of(runs):
+    """Where a curve_regions list crosses 1: (direction, a, b), the curve
+    wholly below 1 up to target a and wholly above it from b on
+    ('up'), or the reverse ('down'); None without both kinds of target, or
+    when they interleave."""
+    below = [x for x in runs if x["class"] == "below"]
+    above = [x for x in runs if x["class"] == "above"]
+    if not below or not above:
+        return None
+    if max(x["last"] for x in below) < min(x["first"] for x in above):
+        return ("up", max(x["last"] for x in below), min(x["first"] for x in above))
+    if max(x["last"] for x in above) < min(x["first"] for x in below):
+        return ("down", max(x["last"] for x in above), min(x["first"] for x in below))
+    return None
+
+
+def regions_text(runs):
+    """Where on the curve the precomputation pays and where not, from a
+    curve_regions list: 'at relMSE a-b (k targets) it pays ...; ...'."""
+    if not runs:
+        return f"at no target of the curve do {100 * ee.DEFINED_MIN:.0f}% of the resamples reach both fronts"
+    parts = []
+    for k in ("above", "below", "contains"):
+        rs = [x for x in runs if x["class"] == k]
+        if rs:
+            where = ", ".join(f"{fmt(x['first'])}" if x["count"] == 1 else f"{fmt(x['first'])} to {fmt(x['last'])}"
+                              for x in rs)
+            parts.append(f"{REGION_WORDS[k]} at {primary_name()} {where} ({sum(x['count'] for x in rs)} targets)")
+    out = "; ".join(parts)
+    cr = crossing_of(runs)
+    if cr is not None:
+        d, a, b = cr
+        out += (f"; it crosses 1 between {fmt(a)} and {fmt(b)}, slower at the tighter targets"
+                if d == "up" else f"; it crosses 1 between {fmt(a)} and {fmt(b)}, faster at the tighter targets")
+    return out
+
+
+def trend_text(r):
+    """The one wording of the equal-error curve's dependence on the target
+    (README's summary and FINDINGS.md both use it), from the test of its
+    two extremes: the smallest and the largest speed-up where 95% of the
+    resamples reach both fronts, ranked only when their 95% intervals are
+    disjoint (record key span_rank)."""
+    span = r["span"]
+    if span is None:
+        return (f"at no target of the curve do {100 * ee.DEFINED_MIN:.0f}% of the resamples reach both fronts, so "
+                "no trend with the target is tested")
+    a, b = span
+    ends = (f"from {ci(a['speedup'], a['lo'], a['hi'])}x at {fmt(a['target'])} to "
+            f"{ci(b['speedup'], b['lo'], b['hi'])}x at {fmt(b['target'])}")
+    if r["span_rank"] in ("lower", "higher"):
+        return (f"where 95% of the resamples reach both fronts the speed-up runs {ends}, and these two 95% intervals "
+                "are disjoint: the speed-up depends on the target, and no single target stands for the curve")
+    return (f"where 95% of the resamples reach both fronts the speed-up runs {ends}; these two 95% intervals "
+            "overlap, so no trend with the target is claimed")
+
+
 def equal_error_record(e):
     """Per estimate of an equal-error frame E (equal_error.py's kinds
     `tightest` and `curve`), in file order: the tightest row (None when the
@@ -167,7 +291,7 @@ def equal_error_record(e):
         c = g[g["kind"] == "curve"]
         r = {"estimate": est, "curve_targets": len(c), "curve_min": c["target"].min(),
              "curve_max": c["target"].max(), "tightest": None, "span": None, "span_rank": None,
-             "headline": None, "headline_vs_one": None}
+             "headline": None, "headline_vs_one": None, "regions": curve_regions(c)}
         try:
             t, span = tightest_and_curve(g, est)
         except Missing:
@@ -225,12 +349,279 @@ def record_table(d):
     inside = (known["paired_ratio_ci95_lo"] <= known["paper_ratio_percent"]) & \
              (known["paper_ratio_percent"] <= known["paired_ratio_ci95_hi"])
     out = known[~inside]
+    # where the paper's method is slower (its ratio above 100%) and ours is
+    # faster (our whole interval below 100%)
+    rev = known[(known["paper_ratio_percent"] > 100) & (known["paired_ratio_ci95_hi"] < 100)]
+    slower = known[known["paper_ratio_percent"] > 100]
     return {"pairs": span_of(p["pairs"]), "nns": nns, "photons": phs, "grid": grid, "over_n": over_n,
+            "reversed": [val(r) for _, r in rev.sort_values(["photons", "nn"]).iterrows()],
+            "paper_slower": len(slower), "ours_faster": int((p["paired_ratio_ci95_hi"] < 100).sum()),
+            "cells": len(p),
             "over_p": over_p, "falls": sum(over_n[ph]["rank"] == "lower" for ph in phs),
             "inside": {ph: (int(inside[known["photons"] == ph].sum()), int((known["photons"] == ph).sum()))
                        for ph in phs},
             "inside_all": bool(inside.all()), "inside_any": bool(inside.any()), "outside": len(out),
             "outside_lower": int((out["paired_ratio_ci95_hi"] < out["paper_ratio_percent"]).sum())}
+
+
+def record_precompute(d):
+    """Why Table 1's largest photon count differs from the paper's: our
+    precompute cost per representative (runs.csv precompute_s /
+    representatives, median per P_e over the primary estimate's precomputed
+    grid renders) and, per cell, the precompute share of the precomputed
+    method's time, ours (precompute_median_s / total_median_s) against the
+    paper's implied by one model: the paper's precomputed time less what its
+    conventional time would spend outside the precompute if the paper's
+    phases scaled like ours,
+      paper_precompute = paper_s - paper_conv_s x (ours_total - ours_precompute) / ours_conv_total,
+    per representative with our representative count (the same rule, every
+    4th stored photon, on the same scene)."""
+    x = sfx(PRIMARY_ESTIMATE)
+    t = load(d["table"], ["photons", "nn", "method", "paper_s", "paper_conv_s", f"total_median_s{x}",
+                          f"precompute_median_s{x}", f"conv_total_median_s{x}", f"representatives{x}"],
+             "make reproduce-table")
+    r = load(d["runs"], ["role", "status", "method", "estimate", "photons", "precompute_s", "representatives"],
+             "make reproduce-table")
+    r = r[(r["role"] == "grid") & (r["status"] == "ok") & (r["method"] == "precomputed") &
+          (r["estimate"] == PRIMARY_ESTIMATE) & (r["representatives"] > 0)]
+    per_rep = {ph: float(np.median(g["precompute_s"] / g["representatives"])) for ph, g in r.groupby("photons")}
+    cells = []
+    for _, c in prec_rows(t).sort_values(["photons", "nn"]).iterrows():
+        ours_total, ours_pre = c[f"total_median_s{x}"], c[f"precompute_median_s{x}"]
+        conv = c[f"conv_total_median_s{x}"]
+        if not (np.isfinite(c["paper_s"]) and np.isfinite(c["paper_conv_s"]) and conv > 0 and ours_total > 0):
+            continue
+        rest = (ours_total - ours_pre) / conv
+        paper_pre = c["paper_s"] - c["paper_conv_s"] * rest
+        reps = c[f"representatives{x}"]
+        cells.append({"photons": c["photons"], "nn": c["nn"], "paper_s": c["paper_s"],
+                      "paper_conv_s": c["paper_conv_s"],
+                      "rest": rest, "paper_pre": paper_pre, "paper_share": paper_pre / c["paper_s"],
+                      "ours_share": ours_pre / ours_total, "paper_per_rep": paper_pre / reps if reps > 0 else np.nan,
+                      "ours_pre": ours_pre, "machine": c["paper_conv_s"] / conv})
+    if not cells:
+        raise Missing("`table1.csv` has no precomputed cell with the paper's times (`make reproduce-table`)")
+    top = max(c["photons"] for c in cells)
+    at = [c for c in cells if c["photons"] == top]
+    return {"per_rep": per_rep, "cells": cells, "top": top,
+            "paper_share": (min(c["paper_share"] for c in at), max(c["paper_share"] for c in at)),
+            "ours_share": (min(c["ours_share"] for c in at), max(c["ours_share"] for c in at)),
+            "paper_per_rep": float(np.median([c["paper_per_rep"] for c in at])),
+            # the paper's cost per representative on our machine: divided by
+            # the ratio of the two conventional times of the same cell
+            "paper_per_rep_here": float(np.median([c["paper_per_rep"] / c["machine"] for c in at])),
+            "machine": float(np.median([c["machine"] for c in at])),
+            "ours_per_rep": per_rep.get(top, np.nan),
+            "negative": [(c["photons"], c["nn"]) for c in cells if c["paper_pre"] < 0]}
+
+
+def verdict_at_margin(lo, hi, m):
+    """The verdict of a paired difference's interval [LO, HI] against a
+    margin M: "higher" / "lower" when it lies wholly beyond +M / -M,
+    "equivalent" when wholly inside [-M, M], else "undetermined"."""
+    if not (np.isfinite(lo) and np.isfinite(hi)):
+        return "undetermined"
+    if lo > m:
+        return "higher"
+    if hi < -m:
+        return "lower"
+    if -m <= lo and hi <= m:
+        return "equivalent"
+    return "undetermined"
+
+
+def record_reference_error(d):
+    """Table 1's reference's own error: its only measured proxy (the fast
+    POV-Ray preset's relMSE against the reference preset, table1.csv
+    relmse_ref_floor) against each cell's equivalence margin delta, and per
+    estimate the cells whose verdict changes when the margin is widened to
+    the proxy (verdict_at_margin with max(delta, proxy), on the paired 95%
+    intervals, not Holm-adjusted)."""
+    t = load(d["table"], ["photons", "nn", "method", "relmse_ref_floor", "relmse_diff_lo", "relmse_diff_hi",
+                          "relmse_diff_delta", "relmse_diff_verdict"], "make reproduce-table")
+    f = t["relmse_ref_floor"].astype(float)
+    f = f[np.isfinite(f)]
+    if not len(f):
+        raise Missing(f"`{d['table']}` has no relmse_ref_floor value (the fast reference is missing: "
+                      "`make reference`)")
+    floor = float(f.iloc[0])
+    p = prec_rows(t).sort_values(["photons", "nn"])
+    out = {}
+    for est in (PRIMARY_ESTIMATE, OTHER_ESTIMATE):
+        x = sfx(est)
+        if f"relmse_diff_verdict{x}" not in p.columns:
+            continue
+        rows = []
+        for _, r in p.iterrows():
+            lo, hi, delta = r[f"relmse_diff_lo{x}"], r[f"relmse_diff_hi{x}"], r[f"relmse_diff_delta{x}"]
+            v = r[f"relmse_diff_verdict{x}"] if isinstance(r[f"relmse_diff_verdict{x}"], str) else "undetermined"
+            rows.append({"photons": r["photons"], "nn": r["nn"], "lo": lo, "hi": hi, "delta": delta, "verdict": v,
+                         "widened": verdict_at_margin(lo, hi, max(delta, floor)), "times": floor / delta})
+        judged = [r for r in rows if r["verdict"] in ("equivalent", "lower")]
+        out[est] = {"rows": rows, "judged": len(judged),
+                    "times": (min(r["times"] for r in judged), max(r["times"] for r in judged)) if judged else None,
+                    "changed": [r for r in rows if r["widened"] != r["verdict"]]}
+    tightest = None
+    try:
+        e = load(d["equal_error"], EQUAL_ERROR_COLUMNS, "make reproduce-table")
+        g = e[(e["estimate"] == PRIMARY_ESTIMATE) & (e["kind"] == "tightest")]
+        tightest = float(g["target"].iloc[0]) if len(g) else None
+    except Missing:
+        pass
+    return {"floor": floor, "tightest": tightest, "estimates": out}
+
+
+def figure3_word(v):
+    """'differ', 'alike' or 'undetermined' of a paired verdict."""
+    return {"higher": "differ", "lower": "differ", "equivalent": "alike"}.get(v, "undetermined")
+
+
+def record_figure3(d):
+    """The paper's Figure 3 statements (FIGURE3) against the paired relMSE
+    difference precomputed - conventional at their cells: "differ" when
+    the Holm-corrected test ranks the two, "alike" when equivalent within
+    delta, per estimate, and at the reference's own error as the margin
+    (verdict_at_margin) when table1.csv has it."""
+    t = load(d["table"], ["photons", "nn", "method", "relmse_diff_mean", "relmse_diff_lo", "relmse_diff_hi",
+                          "relmse_diff_delta", "relmse_diff_verdict"], "make reproduce-table")
+    p = prec_rows(t)
+    floor = None
+    if "relmse_ref_floor" in t.columns:
+        f = t["relmse_ref_floor"].astype(float)
+        floor = float(f[np.isfinite(f)].iloc[0]) if np.isfinite(f).any() else None
+    rows = []
+    for ph, n, said in FIGURE3:
+        r = p[(p["photons"] == ph) & (p["nn"] == n)]
+        row = {"photons": ph, "nn": n, "said": said, "present": bool(len(r))}
+        if len(r):
+            r = r.iloc[0]
+            for est in (PRIMARY_ESTIMATE, OTHER_ESTIMATE):
+                x = sfx(est)
+                if f"relmse_diff_verdict{x}" not in p.columns:
+                    continue
+                v = r[f"relmse_diff_verdict{x}"] if isinstance(r[f"relmse_diff_verdict{x}"], str) else "undetermined"
+                wide = (figure3_word(verdict_at_margin(r[f"relmse_diff_lo{x}"], r[f"relmse_diff_hi{x}"],
+                                                       max(r[f"relmse_diff_delta{x}"], floor)))
+                        if floor is not None else None)
+                row[est] = {"mean": r[f"relmse_diff_mean{x}"], "lo": r[f"relmse_diff_lo{x}"],
+                            "hi": r[f"relmse_diff_hi{x}"], "delta": r[f"relmse_diff_delta{x}"], "verdict": v,
+                            "word": figure3_word(v), "wide": wide}
+        rows.append(row)
+    return {"rows": rows, "floor": floor}
+
+
+# per study that judges images: (name, the make target, its cells files
+# under results/, each naming its reference in the column `ref`)
+STUDY_REFERENCES = (("Table 1", "make reproduce-table", "table1/cells.csv"),
+                    ("representative rules", "make rep-study", "rep-study/cells-rep-*.csv"),
+                    ("caustic window", "make caustic", "caustic/caustic-cells.csv"),
+                    ("scenes", "make scenes", "scenes/cells-*.csv"),
+                    ("resolution", "make resolution", "resolution/cells-*.csv"),
+                    ("reproducibility", "make reproducibility", "reproducibility/cells-*.csv"),
+                    ("beyond", "make beyond", "beyond/studies/cells-*.csv"))
+# the studies that judge no image against a reference image, and what judges them
+NO_REFERENCE_IMAGE = (("estimator bias", "make estimator-bias",
+                       "the exact radiance of the analytic scene (1), known in closed form"),
+                      ("bench, scaling, threads", "make bench",
+                       "none: they time the code and check the neighbour sets, not images"),
+                      ("stability", "make stability", "the image mean's expected value, no reference image"))
+# why a study is judged by each kind of reference
+REFERENCE_WHY = {
+    "POV-Ray": "an independent renderer, as the paper judges its images, at the sizes reference/ holds, with "
+               "its own noise and bias unmeasured (finding E)",
+    "converged photonmap": "our conventional method with the corrected estimate at many times the grid's photon "
+                           "count (reference.py): made at whatever scene and size the study renders, with its "
+                           "noise and kernel bias measured, but by the method family it judges",
+    "pbrt-v3": "an independent path tracer", "unknown": "a reference this script does not recognise"}
+
+
+def reference_kind(path):
+    """The kind of a reference image by its path: 'POV-Ray' (reference/...),
+    'converged photonmap' (a convref or refhigh render), 'pbrt-v3', or
+    'unknown'."""
+    b = str(path).lower()
+    if "pbrt" in b:
+        return "pbrt-v3"
+    if "convref" in b or "refhigh" in b:
+        return "converged photonmap"
+    if b.startswith("reference/"):
+        return "POV-Ray"
+    return "unknown"
+
+
+def beyond_case(path):
+    """'cornell-512x384' of a beyond/studies file name '...-cornell-512x384-variant.csv'."""
+    stem = os.path.basename(path)[:-4]
+    parts = stem.split("-")
+    return "-".join(parts[-3:-1]) if len(parts) >= 4 else stem
+
+
+def quoted_reference_error(root, ref):
+    """(noise, bias, file) of the reference REF as a study's Markdown under
+    ROOT quotes it (reference.describe's sentence 'Reference `REF`: ... Its
+    own error in relmse: noise X ..., kernel bias Y'), or None when no file
+    quotes it."""
+    import re
+    pat = re.compile(re.escape(f"Reference `{ref}`") + r"[^\n]*?Its own error in \w+: noise ([0-9.eE+-]+)"
+                     r"[^\n]*?kernel bias ([0-9.eE+-]+)")
+    for dirpath, _, files in sorted(os.walk(root)):
+        for f in sorted(files):
+            if f.endswith(".md") and f != "FINDINGS.md":
+                path = os.path.join(dirpath, f)
+                with open(path, encoding="utf-8", errors="replace") as fh:
+                    m = pat.search(fh.read())
+                if m:
+                    return float(m.group(1)), float(m.group(2)), os.path.relpath(path, root)
+    return None
+
+
+def record_judges(d):
+    """Per study, the kinds of reference its cells files name (column ref)
+    and why; the studies that judge no image; and for every converged
+    reference beyond/ uses, its noise and bias from the JSON beside it
+    (reference.py; None when there is none) with the tightest target it
+    judges there."""
+    from experiments.analysis import reference
+    root = d["root"]
+    repo = os.path.dirname(os.path.abspath(root))
+    studies = []
+    for name, make, pattern in STUDY_REFERENCES:
+        files = sorted(glob.glob(os.path.join(root, pattern)))
+        refs = set()
+        for f in files:
+            try:
+                c = pd.read_csv(f, comment="#")
+            except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError):
+                continue
+            if "ref" in c.columns:
+                refs |= {str(x) for x in c["ref"].dropna()}
+        studies.append({"study": name, "make": make, "files": len(files), "pattern": pattern,
+                        "kinds": sorted({reference_kind(r) for r in refs})})
+    beyond = {}
+    for f in sorted(glob.glob(os.path.join(root, "beyond", "studies", "cells-*.csv"))):
+        try:
+            c = pd.read_csv(f, comment="#")
+        except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError):
+            continue
+        for r in set(c["ref"].dropna()) if "ref" in c.columns else ():
+            beyond.setdefault(str(r), set()).add(beyond_case(f))
+    refs = []
+    for r, cases in sorted(beyond.items()):
+        info = reference.load(os.path.join(repo, r))
+        ts = [reference.tightest_of(e) for case in cases
+              for e in glob.glob(os.path.join(root, "beyond", "studies", f"equal-error-{case}-*.csv"))]
+        ts = [t for t in ts if t is not None]
+        noise = bias = src = None
+        if info is not None:
+            noise, bias, src = info.get("noise"), info.get("bias"), reference.sidecar(r)
+        else:
+            q = quoted_reference_error(root, r)
+            if q is not None:
+                noise, bias, src = q
+        refs.append({"ref": r, "cases": sorted(cases), "kind": reference_kind(r), "noise": noise, "bias": bias,
+                     "source": src, "tightest": min(ts) if ts else None})
+    return {"studies": studies, "none": [{"study": a, "make": b, "by": c} for a, b, c in NO_REFERENCE_IMAGE],
+            "beyond": refs}
 
 
 def record_equal_error(d):
@@ -241,11 +632,32 @@ def record_equal_error(d):
 VERDICTS = ("higher", "lower", "equivalent", "undetermined")
 
 
+def changed_verdicts(primary, other):
+    """[(key, primary's verdict, other's verdict)] of the keys of two
+    {key: verdict} maps whose verdict words differ (keys in both only)."""
+    return [(k, v, other[k]) for k, v in sorted(primary.items()) if k in other and other[k] != v]
+
+
+def share_interval(bias, excess, lo, hi):
+    """(share, share_lo, share_hi, defined) of the bias term BIAS in an
+    excess EXCESS with the paired interval [LO, HI]: the share BIAS / EXCESS
+    and its interval BIAS / [HI, LO], holding BIAS fixed (a cell's bias has
+    one value, from its mean image). Not defined (nan ends) when the share
+    is negative (the bias term falls while the error rises: the split of
+    the excess into bias and variance says nothing there) or when the
+    excess's interval reaches 0."""
+    share = bias / excess if excess > 0 else np.nan
+    if not (excess > 0 and bias >= 0 and lo > 0):
+        return share, np.nan, np.nan, False
+    return share, bias / hi, bias / lo, True
+
+
 def record_cost(d):
     """What the speed costs in accuracy: the paired relMSE verdicts per
-    estimate and cell, the bias share of the excess where the precomputed
-    method ranks worse, and what more photons remove of the difference from
-    the conventional image at each n."""
+    estimate and cell (and the cells where the two estimates' verdicts
+    differ), the bias share of the excess with its interval where the
+    precomputed method ranks worse, and what more photons remove of the
+    difference from the conventional image at each n."""
     t = load(d["table"], ["photons", "nn", "method", "relmse_diff_mean", "relmse_diff_lo", "relmse_diff_hi",
                           "relmse_diff_verdict", "relmse_conv_mean", "relmse_conv_ci95", "pairs"],
              "make reproduce-table")
@@ -254,16 +666,24 @@ def record_cost(d):
     p = prec_rows(t)
     verdicts = {}
     for est in ("paper", "corrected"):
-        sfx = "" if est == "paper" else f"_{est}"
-        col = f"relmse_diff_verdict{sfx}"
+        x = sfx(est)
+        col = f"relmse_diff_verdict{x}"
         if col not in p.columns:
             continue
         groups = {}
         for _, r in p.iterrows():
             groups.setdefault(str(r[col]) if isinstance(r[col], str) else "undetermined", []).append(
-                {"photons": r["photons"], "nn": r["nn"], "mean": r[f"relmse_diff_mean{sfx}"],
-                 "lo": r[f"relmse_diff_lo{sfx}"], "hi": r[f"relmse_diff_hi{sfx}"]})
-        verdicts[est] = {"pairs": span_of(p[f"pairs{sfx}"]), "groups": groups}
+                {"photons": r["photons"], "nn": r["nn"], "mean": r[f"relmse_diff_mean{x}"],
+                 "lo": r[f"relmse_diff_lo{x}"], "hi": r[f"relmse_diff_hi{x}"]})
+        verdicts[est] = {"pairs": span_of(p[f"pairs{x}"]), "groups": groups}
+    by_cell = {est: {(c["photons"], c["nn"]): k for k, cs in v["groups"].items() for c in cs}
+               for est, v in verdicts.items()}
+    changed = changed_verdicts(by_cell.get(PRIMARY_ESTIMATE, {}), by_cell.get(OTHER_ESTIMATE, {}))
+
+    def paired(est, ph, n):
+        r = p[(p["photons"] == ph) & (p["nn"] == n)]
+        x = sfx(est)
+        return (r.iloc[0][f"relmse_diff_lo{x}"], r.iloc[0][f"relmse_diff_hi{x}"]) if len(r) else (np.nan, np.nan)
     # bias share of the excess, per cell where the paired test ranks the
     # precomputed method worse (a share of a difference that may be zero is
     # no number)
@@ -276,25 +696,33 @@ def record_cost(d):
             if len(c) and len(q) and (est, ph, n) in worse:
                 ex, bx = excess_and_bias(q, c)
                 if ex > 0:
+                    share, lo, hi, ok = share_interval(bx, ex, *paired(est, ph, n))
                     shares.setdefault(est, []).append({"photons": ph, "nn": n, "excess": ex, "bias": bx,
-                                                       "share": bx / ex})
+                                                       "share": share, "lo": lo, "hi": hi, "defined": ok})
     bias_share = [{"estimate": est, "cells": len(sh), "min": min(s["share"] for s in sh),
-                   "max": max(s["share"] for s in sh), "largest": max(sh, key=lambda s: s["excess"])}
+                   "max": max(s["share"] for s in sh), "largest": max(sh, key=lambda s: s["excess"]),
+                   "rows": sorted(sh, key=lambda s: (s["photons"], s["nn"]))}
                   for est, sh in shares.items()]
-    # the largest excess of the paper estimate where it ranks worse, with its bias share
+    # the largest excess of the primary estimate where it ranks worse, with its bias share
     worst = None
-    hi = p[p["relmse_diff_verdict"] == "higher"]
+    x = sfx(PRIMARY_ESTIMATE)
+    hi = p[p[f"relmse_diff_verdict{x}"] == "higher"] if f"relmse_diff_verdict{x}" in p.columns else p.iloc[:0]
     if len(hi):
-        r = hi.loc[hi["relmse_diff_mean"].idxmax()]
-        c = cells[(cells["estimate"] == "paper") & (cells["photons"] == r["photons"]) & (cells["nn"] == r["nn"])]
+        r = hi.loc[hi[f"relmse_diff_mean{x}"].idxmax()]
+        c = cells[(cells["estimate"] == PRIMARY_ESTIMATE) & (cells["photons"] == r["photons"]) &
+                  (cells["nn"] == r["nn"])]
         q, v = c[c["method"] == "precomputed"], c[c["method"] == "conventional"]
-        share = None
+        share = share_lo = share_hi = None
         if len(q) and len(v):
             ex, bx = excess_and_bias(q, v)
             if ex > 0:
-                share = bx / ex
-        worst = {"photons": r["photons"], "nn": r["nn"], "mean": r["relmse_diff_mean"], "lo": r["relmse_diff_lo"],
-                 "hi": r["relmse_diff_hi"], "share": share}
+                sh, lo, up, ok = share_interval(bx, ex, r[f"relmse_diff_lo{x}"], r[f"relmse_diff_hi{x}"])
+                share = sh
+                if ok:
+                    share_lo, share_hi = lo, up
+        worst = {"photons": r["photons"], "nn": r["nn"], "mean": r[f"relmse_diff_mean{x}"],
+                 "lo": r[f"relmse_diff_lo{x}"], "hi": r[f"relmse_diff_hi{x}"], "share": share,
+                 "share_lo": share_lo, "share_hi": share_hi}
     # the difference from the conventional image of the same seed: n against P_e
     conv = p[["photons", "nn", "relmse_conv_mean", "relmse_conv_ci95"]]
     phs = sorted(conv["photons"].unique())
@@ -311,7 +739,7 @@ def record_cost(d):
                 more["per_n"].append({"nn": n, "removed": 1 - b["relmse_conv_mean"] / a["relmse_conv_mean"],
                                       "disjoint": r in ("lower", "higher")})
     return {"pairs": span_of(p["pairs"]), "cells": len(p), "verdicts": verdicts, "bias_share": bias_share,
-            "worst": worst, "more_photons": more}
+            "worst": worst, "more_photons": more, "changed": changed}
 
 
 def record_bias(d):
@@ -328,7 +756,9 @@ def record_bias(d):
                 "seeds": r["conventional_paper_seeds"], "law": r["law_n_over_n_minus_1"],
                 "on_law": abs(r["conventional_paper_mean"] - r["law_n_over_n_minus_1"]) <= r["conventional_paper_ci95"]}
     k_in, k_all, vals = corrected_coverage(b)
-    return {"at10": at(b[b["n"] == 10]) if (b["n"] == 10).any() else None,
+    eq = equivalence_to_one(b, BIAS_MARGIN)
+    return {"equivalence": eq, "margin": BIAS_MARGIN, "equivalent": sum(e["equivalent"] for e in eq),
+            "at10": at(b[b["n"] == 10]) if (b["n"] == 10).any() else None,
             "quoted": at(b[b["n"] == 10] if (b["n"] == 10).any() else b[b["n"] == b["n"].min()]),
             "covered": k_in, "intervals": k_all,
             "lowest": min(vals, key=lambda v: v[0]) if vals else None,
@@ -354,7 +784,8 @@ def record_scenes(d):
     """The scenes' equal-error cells as scenes.csv words them, with their seeds."""
     s = load(d["scenes"], ["scene", "diff_seeds", "ee_paper", "ee_corrected"], "make scenes")
     return {"rows": [{"scene": r["scene"], "seeds": int(r["diff_seeds"]), "paper": r["ee_paper"],
-                      "corrected": r["ee_corrected"]} for _, r in s.iterrows()]}
+                      "corrected": r["ee_corrected"]} for _, r in s.iterrows()],
+            "coverage": few_seed_coverage(s["diff_seeds"])}
 
 
 def record_resolution(d):
@@ -403,7 +834,19 @@ def record_scale(d):
         t2 = g[g["threads"] == 2]["total_s"]
         conv = {**row_dict(r), "two_total_median": np.median(t2) if len(t2) else None, "two_total_pairs": len(t2),
                 "trace": speedup_stats(g, "trace_s"), "build": speedup_stats(g, "build_s")}
-    return {"largest": largest, "two_threads": two, "conventional": conv}
+    # both methods at the largest map they share: the totals and each phase's difference
+    both = None
+    c, q = sc[sc["method"] == "conventional"], sc[sc["method"] == "precomputed"]
+    common = sorted(set(c["photons_emitted"]) & set(q["photons_emitted"]))
+    if common:
+        a = c[c["photons_emitted"] == common[-1]].iloc[0]
+        b = q[q["photons_emitted"] == common[-1]].iloc[0]
+        phases = {k: float(b[f"{k}_s"] - a[f"{k}_s"]) for k in ("trace", "build", "precompute", "eye")}
+        both = {"photons_emitted": common[-1], "photons_stored": a["photons_stored"], "threads": a["threads"],
+                "conventional": float(a["total_s"]), "precomputed": float(b["total_s"]),
+                "precompute_s": float(b["precompute_s"]), "phases": phases,
+                "largest_phase": max(phases, key=lambda k: abs(phases[k]))}
+    return {"largest": largest, "two_threads": two, "conventional": conv, "both": both}
 
 
 def record_stability(d):
@@ -415,13 +858,13 @@ def record_stability(d):
 
 
 def record_beyond(d):
-    """Beyond the paper's rule, paper estimate: per case the paper rule's
+    """Beyond the paper's rule, the primary estimate (PRIMARY_ESTIMATE): per case the paper rule's
     and the best variant's speed-ups and what the goal's tests say, the
     count of cases that meet it, and for README the best variants quoted."""
     b = load(d["beyond"], ["case", "variant", "estimate", "target", "speedup", "lo", "hi", "defined_fraction",
                            "fallback_rate", "evaluated_share", "seeds", "best", "above_one", "vs_paper", "goal_met"],
              "make beyond")
-    b = b[b["estimate"] == "paper"]
+    b = b[b["estimate"] == PRIMARY_ESTIMATE]
     margin = stats.EQUIVALENCE_MARGIN
     cases = []
     for case, g in b.groupby("case", sort=False):
@@ -450,18 +893,30 @@ def record_beyond(d):
                   "seeds": int(q["seeds"].min()), "largest": row_dict(q.loc[q["speedup"].idxmax()]),
                   "smallest": row_dict(q.loc[q["speedup"].idxmin()])}
     return {"cases": cases, "quoted": len(quoted), "met": sum(c["met"] for c in quoted),
+            "coverage": few_seed_coverage([c["seeds"] for c in cases]),
             "thin": sum(c["met"] and c["fragile"] for c in quoted), "best_rows": len(best), "readme": readme}
 
 
 def record_repro(d):
-    """Reproducibility between two runs: reproducibility.csv's summary row."""
+    """Reproducibility between two runs: reproducibility.csv's summary row
+    (the rows of runs `a-b` where the file names its runs), and the busy
+    run's against run a (rows `a-busy`) when the file has them."""
     r = load(d["repro"], ["summary_ratio_median_abs_delta_pp", "summary_ratio_max_abs_delta_pp",
                           "summary_ratio_overlap_cells", "summary_cells", "summary_goal_pp", "summary_met"],
              "make reproducibility")
-    s = r.iloc[0]
-    return {"median_pp": s["summary_ratio_median_abs_delta_pp"], "max_pp": s["summary_ratio_max_abs_delta_pp"],
-            "overlap": int(s["summary_ratio_overlap_cells"]), "cells": int(s["summary_cells"]),
-            "goal_pp": s["summary_goal_pp"], "met": bool(s["summary_met"])}
+
+    def summ(s):
+        return {"median_pp": s["summary_ratio_median_abs_delta_pp"], "max_pp": s["summary_ratio_max_abs_delta_pp"],
+                "overlap": int(s["summary_ratio_overlap_cells"]), "cells": int(s["summary_cells"]),
+                "goal_pp": s["summary_goal_pp"], "met": bool(s["summary_met"])}
+    if "runs" not in r.columns:
+        return summ(r.iloc[0])
+    ab, busy = r[r["runs"] == "a-b"], r[r["runs"] == "a-busy"]
+    if ab.empty:
+        raise Missing(f"`{d['repro']}` has no row of runs a-b (`make reproducibility`)")
+    out = summ(ab.iloc[0])
+    out["busy"] = summ(busy.iloc[0]) if len(busy) else None
+    return out
 
 
 def record_rules(d):
@@ -516,27 +971,57 @@ def record_peers(d):
     for k in sorted(got):
         pe, med = got[k]
         best = bench_report.strongest_peer(med)
-        rows.append({"k": k, "pe": pe, "strongest": best, "strongest_ratio": med[best] / med["ours"],
-                     "nanoflann_ratio": med["nanoflann"] / med["ours"]})
+        row = {"k": k, "pe": pe, "strongest": best, "strongest_ratio": med[best] / med["ours"],
+               "nanoflann_ratio": med["nanoflann"] / med["ours"]}
+        if "ours-stateless" in med:
+            row["stateless_ratio"] = med[best] / med["ours-stateless"]
+        rows.append(row)
     return {"file": d["peers"], "rows": rows}
 
 
-RECORDS = {"table": record_table, "equal_error": record_equal_error, "cost": record_cost, "bias": record_bias,
+RECORDS = {"table": record_table, "precompute": record_precompute, "reference_error": record_reference_error,
+           "figure3": record_figure3, "judges": record_judges, "equal_error": record_equal_error,
+           "cost": record_cost, "bias": record_bias,
            "caustic": record_caustic, "scenes": record_scenes, "resolution": record_resolution,
            "baseline": record_baseline, "scale": record_scale, "stability": record_stability,
            "beyond": record_beyond, "repro": record_repro, "rules": record_rules, "metric": record_metric,
            "peers": record_peers}
 
 
+# the figures each finding shows, relative to the results directory (a
+# pattern may match several; a file that is not there is left out)
+FIGURES = {"table": ("figures/ratio-vs-n.png",), "precompute": ("figures/phases.png",),
+           "figure3": ("figures/fig3.png", "figures/fig3-errors.png"),
+           "equal_error": ("table1/equal-error.png", "figures/tradeoff.png"), "caustic": ("figures/caustic.png",),
+           "scenes": ("figures/scenes.png",), "resolution": ("resolution/equal-error-*.png",),
+           "scale": ("figures/bench-scaling.png",), "beyond": ("figures/beyond.png",),
+           "rules": ("figures/rep-study.png", "figures/fig2.png")}
+
+
+def figures_of(d):
+    """{finding: [figure paths relative to D's root]} of the FIGURES that exist."""
+    root = d["root"]
+    out = {}
+    for name, pats in FIGURES.items():
+        got = []
+        for pat in pats:
+            got += sorted(os.path.relpath(f, root) for f in glob.glob(os.path.join(root, pat)))
+        if got:
+            out[name] = got
+    return out
+
+
 def records(d):
     """Every finding's record from the results files D names: name -> the
-    record, or the Missing that says why there is none."""
+    record, or the Missing that says why there is none; under "figures",
+    figures_of(D)."""
     out = {}
     for name, fn in RECORDS.items():
         try:
             out[name] = fn(d)
         except Missing as e:
             out[name] = e
+    out["figures"] = figures_of(d) if "root" in d else {}
     return out
 
 
@@ -612,16 +1097,10 @@ def equal_error_lines(recs):
             "reach (the larger of the two fronts' smallest errors" \
             + ("; fewer than 95% of the bootstrap resamples reach it on both fronts, so no speed-up is quoted there"
                if t["defined_fraction"] < ee.DEFINED_MIN else "") + f"); {headline_text(r['headline'])}"
+        s += f". Over the {r['curve_targets']} targets of the curve ({fmt(r['curve_min'])} to " \
+             f"{fmt(r['curve_max'])}), {trend_text(r)}"
         if span is not None:
-            a, b = span
-            s += f". Over the {r['curve_targets']} targets of the curve ({fmt(r['curve_min'])} to {fmt(r['curve_max'])}), " \
-                 f"where at least 95% of the resamples reach the target the speed-up runs from " \
-                 f"{ci(a['speedup'], a['lo'], a['hi'])} (at {fmt(a['target'])}) to " \
-                 f"{ci(b['speedup'], b['lo'], b['hi'])} (at {fmt(b['target'])}): it depends on the target, " \
-                 "and no single target stands for the curve"
-        else:
-            s += "; at no target of the curve do 95% of the resamples reach it on both fronts, so every interval " \
-                 "of the curve is conditional"
+            s += f". Along the curve, {regions_text(r['regions'])}"
         lines.append(s + ".")
     return lines
 
@@ -645,12 +1124,20 @@ def md_cost(rec):
         lines.append(f"- {est} estimate, paired {metrics.PRIMARY} difference precomputed - conventional per seed "
                      f"({v['pairs'][0]} pairs per cell): " + "; ".join(parts) + ".")
     for s in rec["bias_share"]:
-        k = s["largest"]
+        parts = []
+        for k in s["rows"]:
+            if k["defined"]:
+                parts.append(f"{cell(k['photons'], k['nn'])} {pct(100 * k['share'])}% [{pct(100 * k['lo'])}, "
+                             f"{pct(100 * k['hi'])}]")
+            elif k["share"] < 0:
+                parts.append(f"{cell(k['photons'], k['nn'])} {pct(100 * k['share'])}%: negative, the bias term "
+                             "falls where the error rises, so the split into bias and variance is not defined there")
+            else:
+                parts.append(f"{cell(k['photons'], k['nn'])}: the excess's interval reaches 0, no share")
         lines.append(f"- {s['estimate']} estimate: where the paired test ranks the precomputed method's error above the "
-                     f"conventional one ({s['cells']} cells), the bias term's share of the excess runs from "
-                     f"{pct(100 * s['min'])}% to {pct(100 * s['max'])}% (cells.csv "
-                     f"bias_ref); at {cell(k['photons'], k['nn'])}, the largest excess, {fmt(k['excess'])} of which "
-                     f"{fmt(k['bias'])} ({pct(100 * k['share'])}%) is bias.")
+                     f"conventional one ({s['cells']} cells), the bias term's share of the excess (cells.csv bias_ref "
+                     "over the paired excess; the interval is the paired excess's 95% interval with the bias term "
+                     "held fixed, since a cell's bias has one value, from its mean image): " + "; ".join(parts) + ".")
     m = rec["more_photons"]
     if m is not None:
         lines.append(f"- The precomputed image's {metrics.PRIMARY} against the conventional image of the same seed: "
@@ -672,9 +1159,12 @@ def md_bias(rec):
     lo, hi = rec["lowest"], rec["highest"]
     if lo is None:
         raise Missing("`estimator-bias.csv` has no finite corrected interval (`make estimator-bias`)")
-    lines.append(f"- With `--bias-correction`, 1 (the exact radiance) lies inside {rec['covered']} of the "
-                 f"{rec['intervals']} intervals (both methods, every n); the means run from {fmt(lo[0], 5)} ± "
-                 f"{fmt(lo[1], 2)} to {fmt(hi[0], 5)} ± {fmt(hi[1], 2)}.")
+    lines.append("- With `--bias-correction` " + bias_equivalence_text(rec) + f"; the means run from "
+                 f"{fmt(lo[0], 5)} ± {fmt(lo[1], 2)} to {fmt(hi[0], 5)} ± {fmt(hi[1], 2)}.")
+    wide = [e for e in rec["equivalence"] if not e["equivalent"]]
+    if wide:
+        lines.append("- Not shown equivalent (the interval reaches beyond the margin): " + "; ".join(
+            f"{e['method']} n = {e['n']}: {fmt(e['mean'], 5)} ± {fmt(e['half'], 2)}" for e in wide) + ".")
     return "The paper's estimator is biased by a law", lines
 
 
@@ -689,17 +1179,30 @@ def md_caustic(rec):
     return "The caustic window against the whole image", lines
 
 
-def few_seeds(name, seeds, make):
+def few_seeds(name, seeds, make, cover=None):
     """The line that names NAME's intervals as too few-seeded to quote
-    (fewer than MIN_SEEDS_QUOTED seeds) and the MAKE command that reruns it."""
-    return (f"- {name}: {seeds} seeds: its percentile-bootstrap intervals (which at 3 seeds cover about 90%, not "
-            f"95%) are not quoted; rerun `{make} SEEDS={MIN_SEEDS_QUOTED}` or more.")
+    (fewer than MIN_SEEDS_QUOTED seeds) and the MAKE command that reruns it;
+    COVER: the simulated coverage of a nominal 95% interval at that many
+    seeds (few_seed_coverage), quoted when given."""
+    how = (f" (a nominal 95% percentile-bootstrap interval of a mean of {seeds} normal values covers the truth "
+           f"{pct(100 * cover)}% of the time in {coverage.TRIALS} simulated trials, coverage.py)"
+           if cover is not None else "")
+    return (f"- {name}: {seeds} seeds: its percentile-bootstrap intervals are not quoted{how}; rerun "
+            f"`{make} SEEDS={MIN_SEEDS_QUOTED}` or more.")
+
+
+def few_seed_coverage(seeds):
+    """{s: simulated coverage of a 95% percentile-bootstrap interval of a
+    mean at s seeds} for each s of SEEDS below MIN_SEEDS_QUOTED (at least 2)."""
+    return {int(k): coverage.percentile_coverage(int(k)) for k in sorted(set(seeds))
+            if 2 <= int(k) < MIN_SEEDS_QUOTED}
 
 
 def md_scenes(rec):
     """Finding 6: the scenes' speed-ups, quoted only where enough seeds stand behind an interval."""
     return "Across scenes", [
-        few_seeds(r["scene"], r["seeds"], "make scenes") if r["seeds"] < MIN_SEEDS_QUOTED else
+        few_seeds(r["scene"], r["seeds"], "make scenes", rec.get("coverage", {}).get(r["seeds"]))
+        if r["seeds"] < MIN_SEEDS_QUOTED else
         f"- {r['scene']} ({r['seeds']} seeds): paper estimate {r['paper']}; corrected {r['corrected']} "
         "(target: speed-up [95% bootstrap interval])." for r in rec["rows"]]
 
@@ -714,6 +1217,131 @@ def md_resolution(rec):
     lines.append("- Each size is judged against its own reference (`resolution/resolution.md` gives each one's "
                  "measured noise and kernel bias).")
     return "The speed-up at equal error per output size", lines
+
+
+def md_precompute(rec):
+    """Finding T: where the precomputed method's time goes, ours against the paper's implied."""
+    lines = ["Model: the paper's precompute = its precomputed time - its conventional time x (our precomputed "
+             "method's time outside the precompute / our conventional time), per cell; it assumes the paper's "
+             "photon pass, build and eye pass stand to its conventional time as ours do. Our times: medians over "
+             f"seeds ({PRIMARY_ESTIMATE} estimate, `table1/table1.csv`); the paper's: its single runs.", ""]
+    lines += report.md_table(
+        ["cell", "paper (s)", "paper conv. (s)", "our rest / our conv.", "paper's precompute share (model)",
+         "our precompute share", "paper µs per representative (model)"],
+        [[cell(c["photons"], c["nn"]), fmt(c["paper_s"]), fmt(c["paper_conv_s"]), fmt(c["rest"]),
+          f"{pct(100 * c['paper_share'])}%", f"{pct(100 * c['ours_share'])}%", fmt(1e6 * c["paper_per_rep"])]
+         for c in rec["cells"]])
+    lines.append("")
+    lines.append("- Our precompute per representative (runs.csv precompute_s / representatives, median over the "
+                 "grid's precomputed renders): " + ", ".join(f"{fmt(1e6 * v)} µs at P_e = {k_of(ph)}"
+                                                           for ph, v in sorted(rec["per_rep"].items())) + ".")
+    lines.append(f"- At P_e = {k_of(rec['top'])} the model gives the paper's precompute "
+                 f"{pct(100 * rec['paper_share'][0])}-{pct(100 * rec['paper_share'][1])}% of its precomputed time, "
+                 f"ours takes {pct(100 * rec['ours_share'][0])}-{pct(100 * rec['ours_share'][1])}%; per "
+                 f"representative the paper's is {fmt(1e6 * rec['paper_per_rep'])} µs on its machine, "
+                 f"{fmt(1e6 * rec['paper_per_rep_here'])} µs scaled to ours by the ratio of the two conventional "
+                 f"times ({fmt(rec['machine'])}x), against our {fmt(1e6 * rec['ours_per_rep'])} µs.")
+    if rec["negative"]:
+        lines.append(f"- The model gives a negative precompute at {count_list([cell(*k) for k in rec['negative']])}: "
+                     "there its assumption fails or the paper's single times are noisier than the difference, and "
+                     "the model says nothing.")
+    return "Where the precomputed method's time goes, ours against the paper's", lines
+
+
+def md_reference_error(rec):
+    """Finding E: Table 1's reference's own error against the cells' margins."""
+    fl = rec["floor"]
+    lines = [f"- Table 1 is judged against POV-Ray's reference preset, whose own noise and bias are not measured; "
+             f"the only proxy is the fast preset's {primary_name()} against it, {fmt(fl)} (table1.csv "
+             "relmse_ref_floor)"
+             + (f", {pct(100 * fl / rec['tightest'])}% of the tightest equal-error target ({fmt(rec['tightest'])})"
+                if rec["tightest"] else "") + "."]
+    for est, e in rec["estimates"].items():
+        s = f"- {est} estimate: "
+        if e["times"] is not None:
+            s += (f"the proxy is {fmt(e['times'][0])}-{fmt(e['times'][1])} times the margin delta of the "
+                  f"{e['judged']} cells called equivalent or lower. ")
+        s += ("Widening each cell's margin to the larger of delta and the proxy (a difference smaller than the "
+              "reference's own error is not resolved), and ranking only an interval wholly beyond it (the paired "
+              "95% intervals, not Holm-adjusted): ")
+        s += ("no verdict changes" if not e["changed"] else "the verdicts change in " + count_list(
+            [f"{cell(r['photons'], r['nn'])} ({r['verdict']} -> {r['widened']})" for r in e["changed"]]))
+        lines.append(s + ".")
+    lines.append(f"- The primary metric is {primary_name()}: every study's targets and every earlier table are in "
+                 "it (experiments/analysis/metrics.py says why); NMSE, relative at every brightness, is reported "
+                 "beside it, and where it changes the paired verdicts is finding M.")
+    return "Table 1's reference and its own error", lines
+
+
+def md_figure3(rec):
+    """Finding F: the paper's Figure 3 statements against the paired data."""
+    lines = [f"The paper's Figure 3 says the two methods' images differ or are alike at three cells; the verdict "
+             f"here is the paired {primary_name()} difference precomputed - conventional per seed: \"differ\" "
+             "when the Holm-corrected test ranks the two, \"alike\" when equivalent within delta "
+             f"({fmt(100 * stats.EQUIVALENCE_MARGIN)}% of the conventional error), else undetermined"
+             + (f"; beside it, the verdict with the margin widened to the reference's own error ({fmt(rec['floor'])})"
+                if rec["floor"] is not None else "") + ".", ""]
+    for r in rec["rows"]:
+        if not r["present"] or PRIMARY_ESTIMATE not in r:
+            lines.append(f"- {cell(r['photons'], r['nn'])}: not in table1.csv.")
+            continue
+        a = r[PRIMARY_ESTIMATE]
+        agree = ("agree" if a["word"] == r["said"] else "decide nothing" if a["word"] == "undetermined"
+                 else "disagree")
+        s = (f"- {cell(r['photons'], r['nn'])}: the paper says {r['said']}; {PRIMARY_ESTIMATE} estimate "
+             f"{ci(a['mean'], a['lo'], a['hi'])} (delta {fmt(a['delta'])}): {a['word']}, so the data {agree}")
+        if a["wide"] is not None:
+            s += f"; at the reference's error: {a['wide']}"
+        o = r.get(OTHER_ESTIMATE)
+        if o is not None and o["word"] != a["word"]:
+            s += f" ({OTHER_ESTIMATE} estimate: {ci(o['mean'], o['lo'], o['hi'])}, {o['word']})"
+        lines.append(s + ".")
+    return "The paper's Figure 3 claim", lines
+
+
+def readme_figure3(rec):
+    parts = []
+    for r in rec["rows"]:
+        if r["present"] and PRIMARY_ESTIMATE in r:
+            a = r[PRIMARY_ESTIMATE]
+            o = r.get(OTHER_ESTIMATE)
+            beside = f", {OTHER_ESTIMATE} estimate {o['word']}" if o is not None and o["word"] != a["word"] else ""
+            wide = (f" (within the reference's own error: {a['wide']})"
+                    if a["wide"] is not None and a["wide"] != a["word"] else "")
+            parts.append(f"at {cell(r['photons'], r['nn'])} the paper says {r['said']}, the paired data say "
+                         f"{a['word']}{wide}{beside}")
+    if not parts:
+        raise Missing("`table1.csv` has none of Figure 3's cells (`make reproduce-table`)")
+    return (f"- **The paper's Figure 3 claim, against the paired {primary_name()}** ({PRIMARY_ESTIMATE} estimate; "
+            f"differ = ranked by the Holm-corrected test, alike = equivalent within "
+            f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}%): " + "; ".join(parts) + " (`results/FINDINGS.md`).")
+
+
+def md_judges(rec):
+    """Finding J: which reference judges which study, and the converged references' own error."""
+    lines = report.md_table(["study", "judged by", "why"], [
+        [f"{x['study']} (`{x['make']}`)", ", ".join(x["kinds"]) or f"no cells file (`{x['pattern']}`)",
+         "; ".join(REFERENCE_WHY[k] for k in x["kinds"]) or "not run here"] for x in rec["studies"]]
+        + [[f"{x['study']} (`{x['make']}`)", x["by"], "no reference image"] for x in rec["none"]])
+    lines.append("")
+    lines.append("pbrt-v3 judges no study. The converged references beyond/ uses, with their own error in "
+                 f"{primary_name()} (the JSON beside each, written by reference.py, else a study's Markdown that "
+                 "quotes it):")
+    lines.append("")
+    if not rec["beyond"]:
+        lines.append("- beyond/ names no reference (`make beyond`).")
+    for r in rec["beyond"]:
+        if r["noise"] is None:
+            lines.append(f"- {count_list(r['cases'])}: `{r['ref']}`: its JSON is missing here (the references live "
+                         "under results/runs/, which is not committed; `make beyond` writes them) and no study's "
+                         "Markdown quotes its error, so its noise and bias are not reported.")
+            continue
+        t = r["tightest"]
+        share = (f"; the tightest target it judges there is {fmt(t)}: noise {pct(100 * r['noise'] / t)}%, bias "
+                 f"{pct(100 * r['bias'] / t)}% of it" if t else "")
+        lines.append(f"- {count_list(r['cases'])}: noise {fmt(r['noise'])}, kernel bias {fmt(r['bias'])} "
+                     f"(`{r['source']}`){share}.")
+    return "What judges what", lines
 
 
 def md_baseline(rec):
@@ -737,6 +1365,12 @@ def md_scale(rec):
                      f"{fmt(r['trace_s'])}, build {fmt(r['build_s'])}, precompute {fmt(r['precompute_s'])}, eye pass "
                      f"{fmt(r['eye_s'])} s; one render, `bench/scaling.csv`), peak memory "
                      f"{fmt(r['bytes_per_stored'])} bytes per stored photon.")
+    b = rec.get("both")
+    if b is not None:
+        lines.append(f"- At {int(b['photons_emitted']):,} emitted photons the precomputed method's total minus the "
+                     f"conventional one's is {fmt(b['precomputed'] - b['conventional'])} s; per phase (precomputed "
+                     "minus conventional): " + ", ".join(f"{k} {fmt(v)} s" for k, v in b["phases"].items())
+                     + f"; the largest difference is the {b['largest_phase']}.")
     for t in rec["two_threads"]:
         if t["trace_s"] is None:
             continue
@@ -769,7 +1403,7 @@ def md_beyond(rec):
                          "(per seed against the paper's rule and each other, Holm).")
             continue
         if c["status"] == "few seeds":
-            lines.append(few_seeds(case, c["seeds"], "make beyond"))
+            lines.append(few_seeds(case, c["seeds"], "make beyond", rec.get("coverage", {}).get(c["seeds"])))
             continue
         if c["status"] == "undefined":
             lines.append(f"- {case}: its speed-ups are taken at a target that fewer than {100 * ee.DEFINED_MIN:.0f}% "
@@ -808,7 +1442,12 @@ def md_repro(rec):
         f"- Two interleaved runs of the grid: median |difference| of the paired time ratios "
         f"{report.fmt_fixed(rec['median_pp'], 2)} pp (goal {fmt(rec['goal_pp'])} pp); the "
         f"two runs' intervals overlap in {rec['overlap']} of {rec['cells']} cells; "
-        "goal " + ("met." if rec["met"] else "not met.")]
+        "goal " + ("met." if rec["met"] else "not met.")] + (
+        [f"- Run a against the run beside a busy loop: median |difference| "
+         f"{report.fmt_fixed(rec['busy']['median_pp'], 2)} pp (goal {fmt(rec['busy']['goal_pp'])} pp), largest "
+         f"{report.fmt_fixed(rec['busy']['max_pp'], 2)} pp; intervals overlap in {rec['busy']['overlap']} of "
+         f"{rec['busy']['cells']} cells; goal " + ("met." if rec["busy"]["met"] else "not met.")]
+        if rec.get("busy") else [])
 
 
 def md_rules(rec):
@@ -842,7 +1481,11 @@ def md_metric(rec):
 
 
 # (number, record, writer, the title said when the record is missing)
-FINDINGS = ((1, "table", md_table, "The table's shape"), (2, "equal_error", md_equal_error, "Equal error"),
+FINDINGS = ((1, "table", md_table, "The table's shape"),
+            ("T", "precompute", md_precompute, "Where the precomputed method's time goes"),
+            ("E", "reference_error", md_reference_error, "Table 1's reference and its own error"),
+            ("F", "figure3", md_figure3, "The paper's Figure 3 claim"),
+            ("J", "judges", md_judges, "What judges what"), (2, "equal_error", md_equal_error, "Equal error"),
             (3, "cost", md_cost, "What the speed costs in accuracy"),
             (4, "bias", md_bias, "The estimator's bias in the analytic scene"),
             (5, "caustic", md_caustic, "The caustic window's excess against the whole image's"),
@@ -899,78 +1542,167 @@ def readme_table(rec):
     shape = "reproduces" if rec["falls"] == len(phs) else f"holds at {rec['falls']} of {len(phs)} photon counts"
     level = "its level too" if rec["inside_all"] else ("its level in part" if rec["inside_any"] else "its level does not")
     verb = "falls" if first["rank"] == "lower" else "goes"
+    if rec["reversed"]:
+        rv = rec["reversed"]
+        ns = count_list([f"n = {int(r['nn'])}" for r in rv])
+        shape += f" over n, except at P_e = {', '.join(sorted({k_of(r['photons']) for r in rv}))} with {ns}"
     return (f"- **The shape of Table 1 {shape}; {level}.** The paired time ratio precomputed / conventional (the "
             f"renderer's own timer, {pairs_text(rec['pairs'])}, 95% t interval) at P_e = {k_of(phs[0])} {verb} from "
             f"{pct_ci(a['ratio'], a['lo'], a['hi'])} at "
             f"n = {int(a['nn'])} to {pct_ci(b['ratio'], b['lo'], b['hi'])} "
             f"at n = {int(b['nn'])} (the paper's {pct(a['paper'])}% and {pct(b['paper'])}%); "
             f"the paper's value lies inside our interval in {', '.join(per)}; outside it, ours is the lower in "
-            f"{rec['outside_lower']} of {rec['outside']} (`results/table1/table1.md`).")
+            f"{rec['outside_lower']} of {rec['outside']}" + reversal_text(rec) + " (`results/table1/table1.md`).")
+
+
+def reversal_text(rec):
+    """'. One feature does not reproduce: ...' of a table record: the cells
+    where the paper's method is slower (its ratio above 100%) and ours is
+    faster (our interval wholly below 100%), or '' when there is none."""
+    rv = rec["reversed"]
+    if not rv:
+        return ""
+    where = count_list([f"n = {int(r['nn'])}" for r in rv])
+    ph = sorted({k_of(r["photons"]) for r in rv})
+    return (f". One feature does not reproduce: at P_e = {', '.join(ph)} with {where} the paper's method is slower "
+            f"({count_list([pct(r['paper']) + '%' for r in rv])}), ours is faster "
+            f"({count_list([pct_ci(r['ratio'], r['lo'], r['hi']) for r in rv])}); our interval lies below 100% in "
+            f"{rec['ours_faster']} of {rec['cells']} cells")
+
+
+def readme_precompute(rec):
+    return (f"- **Why P_e = {k_of(rec['top'])} differs from the paper**: there our precompute takes "
+            f"{pct(100 * rec['ours_share'][0])}-{pct(100 * rec['ours_share'][1])}% of the precomputed method's time "
+            f"(median {fmt(1e6 * rec['ours_per_rep'])} µs per representative); if the paper's other phases scaled "
+            f"like ours, its precompute took {pct(100 * rec['paper_share'][0])}-{pct(100 * rec['paper_share'][1])}% "
+            f"of its time, {fmt(1e6 * rec['paper_per_rep_here'])} µs per representative on our machine (its times "
+            f"divided by the ratio of the two conventional times, {fmt(rec['machine'])}x). The model assumes the "
+            "paper's photon pass, build and eye pass stand to its conventional time as ours do; the paper's times "
+            "are single runs without an interval (`results/table1/table1.md`, `results/table1/runs.csv`).")
+
+
+VS_ONE = {"higher": "faster", "lower": "slower"}
+
+
+def vs_one_word(v):
+    """'faster', 'slower' or 'undetermined' of an interval's rank against 1."""
+    return VS_ONE.get(v, "undetermined")
 
 
 def readme_equal_error(rec):
-    r = estimate_of(rec["estimates"], "paper")
-    t, span = r["tightest"], r["span"]
-    curve = span is not None and r["span_rank"] == "lower"
-    head = "**The speed-up at equal error is a curve, not a number**" if curve else \
-        "**The speed-up at equal error**"
-    rest = (f"; where 95% of the resamples reach both fronts it runs from {fmt(span[0]['speedup'])} to "
-            f"{fmt(span[1]['speedup'])} with the target" if span is not None else
-            "; at no target do 95% of the resamples reach both fronts")
-    if span is not None and not curve:
-        rest += " (the two ends' 95% intervals overlap, so no trend with the target is claimed)"
-    return (f"- {head} (paper estimate; the curve starts at {primary_name()} {fmt(t['target'])}, the tightest both "
-            f"fronts reach): {headline_text(r['headline'])}{rest} (`results/table1/equal-error.md`).")
+    r = estimate_of(rec["estimates"], PRIMARY_ESTIMATE)
+    t = r["tightest"]
+    head = "**The speed-up at equal error is a curve, not a number**" if r["span_rank"] in ("lower", "higher") \
+        else "**The speed-up at equal error**"
+    beside = ""
+    try:
+        o = estimate_of(rec["estimates"], OTHER_ESTIMATE)
+        if vs_one_word(o["headline_vs_one"]) != vs_one_word(r["headline_vs_one"]):
+            beside = (f" (the {OTHER_ESTIMATE} estimate: {headline_text(o['headline'])}, "
+                      f"{vs_one_word(o['headline_vs_one'])})")
+    except Missing:
+        pass
+    return (f"- {head} ({PRIMARY_ESTIMATE} estimate; the curve starts at {primary_name()} {fmt(t['target'])}, the "
+            f"tightest both fronts reach): {headline_text(r['headline'])}{beside}; {trend_text(r)} "
+            "(`results/table1/equal-error.md`).")
+
+
+def verdict_changes_text(changed, word=None, cells=None):
+    """'; the OTHER estimate's verdict differs in (50k, 10) (higher), ...'
+    of a changed_verdicts list of cells (with 'k of CELLS cells' when CELLS
+    is given), or '' when none differs."""
+    if not changed:
+        return ""
+    word = word or (lambda v: v)
+    of = f" {len(changed)} of {cells} cells:" if cells else ""
+    return (f"; the {OTHER_ESTIMATE} estimate's verdict differs in{of} " +
+            count_list([f"{cell(*k)} ({word(b)})" for k, _, b in changed]))
 
 
 def readme_cost(rec):
     words = {"higher": "higher", "equivalent": f"equivalent within {fmt(100 * stats.EQUIVALENCE_MARGIN)}%",
              "lower": "lower", "undetermined": "undetermined"}
-    groups = rec["verdicts"]["paper"]["groups"]
+    if PRIMARY_ESTIMATE not in rec["verdicts"]:
+        raise Missing(f"`table1.csv` has no {PRIMARY_ESTIMATE}-estimate verdicts (`make reproduce-table`)")
+    groups = rec["verdicts"][PRIMARY_ESTIMATE]["groups"]
     parts = [f"{words[v]} in {count_list([cell(c['photons'], c['nn']) for c in groups[v]])}"
              for v in ("higher", "equivalent", "lower", "undetermined") if v in groups]
     worst = ""
     w = rec["worst"]
     if w is not None:
-        share = f", {pct(100 * w['share'])}% of it bias" if w["share"] is not None else ""
+        share = ""
+        if w["share_lo"] is not None:
+            share = f", {pct(100 * w['share'])}% [{pct(100 * w['share_lo'])}, {pct(100 * w['share_hi'])}] of it bias"
+        elif w["share"] is not None and w["share"] < 0:
+            share = ", with a negative bias share (the split into bias and variance is not defined there)"
         worst = (f"; the largest excess is at {cell(w['photons'], w['nn'])}: "
                  f"{ci(w['mean'], w['lo'], w['hi'])}{share}")
     return (f"- **What the speed costs**: per seed, paired ({pairs_text(rec['pairs'])} per cell), Holm over the "
-            f"{rec['cells']} cells, the precomputed method's {primary_name()} (paper estimate) is "
-            + "; ".join(parts) + worst + " (`results/table1/table1.md`).")
+            f"{rec['cells']} cells, the precomputed method's {primary_name()} ({PRIMARY_ESTIMATE} estimate) is "
+            + "; ".join(parts) + worst + verdict_changes_text(rec["changed"], lambda v: words.get(v, v), rec["cells"])
+            + " (`results/table1/table1.md`).")
+
+
+def regions_head(runs):
+    """The bullet's head of where on the curve of a small image the
+    precomputation pays, from its curve_regions list."""
+    kinds = {x["class"] for x in runs}
+    cr = crossing_of(runs)
+    if kinds == {"above"}:
+        return "Small images: the precomputation still pays at every target enough resamples reach"
+    if kinds == {"below"}:
+        return "Small images: the precomputation stops paying at every target enough resamples reach"
+    if cr is not None and cr[0] == "up":
+        return "Small images: the precomputation pays at the looser targets, not at the tightest"
+    if cr is not None:
+        return "Small images: the precomputation pays at the tighter targets, not at the looser"
+    if "above" in kinds or "below" in kinds:
+        return "Small images: the precomputation pays at some targets and is undetermined at the others"
+    return "Small images: undetermined at every target"
 
 
 def readme_resolution(rec):
     sizes = rec["sizes"]
     if len(sizes) < 2:
         raise Missing(f"fewer than two `{rec['dir']}/equal-error-WxH.csv` (`make resolution`)")
-    est = "corrected"
     got = []
     for s in (sizes[0], sizes[-1]):
-        r = estimate_of(s["estimates"], est)
+        r = estimate_of(s["estimates"], PRIMARY_ESTIMATE)
         if r["headline"] is None:
             raise Missing(f"`{s['file']}`: at no target do {100 * ee.DEFINED_MIN:.0f}% of the "
                           "resamples reach both fronts (`make resolution` with more seeds)")
         got.append((s["size"], r))
     (s0, ra), (s1, rb) = got
-    a, b, small = ra["headline"], rb["headline"], ra["headline_vs_one"]
-    head = {"lower": "Small images: the precomputation stops paying",
-            "higher": "Small images: the precomputation still pays"}.get(small, "Small images: undetermined")
-    said = {"lower": ", slower", "higher": ", faster"}.get(small, " (its interval contains 1)")
-    return (f"- **{head}**: at {s0} and the tightest target that {100 * ee.DEFINED_MIN:.0f}% of the resamples "
-            f"reach on both fronts ({primary_name()} {fmt(a['target'])}, {est} estimate) the precomputed method's "
-            f"speed-up is {ci(a['speedup'], a['lo'], a['hi'])}x{said}; at {s1} (its own such target, "
-            f"{fmt(b['target'])}) it is {ci(b['speedup'], b['lo'], b['hi'])}x (`results/resolution/resolution.md`).")
+    b = rb["headline"]
+    beside = ""
+    try:
+        o = estimate_of(sizes[0]["estimates"], OTHER_ESTIMATE)
+        if regions_head(o["regions"]) != regions_head(ra["regions"]):
+            beside = f" (the {OTHER_ESTIMATE} estimate: {regions_text(o['regions'])})"
+    except Missing:
+        pass
+    return (f"- **{regions_head(ra['regions'])}**: at {s0}, {PRIMARY_ESTIMATE} estimate, where at least "
+            f"{100 * ee.DEFINED_MIN:.0f}% of the resamples reach both fronts, {regions_text(ra['regions'])}{beside}; "
+            f"at {s1}, at the tightest such target ({fmt(b['target'])}), the speed-up is "
+            f"{ci(b['speedup'], b['lo'], b['hi'])}x, {vs_one_word(rb['headline_vs_one'])} "
+            "(`results/resolution/resolution.md`).")
+
+
+def bias_equivalence_text(rec):
+    """The equivalence statement of the corrected estimate against 1, with
+    its margin and why that margin."""
+    k, m = rec["equivalent"], len(rec["equivalence"])
+    return (f"the corrected estimate is equivalent to the exact radiance within {fmt(100 * rec['margin'])}% "
+            f"(its whole 95% interval inside 1 ± {fmt(rec['margin'])}; the margin is {BIAS_MARGIN_REASON}) in "
+            f"{k} of {m} intervals (both methods, every n)")
 
 
 def readme_bias(rec):
     at = rec["quoted"]
-    k_in, k_all = rec["covered"], rec["intervals"]
-    fix = ("removes it for both methods" if k_in == k_all else f"leaves 1 inside {k_in} of {k_all} intervals")
     return (f"- **The paper's estimator is biased{' by a law' if at['on_law'] else ''}**: "
             f"{fmt(at['mean'], 5)} ± {fmt(at['ci95'], 2)} at n = {int(at['n'])} "
-            f"in the analytic scene, where n/(n-1) gives {fmt(at['law'], 5)}, and `--bias-correction` {fix} "
-            f"(1 inside {k_in} of {k_all} intervals; `results/estimator-bias/estimator-bias.md`).")
+            f"in the analytic scene, where n/(n-1) gives {fmt(at['law'], 5)}; with `--bias-correction` "
+            f"{bias_equivalence_text(rec)} (`results/estimator-bias/estimator-bias.md`).")
 
 
 def readme_rules(rec):
@@ -1027,7 +1759,13 @@ def readme_peers(rec):
             f"as the strongest peer at k = {count_list([str(k) for k in ks])} "
             f"({peer}; nanoflann: {count_list([report.fmt_fixed(r['nanoflann_ratio'], 2) + 'x' for r in rows])}), "
             "every neighbour set checked equal; these ratios "
-            "move between bench runs on a shared machine (`results/bench/bench.md`).")
+            "move between bench runs on a shared machine. The comparison is not like for like: our search carries "
+            "its state from one coherent query to the next and uses AVX2, the peers get neither"
+            + (f"; without the carried state ours answers "
+               f"{count_list([report.fmt_fixed(r['stateless_ratio'], 2) + 'x' for r in rows])} as many as the "
+               "strongest peer" if all("stateless_ratio" in r for r in rows) else
+               " (bench-peers.csv has no stateless run of ours to measure what the state is worth)")
+            + " (`results/bench/bench.md`).")
 
 
 def readme_scale(rec):
@@ -1039,14 +1777,26 @@ def readme_scale(rec):
              if r["two_total_pairs"] else f"{fmt(r['total_s'])} s in total (the scaling run)")
     speed = (f"; two threads against one: photon pass {fmt(r['trace'][0])}x, build {fmt(r['build'][0])}x"
              if r["trace"] is not None and r["build"] is not None else "")
+    b = rec["both"]
+    methods = ""
+    if b is not None:
+        ph = b["phases"]
+        methods = (f"; in the scaling run at {int(b['photons_emitted']) // 1000000}M the precomputed method took "
+                   f"{fmt(b['precomputed'])} s against the conventional {fmt(b['conventional'])} s (one render each): "
+                   f"the difference is its precompute, {fmt(b['precompute_s'])} s, of which its eye pass wins back "
+                   f"{fmt(-ph['eye'])} s" if b["largest_phase"] == "precompute" else
+                   f"; in the scaling run at {int(b['photons_emitted']) // 1000000}M the precomputed method took "
+                   f"{fmt(b['precomputed'])} s against the conventional {fmt(b['conventional'])} s (one render each), "
+                   f"the largest phase difference in its {b['largest_phase']} ({fmt(ph[b['largest_phase']])} s)")
     return (f"- **At scale**: {int(r['photons_emitted']) // 1000000}M emitted photons ({int(r['photons_stored']):,} "
             f"stored), conventional, n = 100, 512x384, {int(r['threads'])} threads: {pairs}, peak memory "
-            f"{fmt(r['bytes_per_stored'])} bytes per stored photon{speed} (`results/bench/threads.md`, "
+            f"{fmt(r['bytes_per_stored'])} bytes per stored photon{speed}{methods} (`results/bench/threads.md`, "
             "`results/bench/scaling.md`).")
 
 
 # (record, writer), in the block's order
-SUMMARY = (("table", readme_table), ("equal_error", readme_equal_error), ("cost", readme_cost),
+SUMMARY = (("table", readme_table), ("precompute", readme_precompute), ("figure3", readme_figure3),
+           ("equal_error", readme_equal_error), ("cost", readme_cost),
            ("resolution", readme_resolution), ("bias", readme_bias), ("rules", readme_rules),
            ("beyond", readme_beyond), ("repro", readme_repro), ("peers", readme_peers), ("scale", readme_scale))
 
@@ -1101,13 +1851,43 @@ def markdown(d, recs=None):
            "paired comparisons are worded from their Holm-corrected test (ranked, equivalent within delta = "
            f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}% of the conventional value, or undetermined), unpaired ones "
            f"rank only disjoint 95% intervals. Error: {metrics.PRIMARY_DEFINITION} (experiments/analysis/metrics.py).", ""]
+    out += opener(recs) + [""]
+    figs = recs.get("figures", {})
     for num, name, writer, missing_title in FINDINGS:
         try:
             title, lines = write(recs[name], writer)
         except Missing as e:
             title, lines = missing_title, [f"Not answered here: {e}."]
-        out += [f"## {num}. {title}", ""] + lines + [""]
+        pics = [f"![{os.path.basename(f)}]({f})" for f in figs.get(name, [])]
+        out += [f'<a id="{anchor(num)}"></a>', "", f"## {num}. {title}", ""] + lines + [""] \
+            + ([" ".join(pics), ""] if pics else [])
     return "\n".join(out)
+
+
+def anchor(num):
+    """The HTML anchor of finding NUM: 'finding-1', 'finding-T'."""
+    return f"finding-{num}"
+
+
+def opener(recs):
+    """FINDINGS.md's summary: the estimate that is primary and why, then
+    README's summary bullets (the same writers, the same records), each
+    linked to its finding's section; a bullet whose record is missing is
+    left to its section."""
+    num_of = {name: num for num, name, _, _ in FINDINGS}
+    out = ["## In short", "", PRIMARY_ESTIMATE_REASON, ""]
+    for name, writer in SUMMARY:
+        try:
+            text = write(recs[name], writer)
+        except Missing:
+            continue
+        cut = text.rfind(" (`results/")
+        if cut > 0 and text.endswith(").") and name in num_of:
+            text = text[:cut] + "."
+        if name in num_of:
+            text += f" [Finding {num_of[name]}](#{anchor(num_of[name])})."
+        out.append(text)
+    return out
 
 
 NUMBER = r"(?<![\w.])[0-9]+(?:[.,][0-9]+)*"
