@@ -25,10 +25,28 @@ same seed and estimate (0 for the conventional image itself), and its role:
 render from CONV_RUNROOT that the grid is compared with, listed when it is
 not the grid's own).
 
+The reference's own error travels with every row (reference.py): ref_noise
+and ref_bias are the noise and kernel bias its JSON holds (empty for a
+reference without one, e.g. POV-Ray's: its error is not measured, and no
+number stands in for it), and relmse_ref_corrected is relmse_ref minus the
+noise term (reference.corrected: the expected share of relmse_ref that the
+reference's own noise brings; equal to relmse_ref without a JSON, or when
+the JSON's metric is not relMSE). The bias is not subtracted: its sign per
+pixel is unknown.
+
 cells.csv, one row per cell (all seeds of one method, estimate, P_e, n):
-how many seeds rendered, the mean relMSE against the reference and its split
-into bias and variance over seeds (metrics.bias_variance_from_gram), and the
-reference floor (the fast POV-Ray render against the reference).
+how many seeds rendered, the mean relMSE against the reference, the same
+mean corrected for the reference's noise (relmse_ref_corrected_mean), its
+split into bias and variance over seeds (metrics.bias_variance_from_gram),
+and the reference floor (the fast POV-Ray render against the reference).
+
+The correction is one constant per reference, the same for every render
+judged against it, so a paired difference between two renders of one seed
+(stats.paired_difference: its mean, interval and p-value, hence the
+verdicts' tests) is the same on relmse_ref and relmse_ref_corrected: the
+term cancels. What scales with the level does change: the equivalence margin
+delta (a share of the conventional mean) and the relative difference both
+refer to the corrected level when computed on the corrected column.
 """
 
 import argparse
@@ -39,6 +57,7 @@ import numpy as np
 import pandas as pd
 
 from experiments.analysis import metrics
+from experiments.analysis import reference
 from experiments.analysis import report, runs as layout
 
 RUN_COLUMNS = [
@@ -47,11 +66,12 @@ RUN_COLUMNS = [
     "trace_s", "build_s", "precompute_s", "render_s", "total_s", "repeats", "trace_build_s", "precompute_render_s",
     "cpu_s", "user_s", "sys_s", "photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "loadavg_1min", "pair_pos",
     "relmse_ref", "nmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "role", "run",
+    "ref_noise", "ref_bias", "relmse_ref_corrected",
 ]
 CELL_COLUMNS = [
     "scene", "size", "subpixels", "tag", "method", "estimate", "photons", "nn",
     "seeds_ok", "seeds_refused", "seeds_missing",
-    "relmse_ref_mean", "bias_ref", "variance_ref", "relmse_ref_floor", "ref", "ref_fast",
+    "relmse_ref_mean", "relmse_ref_corrected_mean", "bias_ref", "variance_ref", "relmse_ref_floor", "ref", "ref_fast",
 ]
 
 
@@ -116,15 +136,37 @@ def image_of(row):
     return metrics.read_exr(row["run"] + ".exr")
 
 
-def measure(row, x, ref, ref_path, conv_imgs):
+def reference_error(ref_path):
+    """(info, ref_noise, ref_bias) of the reference at REF_PATH: its JSON
+    (reference.load; None without one or without a reference) and the two
+    numbers for runs.csv, nan (an empty field) when not measured. A JSON
+    whose metric is not relMSE gives info None here: its numbers are in
+    other units than relmse_ref, so nothing is subtracted from it."""
+    try:
+        info = reference.load(ref_path) if ref_path else None
+    except (OSError, ValueError) as e:
+        report.die("collect.py", f"{reference.sidecar(ref_path)}: not the reference's JSON ({e})")
+    if info is None or info.get("metric", metrics.PRIMARY) != "relmse":
+        return None, math.nan, math.nan
+    try:
+        return info, float(info["noise"]), float(info["bias"])
+    except (KeyError, TypeError, ValueError) as e:
+        report.die("collect.py", f"{reference.sidecar(ref_path)}: no numeric noise and bias ({e})")
+    return None, math.nan, math.nan
+
+
+def measure(row, x, ref, ref_path, conv_imgs, ref_info=None):
     """Add to ROW (an ok run whose image is X) its errors against the
     reference REF (if any; read from REF_PATH) and against the conventional
-    image of the same seed in CONV_IMGS (seed -> image), if there is one."""
+    image of the same seed in CONV_IMGS (seed -> image), if there is one;
+    REF_INFO: the reference's JSON (reference_error), for the corrected
+    relMSE."""
     if ref is not None:
         if x.shape != ref.shape:
             raise ValueError(f"{row['run']}.exr is {x.shape[1]}x{x.shape[0]}, "
                              f"the reference {ref_path} {ref.shape[1]}x{ref.shape[0]}")
         row["relmse_ref"] = metrics.relmse(x, ref)
+        row["relmse_ref_corrected"] = reference.corrected(row["relmse_ref"], ref_info)
         row["nmse_ref"] = metrics.nmse(x, ref)
         row["rmse_ref"] = metrics.rmse(x, ref)
         row["psnr_ref"] = metrics.psnr(x, ref)
@@ -139,9 +181,12 @@ def collect(args):
     floor = math.nan
     if ref is not None and args.ref_fast:
         floor = metrics.relmse(metrics.read_exr(args.ref_fast), ref)
+    info, ref_noise, ref_bias = reference_error(args.ref)
     seeds = [int(s) for s in args.seeds.split()]
     common = {"scene": args.scene, "size": f"{args.width}x{args.height}", "width": args.width,
               "height": args.height, "subpixels": args.subpixels, "tag": args.tag}
+    # every row of runs.csv carries the reference's own error (empty: not measured)
+    ref_err = {"ref_noise": ref_noise, "ref_bias": ref_bias}
     methods = args.methods.split()
     # the conventional runs the others are compared with come from
     # CONV_RUNROOT; when they are not this grid's own conventional runs they
@@ -156,15 +201,16 @@ def collect(args):
                 if separate:
                     for s, r in conv_rows.items():
                         if r["status"] == "ok":
-                            measure(r, conv_imgs[s], ref, args.ref, conv_imgs)
-                    runs.extend({**common, **r, "tag": "", "role": "comparison"} for r in conv_rows.values())
+                            measure(r, conv_imgs[s], ref, args.ref, conv_imgs, info)
+                    runs.extend({**common, **r, **ref_err, "tag": "", "role": "comparison"}
+                                for r in conv_rows.values())
                 for method in methods:
                     own_conv = method == "conventional" and not separate
                     rows = [conv_rows[s] if own_conv else read_run(args.runroot, method, estimate, photons, nn, s)
                             for s in seeds]
                     imgs = [conv_imgs[r["seed"]] if own_conv else image_of(r) for r in rows if r["status"] == "ok"]
                     for r, x in zip([r for r in rows if r["status"] == "ok"], imgs):
-                        measure(r, x, ref, args.ref, conv_imgs)
+                        measure(r, x, ref, args.ref, conv_imgs, info)
                     bias = variance = mean = math.nan
                     if ref is not None and imgs:
                         g = metrics.weighted_gram(imgs, ref)
@@ -174,9 +220,10 @@ def collect(args):
                     cells.append({**common, "method": method, "estimate": estimate, "photons": photons, "nn": nn,
                                   "seeds_ok": status.count("ok"), "seeds_refused": status.count("refused"),
                                   "seeds_missing": status.count("missing"), "relmse_ref_mean": mean,
+                                  "relmse_ref_corrected_mean": reference.corrected(mean, info),
                                   "bias_ref": bias, "variance_ref": variance, "relmse_ref_floor": floor,
                                   "ref": args.ref, "ref_fast": args.ref_fast})
-                    runs.extend({**common, **r, "role": "grid"} for r in rows)
+                    runs.extend({**common, **r, **ref_err, "role": "grid"} for r in rows)
     runs = pd.DataFrame(runs).reindex(columns=RUN_COLUMNS)
     cells = pd.DataFrame(cells).reindex(columns=CELL_COLUMNS)
     return runs, cells
