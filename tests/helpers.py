@@ -21,3 +21,14 @@ def table1_frame(ratios, diffs):
         rows.append(row)
         rows.append({"photons": p, "nn": n, "method": "conventional"})
     return pd.DataFrame(rows)
+
+
+def write_reference_json(exr, noise, bias, metric="relmse"):
+    """The JSON reference.py writes beside a converged reference EXR, with
+    the given NOISE and BIAS (the EXR itself is not written)."""
+    import json
+    from experiments.analysis import reference
+    with open(reference.sidecar(exr), "w") as f:
+        json.dump({"noise": noise, "bias": bias, "bias_raw": bias, "metric": metric,
+                   "settings": {"method": "conventional", "direct": "shadow-rays", "photons": 10 ** 6, "nn": 50,
+                                "seeds": [101, 102]}}, f)

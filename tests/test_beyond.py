@@ -221,3 +221,90 @@ def test_error_location_puts_edge_error_on_edges_and_flat_error_off_them():
     # no excess (the variant as good as the conventional renders): nothing to place
     _, _, share = beyond.error_location(np.full(mask.shape, -0.01), mask)
     assert math.isnan(share)
+
+
+def test_case_references_name_each_reference_error(tmp_path):
+    """Known answer: a case whose reference has a JSON gets its noise and
+    bias on every row and the describe sentence checked against the
+    case's tightest target (the smallest over its variants: 0.002, so 5.0%
+    and 2.0%); control: a noisier reference is flagged; a case whose
+    reference has no JSON (a POV-Ray render) gets empty columns and the
+    sentence says its error is not measured, with no number."""
+    from helpers import write_reference_json
+    good, noisy, pov = (str(tmp_path / f"{n}.exr") for n in ("good", "noisy", "pov"))
+    write_reference_json(good, 1e-4, 4e-5)
+    write_reference_json(noisy, 5e-4, 4e-5)
+    cases = {"a": ("cornell", "64x48", good), "b": ("box", "64x48", noisy), "c": ("cornell", "32x24", pov)}
+    t = pd.DataFrame([{"case": c, "variant": v, "tightest": x} for c, v, x in
+                      [("a", "paper", 0.004), ("a", "lazy", 0.002), ("a", "gated", math.nan),
+                       ("b", "paper", 0.002), ("c", "paper", 0.003)]])
+    refs = beyond.case_references(t, cases)
+    assert refs["a"]["tightest"] == 0.002 and refs["c"]["tightest"] == 0.003
+    assert "noise 5.0%, bias 2.0% of it" in refs["a"]["sentence"] and "WARNING" not in refs["a"]["sentence"]
+    assert "its noise is 25%" in refs["b"]["sentence"] and "WARNING" in refs["b"]["sentence"]
+    assert "not measured" in refs["c"]["sentence"] and "noise" not in refs["c"]["sentence"]
+    t = beyond.add_references(t, refs)
+    assert (t.loc[t["case"] == "a", "ref_noise"] == 1e-4).all() and (t.loc[t["case"] == "a", "ref_bias"] == 4e-5).all()
+    assert t.loc[t["case"] == "c", ["ref_noise", "ref_bias"]].isna().all().all()
+    md = "\n".join(beyond.references_md(refs, cases))
+    assert md.startswith("## References") and md.count("\n- **") == 3
+    assert f"- **c** (cornell at 32x24): Reference `{pov}`: its own error is not measured" in md
+
+
+def test_case_references_refuse_a_broken_json(tmp_path, capsys):
+    """A JSON beside a case's reference that is not JSON: exit 1 naming it."""
+    exr = str(tmp_path / "r.exr")
+    with open(str(tmp_path / "r.json"), "w") as f:
+        f.write("[")
+    with pytest.raises(SystemExit) as e:
+        beyond.case_references(pd.DataFrame({"case": ["a"], "tightest": [0.01]}), {"a": ("s", "8x6", exr)})
+    assert e.value.code == 1 and "r.json" in capsys.readouterr().err
+
+
+def test_main_reports_the_references(tmp_path, monkeypatch):
+    """End to end on a synthetic case per reference kind (EXRs, stats
+    JSONs, runs.csv): beyond.csv has ref_noise and ref_bias per case (the
+    JSON's, empty for the case whose reference has none) and beyond.md a
+    References section checking each against its case's tightest target,
+    the smallest `tightest` target of equal_error.analyse over its rows."""
+    from experiments.analysis import equal_error, reference
+    from helpers import write_reference_json
+    rng = np.random.default_rng(3)
+    ref_img = (0.4 + 0.2 * rng.random((6, 8, 3))).astype(np.float32)
+    argv, runs_of = ["beyond.py"], {}
+    for cid, with_json in (("conv", True), ("pov", False)):
+        ref = str(tmp_path / f"{cid}.exr")
+        reference.write_exr(ref_img, ref)
+        if with_json:
+            write_reference_json(ref, 2e-5, 1e-5)
+        rows = []
+        for (p, n) in CELLS:
+            for s in (1, 2, 3):
+                for m, speed in (("conventional", 1.0), ("precomputed", 1.5)):
+                    run = str(tmp_path / f"{cid}-{m}-{p}-{n}-{s}")
+                    err = (0.05 * n / p ** 0.5) * math.exp(0.05 * rng.normal())
+                    reference.write_exr(ref_img + np.float32(math.sqrt(err * 0.2)), run + ".exr")
+                    with open(run + ".stats.json", "w") as f:
+                        json.dump({"samples": 100, "rep_fallbacks": 0, "representatives": 10, "reps_evaluated": 10}, f)
+                    t = (1 + p / 50000 + n / 50) / speed * math.exp(0.02 * rng.normal())
+                    rows.append({"role": "grid", "status": "ok", "estimate": "paper", "method": m, "photons": p,
+                                 "nn": n, "seed": s, "relmse_ref": err, "precompute_s": 0.1, "render_s": t / 2,
+                                 "total_s": t, "cpu_s": t, "run": run, "size": "8x6", "loadavg_1min": 1.0})
+        csv = str(tmp_path / f"runs-{cid}.csv")
+        pd.DataFrame(rows).to_csv(csv, index=False)
+        runs_of[cid] = pd.DataFrame(rows)
+        argv += ["--case", cid, "cornell", "8x6", ref, "--variant", cid, "paper", "", csv]
+    out = str(tmp_path / "beyond")
+    monkeypatch.setattr(sys, "argv", argv + ["--out", out, "--bootstrap", "100"])
+    beyond.main()
+    t = pd.read_csv(out + ".csv")
+    assert list(t.columns[-2:]) == ["ref_noise", "ref_bias"]
+    assert (t.loc[t["case"] == "conv", "ref_noise"] == 2e-5).all() and (t.loc[t["case"] == "conv", "ref_bias"] == 1e-5).all()
+    assert t.loc[t["case"] == "pov", ["ref_noise", "ref_bias"]].isna().all().all()
+    md = open(out + ".md").read()
+    refs = md[md.index("## References"):]
+    tight = equal_error.analyse(runs_of["conv"], "paper", "total_s", "auto", np.random.default_rng(1), 10)["tightest"]
+    assert f"judges ({tight['target']:.3g})" in refs
+    assert f"noise {2e-5 / tight['target']:.1%}" in refs
+    assert "- **pov** (cornell at 8x6): Reference" in refs and "its own error is not measured" in refs
+    assert "{args.bootstrap}" not in md and "interval of 100 bootstrap resamples" in md

@@ -25,7 +25,7 @@ import pytest
 
 from experiments.analysis import collect, reference, stats
 from experiments.analysis import runs as layout
-from helpers import close
+from helpers import close, write_reference_json
 
 W, H = 8, 6
 SEEDS = (1, 2, 3)
@@ -62,10 +62,7 @@ def grid(tmp_path, with_json=True, metric="relmse"):
     os.makedirs(os.path.dirname(exr))
     reference.write_exr(ref, exr)
     if with_json:
-        with open(reference.sidecar(exr), "w") as f:
-            json.dump({"noise": NOISE, "bias": BIAS, "bias_raw": BIAS, "metric": metric,
-                       "settings": {"method": "conventional", "direct": "shadow-rays", "photons": 10 ** 6, "nn": 50,
-                                    "seeds": [101, 102]}}, f)
+        write_reference_json(exr, NOISE, BIAS, metric)
     return argparse.Namespace(runroot=str(root), conv_runroot=str(root), scene="scenes/x.scene", width=W, height=H,
                               subpixels=1, threads="1", tag="", methods="conventional precomputed",
                               estimates="paper", photons="1000", nns="10", seeds=" ".join(map(str, SEEDS)),

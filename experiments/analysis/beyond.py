@@ -29,8 +29,15 @@ included): faster after Holm and its error not ranked higher. Per case the
 verdict of the goal: the best variant's equal-error interval lies above 1.0
 and the paired test does not rank it below the paper's rule. A variant
 whose grid renders are missing is refused (exit 1): a
-half-run study never reads as a result. Every number in STEM.md is written
-here from the runs CSVs and the stats JSONs they name.
+half-run study never reads as a result. Per case the reference's own
+error (reference.py): its noise and kernel bias from the JSON beside its
+EXR (ref_noise, ref_bias in STEM.csv, on every row of the case; empty when
+it has none, as a POV-Ray reference: not measured, and no number stands in
+for it) and reference.describe's sentence in STEM.md's References,
+checked against the case's tightest equal-error target (the smallest
+`tightest` target of its variants' curves). Every number in STEM.md is
+written here from the runs CSVs, the stats JSONs they name and the
+references' JSONs.
 """
 
 import argparse
@@ -45,6 +52,7 @@ import pandas as pd
 from experiments.analysis import equal_error
 from experiments.analysis import metrics
 from experiments.analysis import plotting
+from experiments.analysis import reference
 from experiments.analysis import report
 from experiments.analysis import stats
 from experiments.analysis.plotting import plt
@@ -66,7 +74,7 @@ COLUMNS = ["case", "scene", "size", "variant", "args", "estimate", "target", "sp
            "conv_render_share", "photons_med_s", "precompute_med_s", "render_med_s", "error_ratio", "excess_relmse", "edge_pixels",
            "excess_edge_share", "renders", "seeds", "image_group", "pair_seeds", "vs_paper_ratio", "vs_paper_ratio_lo",
            "vs_paper_ratio_hi", "vs_paper_p_holm", "vs_paper_relmse_diff", "vs_paper_relmse_verdict", "best",
-           "above_one", "vs_paper", "goal_met"]
+           "above_one", "vs_paper", "goal_met", "ref_noise", "ref_bias"]
 ALPHA = 0.05  # the family-wise level of the paired tests (Holm)
 
 
@@ -230,6 +238,7 @@ def measure(case, scene, size, variant, args, runs_csv, time_col, rng, replicate
         ok = grid[(grid["status"] == "ok") & (grid["estimate"] == est)]
         res = equal_error.analyse(runs, est, time_col, "auto", rng, replicates)
         tight = res.get("headline") or {}
+        tightest = (res.get("tightest") or {}).get("target", math.nan)
         fb, ev = counters(ok) if len(ok) else (math.nan, math.nan)
         conv_ok = runs[(runs["method"] == "conventional") & (runs["status"] == "ok") & (runs["estimate"] == est)]
         excess, edge_px, edge_share = excess_of(runs, est, ref)
@@ -244,7 +253,7 @@ def measure(case, scene, size, variant, args, runs_csv, time_col, rng, replicate
                     "precompute_med_s": median_of(ok, "precompute_s"), "render_med_s": median_of(ok, "render_s"),
                     "error_ratio": error_ratio(runs, est), "excess_relmse": excess, "edge_pixels": edge_px,
                     "excess_edge_share": edge_share, "renders": int(len(ok)), "seeds": int(ok["seed"].nunique()),
-                    "load": runs["loadavg_1min"].astype(float).median()})
+                    "load": runs["loadavg_1min"].astype(float).median(), "tightest": tightest})
     return out
 
 
@@ -382,6 +391,52 @@ def verdicts(table):
     return table
 
 
+def case_references(table, cases):
+    """{case: {"ref", "ref_noise", "ref_bias", "tightest", "sentence"}}:
+    per case of CASES {id: (scene, size, REF)} the reference's noise and
+    bias in relMSE (reference.measured: nan when not measured), the case's
+    tightest equal-error target (the smallest finite `tightest` of its rows
+    in TABLE; None when there is none) and reference.describe's sentence
+    checked against it. Exits 1 naming a reference's JSON that cannot be
+    read."""
+    out = {}
+    for cid, (_scene, _size, ref) in cases.items():
+        t = table.loc[table["case"] == cid, "tightest"] if "tightest" in table else pd.Series([], dtype=float)
+        t = t.astype(float)[np.isfinite(t.astype(float))]
+        tightest = float(t.min()) if len(t) else None
+        try:
+            _info, noise, bias = reference.measured(ref)
+        except ValueError as e:
+            report.die(WHERE, str(e))
+        sentence = (reference.describe(ref, tightest) if ref else
+                    "No reference is named for this case: its own error is not measured.")
+        out[cid] = {"ref": ref, "ref_noise": noise, "ref_bias": bias, "tightest": tightest, "sentence": sentence}
+    return out
+
+
+def add_references(table, refs):
+    """TABLE with ref_noise and ref_bias per row, from its case's entry of
+    REFS (case_references)."""
+    for col in ("ref_noise", "ref_bias"):
+        table[col] = [refs[c][col] if c in refs else math.nan for c in table["case"]]
+    return table
+
+
+def references_md(refs, cases):
+    """The lines of STEM.md's References section."""
+    out = ["## References", "",
+           "Per case its reference's own error, from the JSON beside it (experiments/analysis/reference.py: the "
+           "noise of the mean over the reference's seeds, from their halves, and the kernel bias, from halving "
+           "P_e; both in relMSE), checked against the tightest equal-error target of the case (the smallest "
+           f"tightest target of its variants' curves): each should be at most {reference.MARGIN:.0%} of it. "
+           "A reference without that JSON (a POV-Ray render) has its error not measured; no number is given "
+           "for it. Columns `ref_noise` and `ref_bias` of the CSV hold the same numbers per case.", ""]
+    for cid, r in refs.items():
+        scene, size, _ref = cases[cid]
+        out.append(f"- **{cid}** ({scene} at {size}): {r['sentence']}")
+    return out
+
+
 def pct(x):
     """'12.3%' of a fraction, 'n/a' when not a number."""
     return f"{100 * x:.1f}%" if report.isnum(x) else "n/a"
@@ -512,16 +567,19 @@ def main():
         frames.setdefault(cid, {})[name] = report.read_csv(csv, NEED, WHERE)
     table = pd.DataFrame(rows)
     table = verdicts(add_paired(table, frames, args.time))
+    refs = case_references(table, cases)
+    table = add_references(table, refs)
     report.write_csv_atomic(table[COLUMNS], args.out + ".csv")
-    write_md(table, cases, args)
+    write_md(table, cases, args, refs)
     if args.figure:
         figure(table, args.figure, f"Data: {args.out}.csv; {args.bootstrap} bootstrap resamples over seeds; "
                f"time: {report.TIME_LABEL[args.time]}.")
     print(f"wrote {args.out}.md and {args.out}.csv ({len(table)} rows)")
 
 
-def write_md(table, cases, args):
-    """STEM.md: settings and provenance, the table, the verdict per case."""
+def write_md(table, cases, args, refs=None):
+    """STEM.md: settings and provenance, the table, the verdict per case,
+    the references' own error (REFS: case_references)."""
     load = stats.median_range(table["load"].to_numpy(np.float64))
     out = ["# Beyond the paper: representative variants at equal error", "",
            f"Generated on {report.today()} by `{args.settings or 'make beyond'}` "
@@ -532,9 +590,10 @@ def write_md(table, cases, args):
            "Speed-up: conventional time / variant time at the tightest relMSE target of the equal-error curve "
            f"that at least {100 * equal_error.DEFINED_MIN:.0f}% of the bootstrap resamples reach on both fronts "
            "(`equal_error.headline`; each variant against the conventional renders of the same seeds and photon "
-           "maps, its own such target; none: n/a), with the 95% percentile interval of {args.bootstrap} bootstrap resamples "
+           f"maps, its own such target; none: n/a), with the 95% percentile interval of {args.bootstrap} bootstrap resamples "
            f"over seeds (random seed {args.bootstrap_seed}, one stream per case and variant). Reference: each scene's converged render at its size "
-           "(`converged_ref` of `experiments/analysis/runs.py`, made by `experiments/rules/reference.smk`). "
+           "(`converged_ref` of `experiments/analysis/runs.py`, made by `experiments/rules/reference.smk`; its own "
+           "error per case: section References). "
            "Fallback rate: rep_fallbacks / eye samples; evaluated: "
            "reps_evaluated / representatives (both pooled over the variant's renders). Error ratio: the variant's "
            "mean relMSE over the conventional one's at the same cells and seeds. All the renders of one (cell, seed) "
@@ -604,6 +663,7 @@ def write_md(table, cases, args):
     n = table.groupby(["case", "estimate"]).ngroups
     out += ["", f"The goal holds in {met} of {n} cases. Not measured: the error's share in the pixels that fell "
             "back (the renderer writes no per-pixel fallback map; the pooled fallback rate stands for it)."]
+    out += [""] + references_md(refs if refs is not None else case_references(table, cases), cases)
     report.write_atomic(args.out + ".md", "\n".join(out) + "\n")
 
 

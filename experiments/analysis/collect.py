@@ -137,21 +137,14 @@ def image_of(row):
 
 
 def reference_error(ref_path):
-    """(info, ref_noise, ref_bias) of the reference at REF_PATH: its JSON
-    (reference.load; None without one or without a reference) and the two
-    numbers for runs.csv, nan (an empty field) when not measured. A JSON
-    whose metric is not relMSE gives info None here: its numbers are in
-    other units than relmse_ref, so nothing is subtracted from it."""
+    """(info, ref_noise, ref_bias) of the reference at REF_PATH for
+    runs.csv (reference.measured: None, nan, nan when not measured, or
+    measured in other units than relmse_ref, so nothing is subtracted);
+    exits 1 naming its JSON when that is unreadable."""
     try:
-        info = reference.load(ref_path) if ref_path else None
-    except (OSError, ValueError) as e:
-        report.die("collect.py", f"{reference.sidecar(ref_path)}: not the reference's JSON ({e})")
-    if info is None or info.get("metric", metrics.PRIMARY) != "relmse":
-        return None, math.nan, math.nan
-    try:
-        return info, float(info["noise"]), float(info["bias"])
-    except (KeyError, TypeError, ValueError) as e:
-        report.die("collect.py", f"{reference.sidecar(ref_path)}: no numeric noise and bias ({e})")
+        return reference.measured(ref_path)
+    except ValueError as e:
+        report.die("collect.py", str(e))
     return None, math.nan, math.nan
 
 

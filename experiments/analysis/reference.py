@@ -146,6 +146,24 @@ def load(exr):
         return json.load(fh)
 
 
+def measured(exr, unit="relmse"):
+    """(info, noise, bias) of the reference at EXR for a table in UNIT: its
+    JSON (load) with the two numbers, or (None, nan, nan) when its error is
+    not measured (no EXR named, no JSON beside it) or is measured in another
+    metric than UNIT (its numbers would not subtract from UNIT's). Raises
+    ValueError naming the JSON when it is not JSON or lacks the numbers."""
+    try:
+        info = load(exr) if exr else None
+    except (OSError, ValueError) as e:
+        raise ValueError(f"{sidecar(exr)}: not the reference's JSON ({e})") from e
+    if info is None or info.get("metric", metrics.PRIMARY) != unit:
+        return None, math.nan, math.nan
+    try:
+        return info, float(info["noise"]), float(info["bias"])
+    except (KeyError, TypeError, ValueError) as e:
+        raise ValueError(f"{sidecar(exr)}: no numeric noise and bias ({e})") from e
+
+
 def corrected(err, info):
     """A test's primary error ERR against a reference with INFO (load()):
     minus the reference's noise term; ERR unchanged when INFO is None."""
