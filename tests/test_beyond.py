@@ -243,6 +243,9 @@ def test_case_references_name_each_reference_error(tmp_path):
     assert "noise 5.0%, bias 2.0% of it" in refs["a"]["sentence"] and "WARNING" not in refs["a"]["sentence"]
     assert "its noise is 25%" in refs["b"]["sentence"] and "WARNING" in refs["b"]["sentence"]
     assert "not measured" in refs["c"]["sentence"] and "noise" not in refs["c"]["sentence"]
+    t0 = pd.DataFrame({"case": ["a"], "variant": ["paper"], "tightest": [math.nan]})
+    r0 = beyond.case_references(t0, {"a": cases["a"]})["a"]
+    assert r0["tightest"] is None and "no tightest target to judge it by" in r0["sentence"].lower()
     t = beyond.add_references(t, refs)
     assert (t.loc[t["case"] == "a", "ref_noise"] == 1e-4).all() and (t.loc[t["case"] == "a", "ref_bias"] == 4e-5).all()
     assert t.loc[t["case"] == "c", ["ref_noise", "ref_bias"]].isna().all().all()

@@ -15,6 +15,7 @@ import os
 
 import numpy as np
 import pandas as pd
+import pytest
 
 from experiments.analysis import gather
 from helpers import close
@@ -96,10 +97,10 @@ def test_best_per_target_is_the_cheapest_reaching_cell():
     close(rows[0][3], 1.1, 1e-12, "median time")
 
 
-def test_main_writes_report(tmp_path):
-    """End to end: two sub-grids' runs.csv with stats JSONs -> gather.md and
-    gather.csv naming the grid and a speed-up near the one put in."""
-    runs = synthetic(2.0, seeds=3)
+def write_grids(tmp_path, speedup=2.0):
+    """Two sub-grids' runs.csv (N 4 and 16) with stats JSONs under
+    TMP_PATH; returns their --grid arguments."""
+    runs = synthetic(speedup, seeds=3)
     grids = []
     for g in (4, 16):
         sub = runs[runs["N"] == g].copy()
@@ -118,6 +119,13 @@ def test_main_writes_report(tmp_path):
         sub.drop(columns=["gather_s", "map_work", "rep_work", "bytes_photon_map", "bytes_caustic_map",
                           "bytes_representatives", "N", "scene", "size"]).to_csv(csv, index=False)
         grids += ["--grid", "scenes/x.scene", "64x48", str(g), str(csv)]
+    return grids
+
+
+def test_main_writes_report(tmp_path):
+    """End to end: two sub-grids' runs.csv with stats JSONs -> gather.md and
+    gather.csv naming the grid and a speed-up near the one put in."""
+    grids = write_grids(tmp_path)
     out = str(tmp_path / "out" / "gather")
     gather.main(grids + ["--out", out, "--bootstrap", "200"])
     md = open(out + ".md").read()
@@ -126,3 +134,51 @@ def test_main_writes_report(tmp_path):
     ee = c[(c["kind"] == "equal_error") & (c["defined"] >= gather.DEFINED_MIN)]
     assert len(ee) and all(abs(v - 2.0) < 0.2 for v in ee["speedup"]), ee
     assert os.path.isfile(out + ".csv")
+    # no --ref: the References section says so, and no number stands for the reference's error
+    assert "- **scenes/x.scene at 64x48**: No reference is named for it (--ref)" in md
+    assert c["ref_noise"].isna().all() and c["ref_bias"].isna().all()
+
+
+def test_main_reports_the_references_error(tmp_path):
+    """Known answer: --ref names a reference with a JSON: every gather.csv
+    row of the grid holds its noise and bias, and gather.md's References
+    checks them against the grid's tightest equal-error target (the
+    smallest target of its equal_error rows); control: the same reference
+    without its JSON (a POV-Ray render) gives empty columns and "not
+    measured", no number."""
+    from experiments.analysis import reference
+    from helpers import write_reference_json
+    grids = write_grids(tmp_path)
+    ref = str(tmp_path / "ref.exr")
+    write_reference_json(ref, 1e-7, 5e-8)
+    out = str(tmp_path / "a" / "gather")
+    gather.main(grids + ["--ref", "scenes/x.scene", "64x48", ref, "--out", out, "--bootstrap", "100"])
+    c = pd.read_csv(out + ".csv")
+    assert (c["ref_noise"] == 1e-7).all() and (c["ref_bias"] == 5e-8).all()
+    tight = c.loc[c["kind"] == "equal_error", "target"].min()
+    md = open(out + ".md").read()
+    refs = md[md.index("## References"):]
+    assert f"- **scenes/x.scene at 64x48**: Reference `{ref}`" in refs
+    assert f"judges ({tight:.3g})" in refs and f"noise {1e-7 / tight:.1%}" in refs and "WARNING" not in refs
+    os.remove(reference.sidecar(ref))
+    out = str(tmp_path / "b" / "gather")
+    gather.main(grids + ["--ref", "scenes/x.scene", "64x48", ref, "--out", out, "--bootstrap", "100"])
+    c = pd.read_csv(out + ".csv")
+    assert c["ref_noise"].isna().all() and c["ref_bias"].isna().all()
+    refs = open(out + ".md").read().split("## References")[1]
+    assert "its own error is not measured" in refs and "noise" not in refs.split("\n- **")[1]
+
+
+def test_grid_reference_without_targets_and_two_refs_refused(tmp_path, capsys):
+    """A grid without equal-error rows has no tightest target: the sentence
+    says so; two references for one scene and size: exit 2 naming both."""
+    from helpers import write_reference_json
+    ref = str(tmp_path / "r.exr")
+    write_reference_json(ref, 1e-5, 1e-5)
+    r = gather.grid_reference(ref, [])
+    assert r["tightest"] is None and "no tightest target to judge it by" in r["sentence"].lower()
+    assert r["ref_noise"] == 1e-5
+    with pytest.raises(SystemExit) as e:
+        gather.main(write_grids(tmp_path) + ["--ref", "scenes/x.scene", "64x48", "a.exr", "--ref", "scenes/x.scene",
+                                             "64x48", "b.exr", "--out", str(tmp_path / "g")])
+    assert e.value.code == 2 and "a.exr and b.exr" in capsys.readouterr().err

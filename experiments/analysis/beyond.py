@@ -408,7 +408,8 @@ def case_references(table, cases):
             _info, noise, bias = reference.measured(ref)
         except ValueError as e:
             report.die(WHERE, str(e))
-        sentence = (reference.describe(ref, tightest) if ref else
+        # nan, not None: the sentence then says that there is no target to check it against
+        sentence = (reference.describe(ref, math.nan if tightest is None else tightest) if ref else
                     "No reference is named for this case: its own error is not measured.")
         out[cid] = {"ref": ref, "ref_noise": noise, "ref_bias": bias, "tightest": tightest, "sentence": sentence}
     return out

@@ -30,19 +30,30 @@ methods under final gathering over P_e x n x N (the gather rays, --gather N),
       direct visualisation are given (another study's runs.csv of the same
       scene and size), the map seen directly (method, estimate, P_e, n).
 
+Per grid the reference's own error (reference.py): its noise and kernel
+bias from the JSON beside the reference EXR (columns ref_noise, ref_bias of
+gather.csv, on every row of the grid; empty when it has none, as a POV-Ray
+reference: not measured, and no number stands in for it) and
+reference.describe's sentence in gather.md's References, checked against
+the grid's tightest equal-error target (the smallest target of its
+equal-error rows).
+
 Input: the runs.csv of every sub-grid (experiments/analysis/collect.py, one
 per scene, size and N) as --grid SCENE SIZE N RUNS_CSV; each ok run's stats
-JSON (RUN.stats.json) for the gather keys.
+JSON (RUN.stats.json) for the gather keys; the reference of each scene and
+size as --ref SCENE SIZE REF (the grids' `ref`, the column of their
+cells.csv; a grid without one says so).
 """
 
 import argparse
 import math
 import os
+import sys
 
 import numpy as np
 import pandas as pd
 
-from experiments.analysis import equal_error, metrics, report, stats
+from experiments.analysis import equal_error, metrics, reference, report, stats
 from experiments.analysis.report import fmt, fmt_interval
 
 METHODS = ("conventional", "precomputed")
@@ -227,8 +238,44 @@ def setting_label(key):
     return cell_label(key) if len(key) == 3 else f"P_e={key[0]} n={key[1]}"
 
 
-def write(runs, direct, time_col, out, figure, rng, replicates, pm):
-    """gather.md, gather.csv and the figure."""
+def grid_reference(ref, rows):
+    """{"ref", "ref_noise", "ref_bias", "tightest", "sentence"} of one grid:
+    its reference REF's noise and bias in relMSE (reference.measured: nan
+    when not measured), the grid's tightest equal-error target (the
+    smallest target of its equal-error ROWS; None without one) and
+    reference.describe's sentence checked against it. Exits 1 naming a
+    reference's JSON that cannot be read."""
+    t = [r["target"] for r in rows if report.isnum(r["target"]) and math.isfinite(r["target"])]
+    tightest = min(t) if t else None
+    try:
+        _info, noise, bias = reference.measured(ref)
+    except ValueError as e:
+        report.die("gather.py", str(e))
+    # nan, not None: the sentence then says that there is no target to check it against
+    sentence = (reference.describe(ref, math.nan if tightest is None else tightest) if ref else
+                "No reference is named for it (--ref): its own error is not reported here.")
+    return {"ref": ref, "ref_noise": noise, "ref_bias": bias, "tightest": tightest, "sentence": sentence}
+
+
+def references_md(refs):
+    """The lines of gather.md's References section; REFS: {(scene, size):
+    grid_reference}."""
+    out = ["## References", "",
+           "Per grid its reference's own error, from the JSON beside it (experiments/analysis/reference.py: the "
+           "noise of the mean over the reference's seeds, from their halves, and the kernel bias, from halving "
+           "P_e; both in relMSE), checked against the grid's tightest equal-error target (the smallest target "
+           f"of its equal-error table): each should be at most {reference.MARGIN:.0%} of it. A reference without "
+           "that JSON (a POV-Ray render) has its error not measured; no number is given for it. Columns "
+           "`ref_noise` and `ref_bias` of the CSV hold the same numbers per grid.", ""]
+    out += [f"- **{scene} at {size}**: {r['sentence']}" for (scene, size), r in refs.items()]
+    return out
+
+
+def write(runs, direct, time_col, out, figure, rng, replicates, pm, refs=None):
+    """gather.md, gather.csv and the figure; REFS: {(scene, size): the
+    reference EXR} (--ref)."""
+    refs = refs or {}
+    grid_refs = {}
     lines = ["# Final gathering: the precomputed method against the conventional one", "",
              f"Machine: {report.machine()}; load average at the report: {report.loadavg_now()}; commit {report.commit()}; "
              f"renderer {report.renderer_note(pm)}; {report.today()}.", "",
@@ -241,6 +288,8 @@ def write(runs, direct, time_col, out, figure, rng, replicates, pm):
     for (scene, size), g in runs.groupby(["scene", "size"], sort=False):
         s = grid_summary(g, time_col, rng, replicates)
         summaries[(scene, size)] = s
+        grid_refs[(scene, size)] = grid_reference(refs.get((scene, size), ""), s["rows"])
+        first = len(csv_rows)
         counted = [r for r in s["rows"] if r["counts"]]
         lo = min((r["lo"] for r in counted), default=math.nan)
         hi = max((r["hi"] for r in counted), default=math.nan)
@@ -287,6 +336,9 @@ def write(runs, direct, time_col, out, figure, rng, replicates, pm):
             for x, m, k, t in best:
                 csv_rows.append({"scene": scene, "size": size, "kind": "best", "target": x, "mode": m,
                                  "setting": setting_label(k), "conventional_s": t})
+        for row in csv_rows[first:]:
+            row.update(ref_noise=grid_refs[(scene, size)]["ref_noise"], ref_bias=grid_refs[(scene, size)]["ref_bias"])
+    lines += references_md(grid_refs) + [""]
     report.write_atomic(out + ".md", "\n".join(lines) + "\n")
     report.write_csv_atomic(pd.DataFrame(csv_rows), out + ".csv")
     if figure:
@@ -325,6 +377,8 @@ def parse_grid_args(items):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--grid", nargs=4, action="append", required=True, metavar=("SCENE", "SIZE", "N", "RUNS_CSV"))
+    ap.add_argument("--ref", nargs=3, action="append", default=[], metavar=("SCENE", "SIZE", "REF"),
+                    help="the reference EXR the grids of SCENE at SIZE are judged against (its own error is reported)")
     ap.add_argument("--direct", nargs=3, action="append", default=[], metavar=("SCENE", "SIZE", "RUNS_CSV"),
                     help="a study of the map seen directly at the same scene and size (item 9)")
     ap.add_argument("--time", default="total_s", choices=sorted(report.TIME_LABEL))
@@ -343,7 +397,14 @@ def main(argv=None):
             direct.setdefault((scene, size), {}).update(direct_samples(path, a.time))
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     rng = np.random.default_rng(a.bootstrap_seed)
-    write(runs, direct, a.time, a.out, a.figure, rng, a.bootstrap, a.pm)
+    refs = {}
+    for scene, size, ref in a.ref:
+        if refs.get((scene, size), ref) != ref:
+            print(f"gather.py: --ref {scene} {size}: two references ({refs[(scene, size)]} and {ref})",
+                  file=sys.stderr)
+            sys.exit(2)
+        refs[(scene, size)] = ref
+    write(runs, direct, a.time, a.out, a.figure, rng, a.bootstrap, a.pm, refs)
 
 
 if __name__ == "__main__":

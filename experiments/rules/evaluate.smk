@@ -195,6 +195,8 @@ def gather_cmd():
     words = [PY, "-m", "experiments.analysis.gather"]
     for g in GATHERS:
         words += ["--grid", g.scene, g.size, g.knobs["GATHER"], g.files["runs_csv"]]
+    for scene, size, ref in dict.fromkeys((g.scene, g.size, g.ref) for g in GATHERS):
+        words += ["--ref", scene, size, ref]
     return shell_words(words + ["--direct", G.scene, G.size, G.files["runs_csv"], "--time", K["TIME"], "--out",
                                 STUDY.files["gather"], "--figure", STUDY.files["gather_figure"], "--bootstrap",
                                 K["BOOTSTRAP"], "--bootstrap-seed", K["BOOTSTRAP_SEED"], "--pm", STUDY.pm])

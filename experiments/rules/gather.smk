@@ -3,7 +3,8 @@
 # methods with --gather N, a run root tagged gatherN, the conventional
 # renders of the heaviest cells run once), analysed by rules/grid.smk, each
 # against the converged reference of its case (rules/reference.smk), then
-# the report over every grid (analysis/gather.py), with the runs of the map
+# the report over every grid (analysis/gather.py, told each case's reference
+# for its own error), with the runs of the map
 # seen directly on the same scene and size where the scenes study has them
 # (studies.yaml related: direct).
 include: "grid.smk"
@@ -18,6 +19,8 @@ def gather_cmd():
     words = [STUDY.python, "-m", "experiments.analysis.gather"]
     for g in STUDY.grids:
         words += ["--grid", g.scene, g.size, g.knobs["GATHER"], g.files["runs_csv"]]
+    for scene, size, ref in dict.fromkeys((g.scene, g.size, g.ref) for g in STUDY.grids):
+        words += ["--ref", scene, size, ref]
     for d in DIRECT.grids:
         words += ["--direct", d.scene, d.size, d.files["runs_csv"]]
     return shell_words(words + ["--time", K["TIME"], "--out", STUDY.files["out"], "--figure", STUDY.files["figure"],
