@@ -302,7 +302,8 @@ def test_main_reports_the_references(tmp_path, monkeypatch):
     beyond.main()
     t = pd.read_csv(out + ".csv")
     assert list(t.columns[-2:]) == ["ref_noise", "ref_bias"]
-    assert (t.loc[t["case"] == "conv", "ref_noise"] == 2e-5).all() and (t.loc[t["case"] == "conv", "ref_bias"] == 1e-5).all()
+    conv = t[t["case"] == "conv"]
+    assert (conv["ref_noise"] == 2e-5).all() and (conv["ref_bias"] == 1e-5).all()
     assert t.loc[t["case"] == "pov", ["ref_noise", "ref_bias"]].isna().all().all()
     md = open(out + ".md").read()
     refs = md[md.index("## References"):]

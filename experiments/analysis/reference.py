@@ -39,6 +39,10 @@ refuse: the study still runs, its tightest targets are then flagged).
 corrected() is a test's primary error minus the reference's noise term
 (the expectation of the squared reference noise that the metric adds;
 the bias cannot be removed, its sign is unknown).
+measured() is what a table's columns carry (runs.csv's ref_noise and
+ref_bias, beyond.csv's, gather.csv's): the two numbers, nan where the
+reference has no JSON (a POV-Ray reference: its error is not measured and
+no number stands in for it).
 
 Command line:
   python3 -m experiments.analysis.reference build --pm PM --scene S --width W --height H
