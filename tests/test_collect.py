@@ -1,6 +1,6 @@
 """Unit tests of experiments/analysis/collect.py: the reference's own error in
-runs.csv and cells.csv (ref_noise, ref_bias, relmse_ref_corrected,
-relmse_ref_corrected_mean).
+runs.csv and cells.csv (ref_noise, ref_bias, relmse_ref_less_noise,
+relmse_ref_less_noise_mean).
 
 Run by pytest from the repository root (tests/pytest.test.sh). A synthetic
 grid (two methods, three seeds, 8x6 EXRs with noise from fixed seeds) is
@@ -78,15 +78,15 @@ def test_runs_carry_the_references_error(tmp_path):
     ok = runs[runs["status"] == "ok"]
     assert len(ok) == 2 * len(SEEDS)
     assert (runs["ref_noise"] == NOISE).all() and (runs["ref_bias"] == BIAS).all()
-    assert np.allclose(ok["relmse_ref_corrected"], ok["relmse_ref"] - NOISE, rtol=0, atol=1e-15)
+    assert np.allclose(ok["relmse_ref_less_noise"], ok["relmse_ref"] - NOISE, rtol=0, atol=1e-15)
     assert (ok["relmse_ref"] > NOISE).all()  # the correction is visible against the raw numbers
     for _, c in cells.iterrows():
-        close(c["relmse_ref_corrected_mean"], c["relmse_ref_mean"] - NOISE, 1e-15, "cell's corrected mean")
+        close(c["relmse_ref_less_noise_mean"], c["relmse_ref_mean"] - NOISE, 1e-15, "cell's corrected mean")
         mine = ok[ok["method"] == c["method"]]
-        close(c["relmse_ref_corrected_mean"], mine["relmse_ref_corrected"].mean(), 1e-9, "mean over seeds")
+        close(c["relmse_ref_less_noise_mean"], mine["relmse_ref_less_noise"].mean(), 1e-9, "mean over seeds")
     # the interface: every existing column is still there, the new ones after them
-    assert list(runs.columns[-3:]) == ["ref_noise", "ref_bias", "relmse_ref_corrected"]
-    assert list(cells.columns).index("relmse_ref_corrected_mean") == list(cells.columns).index("relmse_ref_mean") + 1
+    assert list(runs.columns[-3:]) == ["ref_noise", "ref_bias", "relmse_ref_less_noise"]
+    assert list(cells.columns).index("relmse_ref_less_noise_mean") == list(cells.columns).index("relmse_ref_mean") + 1
 
 
 def test_reference_without_json_is_not_measured(tmp_path, monkeypatch):
@@ -103,8 +103,8 @@ def test_reference_without_json_is_not_measured(tmp_path, monkeypatch):
     cells = pd.read_csv(args.cells_csv)
     assert runs["ref_noise"].isna().all() and runs["ref_bias"].isna().all()
     ok = runs[runs["status"] == "ok"]
-    assert (ok["relmse_ref_corrected"] == ok["relmse_ref"]).all()
-    assert (cells["relmse_ref_corrected_mean"] == cells["relmse_ref_mean"]).all()
+    assert (ok["relmse_ref_less_noise"] == ok["relmse_ref"]).all()
+    assert (cells["relmse_ref_less_noise_mean"] == cells["relmse_ref_mean"]).all()
     with open(args.runs_csv) as f:
         header, first = f.readline().rstrip("\n").split(","), f.readline().rstrip("\n").split(",")
     assert first[header.index("ref_noise")] == "" and first[header.index("ref_bias")] == ""
@@ -118,20 +118,20 @@ def test_json_in_other_units_corrects_nothing(tmp_path):
     runs, cells = collect.collect(grid(tmp_path, metric="nmse"))
     ok = runs[runs["status"] == "ok"]
     assert runs["ref_noise"].isna().all()
-    assert (ok["relmse_ref_corrected"] == ok["relmse_ref"]).all()
+    assert (ok["relmse_ref_less_noise"] == ok["relmse_ref"]).all()
 
 
 def test_paired_difference_unchanged_by_the_correction(tmp_path):
     """The term cancels: the paired difference precomputed - conventional
     per seed has the same mean, interval and p on relmse_ref and on
-    relmse_ref_corrected; control: the margin delta (a share of the
+    relmse_ref_less_noise; control: the margin delta (a share of the
     conventional level) is smaller by exactly MARGIN x noise on the
     corrected column, so the test can tell the columns apart."""
     runs, _ = collect.collect(grid(tmp_path))
     ok = runs[runs["status"] == "ok"].sort_values("seed")
     pre, conv = ok[ok["method"] == "precomputed"], ok[ok["method"] == "conventional"]
     raw = stats.paired_difference(pre["relmse_ref"].to_numpy(), conv["relmse_ref"].to_numpy())
-    cor = stats.paired_difference(pre["relmse_ref_corrected"].to_numpy(), conv["relmse_ref_corrected"].to_numpy())
+    cor = stats.paired_difference(pre["relmse_ref_less_noise"].to_numpy(), conv["relmse_ref_less_noise"].to_numpy())
     for k in ("mean", "lo", "hi"):
         close(cor[k], raw[k], 1e-15, k)
     close(cor["p"], raw["p"], 1e-9, "p")

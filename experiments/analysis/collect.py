@@ -28,7 +28,7 @@ not the grid's own).
 The reference's own error travels with every row (reference.py): ref_noise
 and ref_bias are the noise and kernel bias its JSON holds (empty for a
 reference without one, e.g. POV-Ray's: its error is not measured, and no
-number stands in for it), and relmse_ref_corrected is relmse_ref minus the
+number stands in for it), and relmse_ref_less_noise is relmse_ref minus the
 noise term (reference.corrected: the expected share of relmse_ref that the
 reference's own noise brings; equal to relmse_ref without a JSON, or when
 the JSON's metric is not relMSE). The bias is not subtracted: its sign per
@@ -36,14 +36,14 @@ pixel is unknown.
 
 cells.csv, one row per cell (all seeds of one method, estimate, P_e, n):
 how many seeds rendered, the mean relMSE against the reference, the same
-mean corrected for the reference's noise (relmse_ref_corrected_mean), its
+mean corrected for the reference's noise (relmse_ref_less_noise_mean), its
 split into bias and variance over seeds (metrics.bias_variance_from_gram),
 and the reference floor (the fast POV-Ray render against the reference).
 
 The correction is one constant per reference, the same for every render
 judged against it, so a paired difference between two renders of one seed
 (stats.paired_difference: its mean, interval and p-value, hence the
-verdicts' tests) is the same on relmse_ref and relmse_ref_corrected: the
+verdicts' tests) is the same on relmse_ref and relmse_ref_less_noise: the
 term cancels. What scales with the level does change: the equivalence margin
 delta (a share of the conventional mean) and the relative difference both
 refer to the corrected level when computed on the corrected column.
@@ -66,12 +66,12 @@ RUN_COLUMNS = [
     "trace_s", "build_s", "precompute_s", "render_s", "total_s", "repeats", "trace_build_s", "precompute_render_s",
     "cpu_s", "user_s", "sys_s", "photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "loadavg_1min", "pair_pos",
     "relmse_ref", "nmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "role", "run",
-    "ref_noise", "ref_bias", "relmse_ref_corrected",
+    "ref_noise", "ref_bias", "relmse_ref_less_noise",
 ]
 CELL_COLUMNS = [
     "scene", "size", "subpixels", "tag", "method", "estimate", "photons", "nn",
     "seeds_ok", "seeds_refused", "seeds_missing",
-    "relmse_ref_mean", "relmse_ref_corrected_mean", "bias_ref", "variance_ref", "relmse_ref_floor", "ref", "ref_fast",
+    "relmse_ref_mean", "relmse_ref_less_noise_mean", "bias_ref", "variance_ref", "relmse_ref_floor", "ref", "ref_fast",
 ]
 
 
@@ -159,7 +159,7 @@ def measure(row, x, ref, ref_path, conv_imgs, ref_info=None):
             raise ValueError(f"{row['run']}.exr is {x.shape[1]}x{x.shape[0]}, "
                              f"the reference {ref_path} {ref.shape[1]}x{ref.shape[0]}")
         row["relmse_ref"] = metrics.relmse(x, ref)
-        row["relmse_ref_corrected"] = reference.corrected(row["relmse_ref"], ref_info)
+        row["relmse_ref_less_noise"] = reference.corrected(row["relmse_ref"], ref_info)
         row["nmse_ref"] = metrics.nmse(x, ref)
         row["rmse_ref"] = metrics.rmse(x, ref)
         row["psnr_ref"] = metrics.psnr(x, ref)
@@ -213,7 +213,7 @@ def collect(args):
                     cells.append({**common, "method": method, "estimate": estimate, "photons": photons, "nn": nn,
                                   "seeds_ok": status.count("ok"), "seeds_refused": status.count("refused"),
                                   "seeds_missing": status.count("missing"), "relmse_ref_mean": mean,
-                                  "relmse_ref_corrected_mean": reference.corrected(mean, info),
+                                  "relmse_ref_less_noise_mean": reference.corrected(mean, info),
                                   "bias_ref": bias, "variance_ref": variance, "relmse_ref_floor": floor,
                                   "ref": args.ref, "ref_fast": args.ref_fast})
                     runs.extend({**common, **r, **ref_err, "role": "grid"} for r in rows)
