@@ -14,7 +14,8 @@ DIR/runs/.renderer/photonmap with photonmap.commit beside it (the commit and
 the binary's SHA-256); every later call uses that copy, and refuses (exit 1)
 when the renderer's sources at HEAD differ from the pinned commit's, since
 the renders made so far would then be an older binary's (remove DIR/runs to
-start over). Then each study target of TARGETS (or --only's) runs as
+start over); the build's flags are in every render's provenance, and check
+finds them all one. Then each study target of TARGETS (or --only's) runs as
 `make TARGET RESULTS=DIR PM=PIN`; the workflow engine renders only what is
 missing, so an interrupted regeneration resumes where it stopped, and a
 finished study costs its analysis only. Every attempt is a row of
@@ -49,8 +50,9 @@ import time
 # read every other file)
 TARGETS = ("reproduce-table", "reproducibility", "figures", "estimator-bias", "caustic", "rep-study", "resolution",
            "scenes", "beyond", "gather", "stability", "bench", "calibrate", "findings")
-# the sources a renderer binary is built from: a change here is a new renderer
-PINNED_SOURCES = ("renderer", "Makefile")
+# the sources of the renderer: a change here is a new renderer (the build's
+# flags are in every render's provenance, and check() finds them all one)
+PINNED_SOURCES = ("renderer",)
 LOG_FIELDS = ("started", "ended", "target", "commit", "renderer", "status", "renders", "seconds", "why")
 COMMIT_RE = re.compile(r"[Cc]ommit `([0-9a-f]{7,40})`")
 
@@ -199,7 +201,7 @@ def run(results, targets, why, make_args=()):
 
 
 def render_commits(results):
-    """{(commit, tree): count} over the stats files of every render under RESULTS/runs."""
+    """{(commit, tree, flags): count} over the stats files of every render under RESULTS/runs."""
     out = {}
     for path in glob.glob(os.path.join(results, "runs", "**", "*.stats.json"), recursive=True):
         try:
@@ -207,7 +209,7 @@ def render_commits(results):
                 prov = json.load(f).get("provenance") or {}
         except (OSError, ValueError):
             prov = {}
-        key = (prov.get("commit", "unknown"), prov.get("tree", "unknown"))
+        key = (prov.get("commit", "unknown"), prov.get("tree", "unknown"), prov.get("flags", "unknown"))
         out[key] = out.get(key, 0) + 1
     return out
 
@@ -234,10 +236,14 @@ def check(results):
     p = read_pin(results)
     renders = render_commits(results)
     if p:
-        for (commit, tree), n in sorted(renders.items()):
+        for (commit, tree, _), n in sorted(renders.items()):
             if not p["commit"].startswith(commit) or tree != "clean":
                 problems.append(f"{n} render(s) under {results}/runs by commit {commit} ({tree} tree), "
                                 f"not the pinned {p['commit'][:12]} (clean)")
+        flags = sorted({f for _, _, f in renders})
+        if len(flags) > 1:
+            problems.append(f"the renders under {results}/runs were built with {len(flags)} sets of flags: "
+                            + "; ".join(flags))
     elif renders:
         problems.append(f"{results}/runs holds renders but no pinned renderer ({pin_dir(results)})")
     files = file_commits(results)

@@ -23,7 +23,8 @@ def write(path, text):
         f.write(text)
 
 
-def fake_results(d, commit="abcdef123456", render_commits=(("abcdef123456", "clean"),), md_commits=("abcdef1",)):
+def fake_results(d, commit="abcdef123456", render_commits=(("abcdef123456", "clean"),), md_commits=("abcdef1",),
+                 flags=("-O2",)):
     """A results directory with a pinned renderer of COMMIT, one render per
     RENDER_COMMITS and one Markdown file per MD_COMMITS."""
     binary = os.path.join(d, "runs", ".renderer", "photonmap")
@@ -31,7 +32,8 @@ def fake_results(d, commit="abcdef123456", render_commits=(("abcdef123456", "cle
     sha = hashlib.sha256(b"binary").hexdigest()
     write(binary + ".commit", f"commit {commit}0000\nsha256 {sha}\npinned now\n")
     for i, (c, tree) in enumerate(render_commits):
-        write(os.path.join(d, "runs", "g", f"seed{i}.stats.json"), json.dumps({"provenance": {"commit": c, "tree": tree}}))
+        write(os.path.join(d, "runs", "g", f"seed{i}.stats.json"),
+              json.dumps({"provenance": {"commit": c, "tree": tree, "flags": flags[i % len(flags)]}}))
     for i, c in enumerate(md_commits):
         write(os.path.join(d, f"study{i}", "x.md"), f"Machine: x; commit `{c}`; 2026-12-05.\n")
 
@@ -50,6 +52,10 @@ def test_check_one_regeneration():
     with tempfile.TemporaryDirectory() as d:
         fake_results(d, render_commits=(("abcdef123456", "dirty"),))
         assert "dirty" in regenerate.check(d)[0]
+    with tempfile.TemporaryDirectory() as d:
+        fake_results(d, render_commits=(("abcdef123456", "clean"),) * 2, flags=("-O2", "-O0"))
+        (p,) = regenerate.check(d)
+        assert "2 sets of flags" in p
     with tempfile.TemporaryDirectory() as d:
         fake_results(d, md_commits=("abcdef1", "abcdef1", "9999999"))
         (p,) = regenerate.check(d)
@@ -81,7 +87,9 @@ def test_pin_refuses_a_changed_renderer(monkeypatch):
         monkeypatch.chdir(d)
         assert regenerate.pin(res) == (binary, head)
         write(os.path.join(d, "README.md"), "y\n")
-        git(d, "commit", "-q", "-am", "docs")
+        write(os.path.join(d, "Makefile"), "all:\n")
+        git(d, "add", ".")
+        git(d, "commit", "-q", "-m", "docs and the Makefile")
         assert regenerate.pin(res) == (binary, head)
         write(os.path.join(d, "renderer", "a.c"), "int b;\n")
         git(d, "commit", "-q", "-am", "renderer")
