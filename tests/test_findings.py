@@ -520,9 +520,14 @@ def test_table_reversal():
         text = findings.readme_table(r)
         assert "One feature does not reproduce: at P_e = 500k with n = 10 the paper's method is slower (119.0%)" in text
         assert "except at P_e = 500k with n = 10" in text
+        assert "undetermined" not in text
         table_with_paper((95, 88, 101), 119.0).to_csv(path, index=False)
         r = findings.record_table({"table": path})
-        assert r["reversed"] == [] and "does not reproduce" not in findings.readme_table(r)
+        text = findings.readme_table(r)
+        assert r["reversed"] == [] and "does not reproduce" not in text
+        # the paper's method slower, our interval containing 100%: said, as undetermined
+        assert ". At P_e = 500k with n = 10 the paper's method is slower (119.0%) and ours is undetermined " \
+               "(95.0% [88.0, 101.0]: the interval contains 100%)" in text
 
 
 def test_record_precompute():

@@ -352,9 +352,13 @@ def record_table(d):
     # where the paper's method is slower (its ratio above 100%) and ours is
     # faster (our whole interval below 100%)
     rev = known[(known["paper_ratio_percent"] > 100) & (known["paired_ratio_ci95_hi"] < 100)]
+    # where the paper's method is slower and our interval contains 100%
+    und = known[(known["paper_ratio_percent"] > 100) & (known["paired_ratio_ci95_lo"] <= 100)
+                & (known["paired_ratio_ci95_hi"] >= 100)]
     slower = known[known["paper_ratio_percent"] > 100]
     return {"pairs": span_of(p["pairs"]), "nns": nns, "photons": phs, "grid": grid, "over_n": over_n,
             "reversed": [val(r) for _, r in rev.sort_values(["photons", "nn"]).iterrows()],
+            "undetermined_vs_slower": [val(r) for _, r in und.sort_values(["photons", "nn"]).iterrows()],
             "paper_slower": len(slower), "ours_faster": int((p["paired_ratio_ci95_hi"] < 100).sum()),
             "cells": len(p),
             "over_p": over_p, "falls": sum(over_n[ph]["rank"] == "lower" for ph in phs),
@@ -1558,16 +1562,30 @@ def readme_table(rec):
 def reversal_text(rec):
     """'. One feature does not reproduce: ...' of a table record: the cells
     where the paper's method is slower (its ratio above 100%) and ours is
-    faster (our interval wholly below 100%), or '' when there is none."""
+    faster (our interval wholly below 100%), then those where ours is
+    undetermined there (undetermined_text), or '' when there are none."""
     rv = rec["reversed"]
     if not rv:
-        return ""
+        ud = undetermined_text(rec)
+        return ". A" + ud[3:] if ud else ""
     where = count_list([f"n = {int(r['nn'])}" for r in rv])
     ph = sorted({k_of(r["photons"]) for r in rv})
     return (f". One feature does not reproduce: at P_e = {', '.join(ph)} with {where} the paper's method is slower "
             f"({count_list([pct(r['paper']) + '%' for r in rv])}), ours is faster "
-            f"({count_list([pct_ci(r['ratio'], r['lo'], r['hi']) for r in rv])}); our interval lies below 100% in "
-            f"{rec['ours_faster']} of {rec['cells']} cells")
+            f"({count_list([pct_ci(r['ratio'], r['lo'], r['hi']) for r in rv])})"
+            + undetermined_text(rec) + f"; our interval lies below 100% in {rec['ours_faster']} of {rec['cells']} cells")
+
+
+def undetermined_text(rec):
+    """'; at P_e = .. with n = .. the paper's method is slower (..) and ours is
+    undetermined (..., the interval contains 100%)' of a table record, or ''."""
+    ud = rec.get("undetermined_vs_slower") or []
+    if not ud:
+        return ""
+    ns = count_list([f"n = {int(r['nn'])}" for r in ud])
+    return (f"; at P_e = {', '.join(sorted({k_of(r['photons']) for r in ud}))} with {ns} the paper's method is slower "
+            f"({count_list([pct(r['paper']) + '%' for r in ud])}) and ours is undetermined "
+            f"({count_list([pct_ci(r['ratio'], r['lo'], r['hi']) for r in ud])}: the interval contains 100%)")
 
 
 def readme_precompute(rec):
