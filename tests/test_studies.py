@@ -84,7 +84,7 @@ def test_scenes_glob_every_scene_but_the_furnace():
     want = sorted(f for f in os.listdir("scenes") if f.endswith(".scene") and f != "furnace.scene")
     assert [os.path.basename(g.scene) for g in s.grids] == want
     assert [g.name for g in s.grids] == [os.path.splitext(f)[0] for f in want]
-    assert {g.size for g in s.grids} == {"512x384"} and {len(g.seeds) for g in s.grids} == {3}
+    assert {g.size for g in s.grids} == {"512x384"} and {len(g.seeds) for g in s.grids} == {5}
     assert s.ref_scenes == {g.name: g.scene for g in s.grids}
 
 
