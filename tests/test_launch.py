@@ -10,7 +10,6 @@ import json
 import stat
 import time
 
-import pytest
 
 from experiments import launch
 
