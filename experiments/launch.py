@@ -42,7 +42,6 @@ another core (make reproducibility's third run); each record says so
 """
 
 import argparse
-import json
 import os
 import re
 import signal
@@ -119,7 +118,6 @@ def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k, rep
     prints its progress line.
     Returns 0 (rendered) or 2 (refused, recorded); raises LaunchError on
     any other failure (nothing recorded)."""
-    name = f"{layout.cell_name(method, estimate, photons, nn)}/seed{seed}"
     label = f"run {k}/{s.of} {method} {estimate} P_e={photons} n={nn} seed {seed}"
     base = layout.run_base(root, method, estimate, photons, nn, seed)
     os.makedirs(os.path.dirname(base), exist_ok=True)

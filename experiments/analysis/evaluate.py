@@ -463,7 +463,6 @@ def cmd_report(a):
     info = refmod.load(a.ref)
     runs = pd.read_csv(a.runs_csv)
     ee = pd.read_csv(a.equal_error_csv)
-    tbl = pd.read_csv(a.table_csv)
     # the tightest target the reference judges: the smallest target of any curve
     tightest = refmod.tightest_of(a.equal_error_csv)
     ok, why = refmod.check(info, tightest)
@@ -544,7 +543,6 @@ def cmd_report(a):
         for _, q in t[t["method"] == "precomputed"].sort_values(["photons", "nn"]).iterrows():
             for e in a.estimates.split():
                 sfx = "" if e == "paper" else f"_{e}"
-                g = lambda k: q.get(k + sfx) if (k + sfx) in q.index else q.get(k)
                 pr = q.get("paired_ratio_percent" + sfx, q.get("paired_ratio_percent"))
                 lo = q.get("paired_ratio_ci95_lo" + sfx, q.get("paired_ratio_ci95_lo"))
                 hi = q.get("paired_ratio_ci95_hi" + sfx, q.get("paired_ratio_ci95_hi"))

@@ -180,7 +180,7 @@ def main():
           f"{r['speedup_total']:.2f}", f"{r['concentration_top1']:.0%}", fmt(r["empty_estimates_prec"])]
          for r in rows],
         align="lrrrrr")
-    md += ["", f"![(precomputed - conventional) / reference per scene](figures/scenes.png)", ""]
+    md += ["", "![(precomputed - conventional) / reference per scene](figures/scenes.png)", ""]
     with open(a.out + ".md.tmp", "w") as f:
         f.write("\n".join(md) + "\n")
     os.replace(a.out + ".md.tmp", a.out + ".md")

@@ -482,9 +482,9 @@ def markdown(table, runs, estimates, args):
             msgs = sorted(set(m for m in table[f"refusal{sfx}"] if m))
             out.append("No render of this estimate applied" + (f" (the renderer: `{'`; `'.join(msgs)}`)." if msgs else "."))
             continue
-        out += [f"Per cell over its seeds: relMSE against the reference, mean ± 95% t half-width; its split into "
-                f"bias and variance (they add up to the mean); the relMSE of the image against the conventional "
-                f"image of the same seed and estimate, mean ± 95% t half-width. "
+        out += ["Per cell over its seeds: relMSE against the reference, mean ± 95% t half-width; its split into "
+                "bias and variance (they add up to the mean); the relMSE of the image against the conventional "
+                "image of the same seed and estimate, mean ± 95% t half-width. "
                 + (f"Reference floor: {fmt(floor)}; a bias at or below it is marked ≤floor." if isnum(floor) else ""),
                 ""]
         rows = []
