@@ -181,9 +181,9 @@ def run(results, targets, why, make_args=()):
     """Every target of TARGETS with the pinned renderer, logged. Returns 0
     when every target succeeded, else the first failing target's status."""
     binary, commit = pin(results)
-    head = git("rev-parse", "HEAD")
     rows = read_log(results)
     for target in targets:
+        head = git("rev-parse", "HEAD")  # the code this target runs (it may move between targets)
         row = {"started": now(), "ended": "", "target": target, "commit": head[:12], "renderer": commit[:12],
                "status": "running", "renders": "", "seconds": "", "why": why}
         rows.append(row)

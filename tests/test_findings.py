@@ -435,8 +435,23 @@ def test_record_scale_stability_repro_rules():
         rp = write_csv(d, "repro.csv", [{"summary_ratio_median_abs_delta_pp": 1.5, "summary_ratio_max_abs_delta_pp": 4.0,
                                          "summary_ratio_overlap_cells": 8, "summary_cells": 9, "summary_goal_pp": 2,
                                          "summary_met": True}])
-        assert findings.record_repro({"repro": rp}) == {"median_pp": 1.5, "max_pp": 4.0, "overlap": 8, "cells": 9,
-                                                        "goal_pp": 2, "met": True}
+        r = findings.record_repro({"repro": rp})
+        assert {k: r[k] for k in ("median_pp", "max_pp", "overlap", "cells", "goal_pp", "met")} == \
+            {"median_pp": 1.5, "max_pp": 4.0, "overlap": 8, "cells": 9, "goal_pp": 2, "met": True}
+        # the old file (no runs column) is the interleaved design, without the drift clause
+        assert r["design"] == "two interleaved runs of the grid" and r["drift_inside_cells"] is None
+        # the sequential design: its rows of runs a-b, the drift clause, the busy run's row
+        rows = [{"runs": "a-b", "summary_ratio_median_abs_delta_pp": 2.0, "summary_ratio_max_abs_delta_pp": 5.0,
+                 "summary_ratio_overlap_cells": 9, "summary_cells": 9, "summary_goal_pp": 1.5, "summary_met": False,
+                 "summary_max_pp": 4, "summary_drift_lo": 97, "summary_drift_hi": 103, "summary_drift_inside_cells": 3,
+                 "summary_drift_min": 60.0, "summary_drift_max": 104.0},
+                {"runs": "a-busy", "summary_ratio_median_abs_delta_pp": 1.0, "summary_ratio_max_abs_delta_pp": 2.0,
+                 "summary_ratio_overlap_cells": 9, "summary_cells": 9, "summary_goal_pp": 3, "summary_met": True}]
+        r = findings.record_repro({"repro": write_csv(d, "repro2.csv", rows)})
+        assert r["design"].startswith("two runs of `make reproduce-table`") and r["drift_inside_cells"] == 3
+        assert r["busy"]["median_pp"] == 1.0 and r["busy"]["met"]
+        text = "\n".join(findings.md_repro(r)[1])
+        assert "in 3 of 9 cells (range 60.0-104.0%)" in text and "(goal 4 pp)" in text and "goal not met." in text
         ru = write_csv(d, "rules.csv", [{"rule": k, "label": k.upper(), "fitted": False, "chi2": 1.0, "dof": 3,
                                          "p_value": 0.5, "p_holm": 0.9, "verdict": v}
                                         for k, v in (("a", "incompatible"), ("b", "not rejected"), ("c", "incompatible"))])
@@ -478,7 +493,7 @@ def test_writers_read_only_the_record():
     recs["repro"] = rec
     md_text = findings.markdown({"root": "x"}, recs)
     sm_text = findings.summary({"root": "x"}, recs)
-    assert "1.23 pp (goal 2 pp); the two runs' intervals overlap in 7 of 9 cells; goal not met." in md_text
+    assert "1.23 pp (goal 2 pp), largest 5.68 pp; the two runs' intervals overlap in 7 of 9 cells; goal not met." in md_text
     assert "overlap in 7 of 9 cells" in sm_text and "largest shift is 5.68 pp" in sm_text
     assert md_text.count("Not answered here: absent.") == len(findings.FINDINGS) - 1
     recs["repro"] = {**rec, "overlap": 9}

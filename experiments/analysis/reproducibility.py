@@ -236,7 +236,8 @@ def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, ref_text="", busy=Non
                   "repeats), over the renders both runs made (a phase of under 1 ms is noise):", ""]
         lines += report.md_table(["method", "phase", "renders", "median busy / A", "range"],
                                  [[r["method"], r["phase"], str(r["renders"]), fmt_fixed(r["median_ratio"], 3),
-                                   f"{fmt_fixed(r['min_ratio'], 3)}-{fmt_fixed(r['max_ratio'], 3)}"] for r in phases])
+                                   f"{fmt_fixed(r['min_ratio'], 3)}-{fmt_fixed(r['max_ratio'], 3)}"]
+                                  for r in phases if r["renders"] > 0])
         lines += ["", "### The table", ""] + comparison_table(bframe, "busy") + [""]
     return "\n".join(lines) + "\n"
 
