@@ -376,13 +376,18 @@ def verdict_of(ee, estimate):
         parts.append(f"pays by {fnum(best['speedup'], 2)}x [{fnum(best['lo'], 2)}, {fnum(best['hi'], 2)}] at relMSE "
                      f"{fnum(best['target'], 2)}; the band lies above 1 for targets "
                      f"{fnum(pays['target'].min(), 2)}-{fnum(pays['target'].max(), 2)}")
-    if not loses.empty:
-        parts.append(f"is slower (band below 1) for targets {fnum(loses['target'].min(), 2)}-"
-                     f"{fnum(loses['target'].max(), 2)}")
-    if not und.empty:
-        parts.append(f"undetermined (band contains 1) for targets {fnum(und['target'].min(), 2)}-"
-                     f"{fnum(und['target'].max(), 2)}")
+    parts += band_tail(loses, und, "for targets")
     return f"{estimate} estimate: " + "; ".join(parts) + "."
+
+
+def band_tail(loses, und, where):
+    """The phrases of the targets whose band lies below 1 (LOSES) and
+    contains 1 (UND), each 'WHERE lo-hi' (rows of an equal-error frame)."""
+    out = []
+    for rows, what in ((loses, "is slower (band below 1)"), (und, "undetermined (band contains 1)")):
+        if not rows.empty:
+            out.append(f"{what} {where} {fnum(rows['target'].min(), 2)}-{fnum(rows['target'].max(), 2)}")
+    return out
 
 
 def gather_verdict(g):
@@ -409,12 +414,7 @@ def gather_verdict(g):
             parts.append(f"the precomputed method pays (band above 1) at relMSE {fnum(pays['target'].min(), 2)}-"
                          f"{fnum(pays['target'].max(), 2)}, by {fnum(pays['speedup'].min(), 2)}-"
                          f"{fnum(pays['speedup'].max(), 2)}x")
-        if not loses.empty:
-            parts.append(f"is slower (band below 1) at relMSE {fnum(loses['target'].min(), 2)}-"
-                         f"{fnum(loses['target'].max(), 2)}")
-        if not und.empty:
-            parts.append(f"undetermined (band contains 1) at relMSE {fnum(und['target'].min(), 2)}-"
-                         f"{fnum(und['target'].max(), 2)}")
+        parts += band_tail(loses, und, "at relMSE")
     ph = g[g["kind"] == "gather_phase"]
     if len(ph) and math.isfinite(ph.iloc[0]["speedup"]):
         r = ph.iloc[0]
