@@ -41,9 +41,9 @@ check "figures before reproduce-table: exit non-zero, names the missing table" \
 make -s reproduce-table "${ARGS[@]}" > "$TMP/grid.log" 2>&1
 make -s figures "${ARGS[@]}" > "$TMP/fig.log" 2>&1; rc=$?
 check "figures: exit 0, every PNG written" \
-  bash -c "[ $rc -eq 0 ] || { cat $TMP/fig.log; exit 1; }; for f in fig3 fig3-errors fig2 tradeoff ratio-vs-n phases; do
+  bash -c "[ $rc -eq 0 ] || { cat $TMP/fig.log; exit 1; }; for f in glance fig3 fig3-errors fig2 tradeoff ratio-vs-n phases; do
              [ -s $R/figures/\$f.png ] || { echo \"\$f.png missing\"; exit 1; }; done"
-check "figures: the PNGs are images with content" pngs_ok "$R"/figures/{fig3,fig3-errors,fig2,tradeoff,ratio-vs-n,phases}.png
+check "figures: the PNGs are images with content" pngs_ok "$R"/figures/{glance,fig3,fig3-errors,fig2,tradeoff,ratio-vs-n,phases}.png
 check "figures: Figure 2's render dumped its representatives (one line each)" \
   bash -c "b=$R/runs/fig2-cornell-64x48-s2/precomputed-paper-p4000-n10/seed1 &&
            reps=\$(sed -n 's/.*\"representatives\": \\([0-9]*\\),/\\1/p' \$b.stats.json) &&

@@ -214,6 +214,8 @@ def test_glance_record(monkeypatch, tmp_path):
     assert list(c["target"]) == [0.01, 0.02] and list(c["defined_fraction"]) == [0.5, 0.99]
     assert set(rec["curves"]) == {"paper", "corrected"} and rec["defined_min"] == 0.95
     assert figures.glance_record(make_args(tmp_path, glance_cell="2000:20", equal_error=""))["curves"] == {}
+    # no cell given: the second of --cells (2000:20 here)
+    assert figures.glance_record(make_args(tmp_path, glance_cell="", equal_error=""))["cell"] == (2000, 20)
     with pytest.raises(SystemExit):
         figures.glance_record(make_args(tmp_path, glance_cell="4000:20", equal_error=""))
 

@@ -21,7 +21,8 @@ Owns drawing, from the analysis layer's files and the renders they name:
                     every cell, both methods.
   glance.png        the project at a glance (README): the whole frame of
                     the reference and of both methods at one cell (--glance-
-                    cell, seed --seed) with time and error, and the speed-up
+                    cell, else the second of --cells; seed --seed) with time
+                    and error, and the speed-up
                     at equal error against the target for both estimates
                     (--equal-error), solid where at least 95% of the
                     bootstrap resamples reach the target on both fronts.
@@ -840,7 +841,8 @@ def glance_record(args):
     estimate (equal-error.csv, kind curve) with its band and which targets
     at least equal_error.DEFINED_MIN of the resamples reach."""
     from experiments.analysis import equal_error
-    (p, n), = parse_cells(args.glance_cell)
+    fig3_cells = parse_cells(args.cells)
+    (p, n), = parse_cells(args.glance_cell) if args.glance_cell else [fig3_cells[min(1, len(fig3_cells) - 1)]]
     ref = read_image(args.ref, "the reference")
     f = 1
     while ref.shape[1] // f > 512:
@@ -936,7 +938,7 @@ def main():
     ap.add_argument("--pm", default=scene_info.DEFAULT_PM, help="the renderer, for the scene's camera (photonmap info)")
     ap.add_argument("--rep-study-cells", default="", help="rep-study-cells.csv (optional)")
     ap.add_argument("--equal-error", default="", help="the grid's equal-error.csv (glance.png; optional)")
-    ap.add_argument("--glance-cell", default="100000:100", help="glance.png's cell P_E:N")
+    ap.add_argument("--glance-cell", default="", help="glance.png's cell P_E:N (empty: the second of --cells)")
     ap.add_argument("--time", default="cpu_s", choices=sorted(report.TIME_LABEL))
     ap.add_argument("--out", required=True, help="output directory")
     ap.add_argument("--only", default="", help="draw only these figures (space-separated names)")
