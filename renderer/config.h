@@ -81,6 +81,11 @@ typedef struct {
 #define CONFIG_REPEATS_AUTO_MAX 10u
 #define CONFIG_REPEATS_AUTO_BUDGET_S 2.0
 #define CONFIG_MAX_REPEATS 100u
+/* With more than one repeat, freed buffers of up to this many bytes are
+ * kept for the next repeat (mem_keep): a fresh page's first touch would
+ * otherwise be timed each time, and on some machines it costs more, and
+ * varies more, than the work that fills it (renderer/README.md). */
+#define CONFIG_REPEAT_KEEP_BYTES ((size_t)1 << 30)
 /* The same as text, for the usage line (keep them equal to the above). */
 #define CONFIG_REPEATS_AUTO_TEXT "at least 3 times, then until the repeats' totals add up to 2 s, at most 10 times"
 #define CONFIG_DEFAULT_REPEATS_TEXT "1; auto or an integer in [1, 100]"

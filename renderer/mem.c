@@ -1,10 +1,14 @@
 /* mem: the large buffers' allocator (mem.h): huge-page-advised anonymous
  * mappings for large buffers, malloc for small ones, a header in front of
- * each that says which and how large. */
+ * each that says which and how large, and, when asked (mem_keep), the
+ * freed mappings kept for the next buffer (the renderer's one piece of
+ * process-wide state: an allocator's free list, like malloc's own, behind
+ * a mutex). */
 #define _GNU_SOURCE /* mremap, MAP_ANONYMOUS, MADV_HUGEPAGE */
 #include "mem.h"
 
 #include <assert.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,11 +18,60 @@
 #define MEM_HEAD 64u                /* the header's room: keeps the buffer 64-byte aligned */
 #define MEM_MAGIC 0x6d656d62u
 
+#define MEM_CACHE_SLOTS 64 /* freed mappings kept for reuse; more are unmapped */
+
 typedef struct {
     size_t map;   /* bytes of the mapping (header included), 0: from malloc */
     size_t bytes; /* bytes asked for */
     uint32_t magic;
 } mem_head;
+
+/* The freed mappings, each whole (its header's map bytes), for mem_alloc
+ * to reuse until mem_trim: a page fault on fresh memory costs far more than
+ * the work that fills it on some machines (renderer/README.md), and a
+ * repeat that reused nothing would time the kernel, not the code. */
+static struct {
+    pthread_mutex_t lock;
+    size_t keep;  /* the most bytes kept at once (mem_keep; 0: none) */
+    size_t bytes; /* bytes kept */
+    size_t n;
+    mem_head *slot[MEM_CACHE_SLOTS];
+} cache = {PTHREAD_MUTEX_INITIALIZER, 0, 0, 0, {NULL}};
+
+/* Takes the smallest cached mapping of at least `map` bytes out of the
+ * cache. Returns it, or NULL when none is large enough. */
+static mem_head *cache_take(size_t map)
+{
+    mem_head *h = NULL;
+    pthread_mutex_lock(&cache.lock);
+    size_t best = cache.n;
+    for (size_t i = 0; i < cache.n; i++)
+        if (cache.slot[i]->map >= map && (best == cache.n || cache.slot[i]->map < cache.slot[best]->map))
+            best = i;
+    if (best < cache.n) {
+        h = cache.slot[best];
+        cache.slot[best] = cache.slot[--cache.n];
+        cache.bytes -= h->map;
+    }
+    pthread_mutex_unlock(&cache.lock);
+    return h;
+}
+
+/* Keeps the mapping h for reuse. Returns 0, or -1 when the cache is full
+ * or h would take it past mem_keep's bytes (h is then the caller's to
+ * unmap). */
+static int cache_put(mem_head *h)
+{
+    int rc = -1;
+    pthread_mutex_lock(&cache.lock);
+    if (cache.n < MEM_CACHE_SLOTS && h->map <= cache.keep && cache.bytes <= cache.keep - h->map) {
+        cache.slot[cache.n++] = h;
+        cache.bytes += h->map;
+        rc = 0;
+    }
+    pthread_mutex_unlock(&cache.lock);
+    return rc;
+}
 
 static mem_head *head_of(void *p)
 {
@@ -30,6 +83,20 @@ static mem_head *head_of(void *p)
 static size_t page_round(size_t n)
 {
     return (n + 4095u) & ~(size_t)4095u;
+}
+
+/* Hands back the whole pages of the mapping h's bytes [a, b) (offsets
+ * from h), unless mem_keep keeps memory: a repeat would then fault them
+ * in again, small pages each a fault of its own. */
+static void give_back(mem_head *h, size_t a, size_t b)
+{
+    pthread_mutex_lock(&cache.lock);
+    int keeping = cache.keep > 0;
+    pthread_mutex_unlock(&cache.lock);
+    a = page_round(a);
+    b &= ~(size_t)4095u;
+    if (!keeping && b > a)
+        (void)madvise((char *)h + a, b - a, MADV_DONTNEED);
 }
 
 /* Advises [p, p + len) as huge pages (p 2 MiB aligned); advice only. */
@@ -80,8 +147,12 @@ static void *alloc_impl(size_t bytes, int zero)
         h->map = 0;
     } else {
         size_t map = page_round(total);
-        h = map_aligned(map);
-        if (!h)
+        h = cache_take(map);
+        if (h) {
+            map = h->map; /* the whole reused mapping stays this buffer's */
+            if (zero)
+                memset((char *)h + MEM_HEAD, 0, bytes);
+        } else if (!(h = map_aligned(map)))
             return NULL;
         h->map = map;
     }
@@ -114,10 +185,30 @@ void mem_free(void *p)
         return;
     mem_head *h = head_of(p);
     h->magic = 0;
-    if (h->map)
-        munmap(h, h->map);
-    else
+    if (!h->map)
         free(h);
+    else if (cache_put(h) != 0)
+        munmap(h, h->map);
+}
+
+void mem_keep(size_t bytes)
+{
+    pthread_mutex_lock(&cache.lock);
+    cache.keep = bytes;
+    pthread_mutex_unlock(&cache.lock);
+}
+
+size_t mem_trim(void)
+{
+    pthread_mutex_lock(&cache.lock);
+    size_t bytes = cache.bytes;
+    while (cache.n > 0) {
+        mem_head *h = cache.slot[--cache.n];
+        munmap(h, h->map);
+    }
+    cache.bytes = 0;
+    pthread_mutex_unlock(&cache.lock);
+    return bytes;
 }
 
 void mem_release(void *p, size_t off, size_t len)
@@ -126,13 +217,8 @@ void mem_release(void *p, size_t off, size_t len)
         return;
     mem_head *h = head_of(p);
     assert(off <= h->bytes && len <= h->bytes - off);
-    if (!h->map)
-        return;
-    uintptr_t a = (uintptr_t)p + off, b = a + len;
-    a = (a + 4095u) & ~(uintptr_t)4095u;
-    b &= ~(uintptr_t)4095u;
-    if (b > a)
-        (void)madvise((void *)a, (size_t)(b - a), MADV_DONTNEED);
+    if (h->map)
+        give_back(h, MEM_HEAD + off, MEM_HEAD + off + len);
 }
 
 void *mem_realloc(void *p, size_t bytes)
@@ -147,18 +233,15 @@ void *mem_realloc(void *p, size_t bytes)
         /* a mapping stays one, also when it shrinks below MEM_HUGE_MIN:
          * moving it to malloc would copy it into fresh small pages */
         size_t map = page_round(total);
-        if (map == h->map) {
+        if (map <= h->map) {
+            /* in place: a shrink hands back the pages past the new end
+             * (give_back), and the mapping keeps its size for reuse */
+            if (bytes < h->bytes)
+                give_back(h, total, h->map);
             h->bytes = bytes;
             return p;
         }
 #ifdef MREMAP_MAYMOVE
-        if (map < h->map) {
-            /* shrinking in place: the tail's pages go back */
-            munmap((char *)h + map, h->map - map);
-            h->map = map;
-            h->bytes = bytes;
-            return p;
-        }
         void *n = mremap(h, h->map, map, MREMAP_MAYMOVE);
         if (n != MAP_FAILED) {
             h = n;

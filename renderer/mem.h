@@ -1,5 +1,6 @@
 /* mem: large buffers, as huge-page mappings from MEM_HUGE_MIN bytes on and
- * malloc below (renderer/README.md). Free them with mem_free only. */
+ * malloc below, freed mappings kept for reuse when asked (mem_keep)
+ * (renderer/README.md). Free them with mem_free only. */
 #ifndef PM_MEM_H
 #define PM_MEM_H
 
@@ -19,10 +20,19 @@ void *mem_zalloc(size_t bytes);
 /* Resizes p (NULL: as mem_alloc) keeping its contents. Returns the new
  * pointer, or NULL when memory runs out (p is then unchanged). */
 void *mem_realloc(void *p, size_t bytes);
-/* Gives back the whole pages of p's bytes [off, off + len), which then
- * read as zero; p stays valid. Never fails. */
+/* Gives back the whole huge pages of p's bytes [off, off + len), which
+ * then read as zero (nothing for a buffer below MEM_HUGE_MIN); p stays
+ * valid. Never fails. */
 void mem_release(void *p, size_t off, size_t len);
-/* Frees a buffer of mem_alloc/mem_zalloc/mem_realloc; NULL is fine. */
+/* Frees a buffer of mem_alloc/mem_zalloc/mem_realloc; NULL is fine. A
+ * mapping is kept, whole and with its pages, for the next buffer it can
+ * hold while the kept bytes stay within mem_keep's. */
 void mem_free(void *p);
+/* From now on mem_free keeps up to `bytes` of freed mappings (0, the
+ * start: none), so that a repeated computation touches no fresh pages;
+ * the memory's high-water mark grows by up to that much. Never fails. */
+void mem_keep(size_t bytes);
+/* Unmaps the mappings mem_free kept. Returns their bytes. */
+size_t mem_trim(void);
 
 #endif

@@ -5,6 +5,7 @@
 #include <assert.h>
 #include <float.h>
 #include <inttypes.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -213,6 +214,8 @@ pm_status render_check_memory(const scene *sc, const config_render *cfg, uint64_
         return PM_OK;
     double stored = per_emitted * (double)cfg->photons * 1.1 + 4096.0;
     double bytes = photons_peak_bytes(stored);
+    if (cfg->repeats != 1) /* mem_keep: no page handed back, freed ones kept */
+        bytes = 2.0 * bytes + fmin((double)CONFIG_REPEAT_KEEP_BYTES, 2.0 * bytes);
     if (stored > (double)UINT32_MAX - 1.0) {
         snprintf(err, errlen, "--photons %" PRIu64 " would store about %.3g photons; the map holds at most 2^32-1",
                  cfg->photons, stored);
@@ -221,9 +224,10 @@ pm_status render_check_memory(const scene *sc, const config_render *cfg, uint64_
     if (mem > 0 && bytes > CONFIG_MEMORY_HEADROOM * (double)mem) {
         snprintf(err, errlen,
                  "--photons %" PRIu64 " needs about %.1f GiB (%.2f stored per emitted photon, %.0f bytes each "
-                 "at the peak), more than %.0f%% of this machine's %.1f GiB; use fewer photons",
-                 cfg->photons, bytes / 1073741824.0, per_emitted, bytes / stored, CONFIG_MEMORY_HEADROOM * 100.0,
-                 (double)mem / 1073741824.0);
+                 "at the peak%s), more than %.0f%% of this machine's %.1f GiB; use fewer photons%s",
+                 cfg->photons, bytes / 1073741824.0, per_emitted, bytes / stored,
+                 cfg->repeats != 1 ? ", repeats keeping freed memory for the next" : "", CONFIG_MEMORY_HEADROOM * 100.0,
+                 (double)mem / 1073741824.0, cfg->repeats != 1 ? " or --repeats 1" : "");
         return PM_ERR_INPUT;
     }
     return PM_OK;

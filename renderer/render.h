@@ -29,8 +29,10 @@ double render_max_radius(const scene *sc, const config_render *cfg, const photon
 pm_status render_prepare(scene *sc, const config_render *cfg, char *err, size_t errlen);
 
 /* Estimates from a pilot whether the photon map fits in mem bytes (0: no
- * limit) and in 2^32-1 photons. Returns PM_ERR_INPUT with the reason in err
- * when it does not, PM_ERR_NOMEM when the pilot runs out of memory. */
+ * limit) and in 2^32-1 photons; with more than one repeat, as the peak of
+ * repeats that keep freed memory (mem_keep). Returns PM_ERR_INPUT with the
+ * reason in err when it does not, PM_ERR_NOMEM when the pilot runs out of
+ * memory. */
 pm_status render_check_memory(const scene *sc, const config_render *cfg, uint64_t mem, char *err, size_t errlen);
 
 /* What render_run made. */

@@ -1,6 +1,8 @@
 /* repeat: the repeat loop and its times. */
 #include "repeat.h"
 
+#include "mem.h"
+
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,8 +41,13 @@ pm_status repeat_render(const scene *sc, const config_render *cfg, unsigned thre
     memset(&times, 0, sizeof times);
     memset(out, 0, sizeof *out);
     double spent = 0.0;
+    if (cfg->repeats != 1)
+        mem_keep(CONFIG_REPEAT_KEEP_BYTES);
     while (!repeat_done(cfg->repeats, times.n, spent) && times.n < CONFIG_MAX_REPEATS) {
-        render_result_free(out); /* the repeat before: memory does not grow */
+        /* the repeat before: memory does not grow, and its mappings serve
+         * this one (mem_keep), so that only the first repeat pays for
+         * fresh pages */
+        render_result_free(out);
         pm_status rc = render_run(sc, cfg, threads, show_progress, out, err, errlen);
         if (rc != PM_OK)
             return rc;
@@ -53,6 +60,8 @@ pm_status repeat_render(const scene *sc, const config_render *cfg, unsigned thre
         t[STATS_TOTAL] = st->total;
         spent += st->total;
     }
+    mem_keep(0);
+    mem_trim();
     double best[STATS_PHASES];
     for (int p = 0; p < STATS_PHASES; p++) {
         best[p] = times.t[0][p];

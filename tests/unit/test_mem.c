@@ -33,7 +33,8 @@ void test_mem_round(void)
  * header in front, on a huge-page boundary); mem_zalloc's are zero; a
  * buffer grown from malloc's range into a mapping, grown again and shrunk
  * below the threshold keeps its first bytes; mem_release zeroes the whole
- * pages of its range and nothing outside them. */
+ * pages of its range and nothing outside them, and nothing while mem_keep
+ * keeps memory. */
 void test_mem_buffers(void)
 {
     size_t small = 1000, large = 3 * MEM_HUGE_MIN + 100;
@@ -94,8 +95,68 @@ void test_mem_buffers(void)
     CHECK(hi > lo);
     CHECK_MSG(zeroed == (size_t)(hi - lo), "%zu of %zu released bytes read zero", zeroed, (size_t)(hi - lo));
     CHECK(kept == large - (size_t)(hi - lo));
+    /* while mem_keep keeps memory, nothing is handed back */
+    memset(b, 0xab, large);
+    mem_keep(MEM_HUGE_MIN);
+    mem_release(b, off, len);
+    mem_keep(0);
+    kept = 0;
+    for (size_t i = 0; i < large; i++)
+        kept += b[i] == 0xab;
+    CHECK(kept == large);
     mem_free(a);
     mem_free(b);
     mem_free(z);
     mem_free(NULL);
+}
+
+/* Nothing is kept until mem_keep asks; then a freed mapping serves the
+ * next buffer it can hold (the smallest that fits), zeroed for mem_zalloc,
+ * and grows in place within its size; mem_trim unmaps what is kept and
+ * returns its bytes; malloc's buffers are never kept, nor a mapping past
+ * mem_keep's bytes. */
+void test_mem_reuse(void)
+{
+    CHECK(mem_trim() == 0); /* nothing is kept unless asked */
+    size_t large = 3 * MEM_HUGE_MIN + 100, larger = 5 * MEM_HUGE_MIN;
+    unsigned char *a = mem_alloc(large), *c = mem_alloc(larger);
+    CHECK(a && c);
+    if (!a || !c)
+        return;
+    memset(a, 0xcd, large);
+    memset(c, 0xcd, larger);
+    unsigned char *was_a = a, *was_c = c;
+    mem_keep((size_t)64 << 20);
+    mem_free(c);
+    mem_free(a);
+    unsigned char *b = mem_zalloc(large - 1000);
+    CHECK(b == was_a); /* the smaller of the two that fit */
+    if (!b)
+        return;
+    size_t nonzero = 0;
+    for (size_t i = 0; i < large - 1000; i++)
+        nonzero += b[i] != 0;
+    CHECK_MSG(nonzero == 0, "%zu bytes of a reused mapping not zeroed", nonzero);
+    b = mem_realloc(b, large); /* within the mapping: in place */
+    CHECK(b == was_a);
+    unsigned char *d = mem_alloc(large + 1); /* only the larger one fits */
+    CHECK(d == was_c);
+    mem_free(d);
+    mem_free(b);
+    size_t kept = mem_trim();
+    CHECK_MSG(kept >= large + larger + 2 * 64, "mem_trim returned %zu bytes", kept);
+    CHECK(mem_trim() == 0);
+    mem_free(mem_alloc(1000)); /* malloc's */
+    CHECK(mem_trim() == 0);
+    /* the addresses alone could match without a cache (the kernel often
+     * maps a freed range again): what mem_trim finds is the proof */
+    unsigned char *e = mem_alloc(large);
+    CHECK(e != NULL);
+    mem_free(e);
+    CHECK(mem_trim() > 0);
+    /* past mem_keep's bytes a freed mapping is unmapped */
+    mem_keep(MEM_HUGE_MIN);
+    mem_free(mem_alloc(large));
+    CHECK(mem_trim() == 0);
+    mem_keep(0);
 }

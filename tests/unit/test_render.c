@@ -534,3 +534,38 @@ void test_precomputed_extremes(void)
     image_free(&im);
     scene_free(sc);
 }
+
+/* The smallest machine memory (to 1/1000) in which render_check_memory
+ * lets cfg render, by bisection. */
+static double least_memory(const scene *sc, const config_render *cfg)
+{
+    char err[512];
+    double lo = 1.0, hi = 1e12;
+    while (hi / lo > 1.001) {
+        double mid = sqrt(lo * hi);
+        if (render_check_memory(sc, cfg, (uint64_t)mid, err, sizeof err) == PM_OK)
+            hi = mid;
+        else
+            lo = mid;
+    }
+    return hi;
+}
+
+/* With more than one repeat the memory check asks for the peak of repeats
+ * that hand no page back and keep freed ones (mem_keep): four times the
+ * single render's while that stays under CONFIG_REPEAT_KEEP_BYTES; the
+ * refusal names --repeats 1 as a way out, and a single render's does not. */
+void test_render_check_memory_repeats(void)
+{
+    scene *sc = cornell(1.0, 1.0);
+    config_render one = small_cfg(100000, 50), three = one;
+    three.repeats = 3;
+    double m1 = least_memory(sc, &one), m3 = least_memory(sc, &three);
+    CHECK_MSG(m3 > 3.9 * m1 && m3 < 4.1 * m1, "single %.0f bytes, three repeats %.0f", m1, m3);
+    char err[512];
+    CHECK(render_check_memory(sc, &three, (uint64_t)(0.9 * m3), err, sizeof err) == PM_ERR_INPUT);
+    CHECK_MSG(strstr(err, "--repeats 1") != NULL, "%s", err);
+    CHECK(render_check_memory(sc, &one, (uint64_t)(0.9 * m1), err, sizeof err) == PM_ERR_INPUT);
+    CHECK_MSG(strstr(err, "--repeats 1") == NULL, "%s", err);
+    scene_free(sc);
+}
