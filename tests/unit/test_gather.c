@@ -259,6 +259,23 @@ void test_gather_config(void)
     CHECK(config_check(&cfg) == NULL);
 }
 
+/* Photons at pos, every one a representative, lit from -z with normals
+ * `normal`, into m; cfg: the precomputed method, n = 8, 4 gather rays;
+ * reps: their own tree, evaluated. Returns the estimate's gather
+ * parameters. */
+static est_gather plane_reps(photons_map *m, const float (*pos)[3], uint32_t n, vec3 normal, config_render *cfg,
+                             reps_set *reps)
+{
+    helper_map(m, pos, n, vec_make(0, 0, -1), normal, 1.0f, PHOTONS_FLAG_REP);
+    *cfg = config_defaults();
+    cfg->method = CONFIG_METHOD_PRECOMPUTED;
+    cfg->nn = 8;
+    cfg->gather = 4;
+    est_gather g0 = est_gather_make(m, cfg->nn, 0.05, 0);
+    CHECK(helper_reps(m, &g0, CONFIG_REP_TREE_SEPARATE, 1, reps) == PM_OK);
+    return g0;
+}
+
 void test_gather_lookup_bounded(void)
 {
     /* 64 x 64 representatives on the plane z = 0, normal +z; a gather hit
@@ -274,15 +291,9 @@ void test_gather_lookup_bounded(void)
         pos[i][2] = 0.0f;
     }
     photons_map m;
-    helper_map(&m, (const float(*)[3])pos, SIDE * SIDE, vec_make(0, 0, -1), vec_make(0, 0, 1), 1.0f,
-               PHOTONS_FLAG_REP);
-    config_render cfg = config_defaults();
-    cfg.method = CONFIG_METHOD_PRECOMPUTED;
-    cfg.nn = 8;
-    cfg.gather = 4;
-    est_gather g0 = est_gather_make(&m, cfg.nn, 0.05, 0);
+    config_render cfg;
     reps_set reps;
-    CHECK(helper_reps(&m, &g0, CONFIG_REP_TREE_SEPARATE, 1, &reps) == PM_OK);
+    (void)plane_reps(&m, (const float(*)[3])pos, SIDE * SIDE, vec_make(0, 0, 1), &cfg, &reps);
     est_scratch *s = est_scratch_new(1, cfg.nn);
     CHECK(s != NULL);
     if (!s)
@@ -389,14 +400,9 @@ void test_gather_lookup_first_radius(void)
         pos[i][2] = 0.0f;
     }
     photons_map m;
-    helper_map(&m, (const float(*)[3])pos, COUNT, vec_make(0, 0, -1), vec_make(0, 0, -1), 1.0f, PHOTONS_FLAG_REP);
-    config_render cfg = config_defaults();
-    cfg.method = CONFIG_METHOD_PRECOMPUTED;
-    cfg.nn = 8;
-    cfg.gather = 4;
-    est_gather g0 = est_gather_make(&m, cfg.nn, 0.05, 0);
+    config_render cfg;
     reps_set reps;
-    CHECK(helper_reps(&m, &g0, CONFIG_REP_TREE_SEPARATE, 1, &reps) == PM_OK);
+    est_gather g0 = plane_reps(&m, (const float(*)[3])pos, COUNT, vec_make(0, 0, -1), &cfg, &reps);
     float max_r2 = (float)g0.max_r2;
     CHECK_MSG(reps.first_r2 > 0.0f && reps.first_r2 < max_r2 / 4, "first_r2 %g, cap %g", reps.first_r2, max_r2);
     for (uint32_t i = 0; i < reps.count; i++) {
