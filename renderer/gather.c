@@ -89,9 +89,13 @@ vec3 gather_estimate(const gather_params *g, vec3 y, vec3 n, est_scratch *s, gat
 
 /* The radiance arriving along r from its first diffuse hit, through mirror
  * and glass (weight: the path's throughput so far, for the eye pass's
- * cut-off); depth counts the specular bounces. */
-static vec3 radiance(const gather_params *g, shape_ray r, uint32_t depth, double weight, est_scratch *s,
-                     gather_counts *c)
+ * cut-off); depth counts the specular bounces. At glass one branch is
+ * followed, reflection with probability F (Fresnel) and refraction with
+ * 1 - F, drawn from rs: the branch's radiance is then an unbiased estimate
+ * of the Fresnel-weighted sum, and a gather path stays one path
+ * (renderer/README.md, "Final gathering"). */
+static vec3 radiance(const gather_params *g, shape_ray r, uint32_t depth, double weight, rng_stream *rs,
+                     est_scratch *s, gather_counts *c)
 {
     scene_hit h;
     if (!scene_intersect_counted(g->sc, &r, INFINITY, &h, &c->shape_tests)) {
@@ -110,23 +114,17 @@ static vec3 radiance(const gather_params *g, shape_ray r, uint32_t depth, double
         if (w < CONFIG_EYE_MIN_THROUGHPUT)
             return vec_make(0, 0, 0);
         c->specular++;
-        return vec_mul(m->color, radiance(g, scene_spawn(&h, material_reflect(r.dir, h.n), 1), depth + 1, w, s, c));
+        return vec_mul(m->color,
+                       radiance(g, scene_spawn(&h, material_reflect(r.dir, h.n), 1), depth + 1, w, rs, s, c));
     }
-    /* glass: both branches, weighted by Fresnel, as eye paths */
     vec3 refr;
     int can_refract;
     double fr = material_glass_split(r.dir, h.n, h.front, m->ior, &refr, &can_refract);
-    vec3 L = vec_make(0, 0, 0);
-    if (weight * fr >= CONFIG_EYE_MIN_THROUGHPUT) {
-        c->specular++;
-        L = vec_scale(radiance(g, scene_spawn(&h, material_reflect(r.dir, h.n), 1), depth + 1, weight * fr, s, c),
-                      fr);
-    }
-    if (can_refract && weight * (1.0 - fr) >= CONFIG_EYE_MIN_THROUGHPUT) {
-        c->specular++;
-        L = vec_madd(L, radiance(g, scene_spawn(&h, refr, 0), depth + 1, weight * (1.0 - fr), s, c), 1.0 - fr);
-    }
-    return L;
+    double xi = rng_next_double(rs);
+    c->specular++;
+    if (!can_refract || xi < fr)
+        return radiance(g, scene_spawn(&h, material_reflect(r.dir, h.n), 1), depth + 1, weight, rs, s, c);
+    return radiance(g, scene_spawn(&h, refr, 0), depth + 1, weight, rs, s, c);
 }
 
 vec3 gather_indirect(const gather_params *g, const scene_hit *x, rng_stream *rs, est_scratch *s, gather_counts *c)
@@ -139,7 +137,7 @@ vec3 gather_indirect(const gather_params *g, const scene_hit *x, rng_stream *rs,
     for (uint32_t i = 0; i < g->rays; i++) {
         double xi1 = rng_next_double(rs), xi2 = rng_next_double(rs);
         vec3 d = gather_direction(g, i, xi1, xi2, x->n, t, b);
-        sum = vec_add(sum, radiance(g, scene_spawn(x, d, 1), 0, 1.0, s, c));
+        sum = vec_add(sum, radiance(g, scene_spawn(x, d, 1), 0, 1.0, rs, s, c));
     }
     c->rays += g->rays;
     /* E = integral of L cos over the hemisphere; with pdf cos / pi each
