@@ -10,7 +10,9 @@
 #     at half the photons, for the kernel bias) in
 #     build/reference/pbrt-measure/, then reference/pbrt/agreement.py's
 #     region table, written to reference/pbrt/agreement.md and spliced into
-#     reference/README.md between its two agreement markers.
+#     reference/README.md between its two agreement markers, and its rows
+#     as numbers to reference/pbrt/agreement.csv (a first comment line gives
+#     the converged renders' settings), which `make findings` reads.
 # Heavy: nice'd, one render at a time. Exit 1 when a step fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -73,6 +75,9 @@ done
   echo
   echo "<!-- pbrt-agreement end -->"; } > "$out/section.md"
 cp "$out/section.md" reference/pbrt/agreement.md.tmp && mv reference/pbrt/agreement.md.tmp reference/pbrt/agreement.md
+{ echo "# converged photonmap: $PM_PHOTONS photons (kernel bias from $((PM_PHOTONS / 2))), n = $PM_NN, --bias-correction, --direct shadow-rays, seeds 1-$PM_SEEDS; pbrt-v3: reference/SCENE/SCENE-pbrt-bdpt-256x192-seed*.exr; ratios to pbrt's mean, intervals 95% (reference/pbrt/agreement.py)"
+  cat "$out/agreement.csv"; } > reference/pbrt/agreement.csv.tmp
+mv reference/pbrt/agreement.csv.tmp reference/pbrt/agreement.csv
 "$PY" - reference/README.md "$out/section.md" <<'PYEOF'
 import os, re, sys
 readme, section = sys.argv[1], open(sys.argv[2]).read().rstrip("\n")
@@ -84,4 +89,4 @@ text = pat.sub(lambda _: section, text)
 open(readme + ".tmp", "w").write(text)
 os.replace(readme + ".tmp", readme)
 PYEOF
-echo "wrote reference/pbrt/agreement.md and its section of reference/README.md"
+echo "wrote reference/pbrt/agreement.md, agreement.csv and the section of reference/README.md"

@@ -629,6 +629,65 @@ def record_judges(d):
             "beyond": refs}
 
 
+# the verdicts reference/pbrt/agreement.py writes in its column holds, by
+# what they say: which reference holds in a region (its verdict() words them)
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+AGREEMENT_CSV = os.path.join(REPO, "reference", "pbrt", "agreement.csv")
+AGREEMENT_COLUMNS = ["scene", "size", "region", "material_kind", "pixels", "pm_ratio", "pm_ci", "pm_bias",
+                     "pov_ratio", "holds"]
+# why POV-Ray's reference is off in a scene, where reference/README.md has
+# measured it
+POV_OFF_WHY = {"tworooms": "That room is lit only by light that bounced many times, and POV-Ray's irradiance cache "
+                           "stops adding light after a few bounces (reference/README.md measures it bounce by bounce)."}
+HOLDS_CLASS = (("all three agree", "all"), ("POV-Ray off", "pov_off"), ("photonmap (BDPT", "pm_specular"),
+               ("undetermined", "undetermined"), ("pbrt and photonmap agree", "pm_pbrt"))
+
+
+def holds_class(text):
+    """The class of an agreement.csv verdict: 'all' (all three agree),
+    'pov_off' (pbrt and photonmap agree, POV-Ray off), 'pm_specular'
+    (photonmap holds on a mirror or glass region BDPT cannot sample),
+    'undetermined', 'pm_pbrt' (pbrt and photonmap agree on a specular
+    region), or 'other'."""
+    for key, name in HOLDS_CLASS:
+        if key in str(text):
+            return name
+    return "other"
+
+
+def span(values):
+    """(smallest, largest) of VALUES, or None when there are none."""
+    v = [float(x) for x in values if isnum(x)]
+    return (min(v), max(v)) if v else None
+
+
+def record_references(d):
+    """The three references region by region (reference/pbrt/agreement.csv,
+    written by reference/measure-pbrt.sh): its settings line, every region
+    row, and per scene the regions of each verdict class with the spans of
+    photonmap / pbrt and POV-Ray / pbrt in each."""
+    a = load(d["agreement"], AGREEMENT_COLUMNS, "bash reference/measure-pbrt.sh")
+    with open(d["agreement"], encoding="utf-8") as f:
+        first = f.readline().strip()
+    settings = first[1:].strip() if first.startswith("#") else ""
+    a["cls"] = [holds_class(h) for h in a["holds"]]
+    a["diffuse"] = ~a["material_kind"].isin(["mirror", "glass"])
+    scenes = []
+    for (scene, size), g in a.groupby(["scene", "size"], sort=False):
+        regions = g[g["material_kind"].notna()]
+        by = {}
+        for cls, h in regions.groupby("cls"):
+            by[cls] = {"n": len(h), "pm": span(h["pm_ratio"]), "pov": span(h["pov_ratio"]),
+                       "names": list(h["region"])}
+        agree = regions[regions["cls"].isin(["all", "pov_off"]) & regions["diffuse"]]
+        scenes.append({"scene": scene, "size": size, "regions": len(regions), "by": by,
+                       "agree_pm": span(agree["pm_ratio"]), "agree_pov": span(agree["pov_ratio"]),
+                       "agree_n": len(agree), "diffuse_n": int(regions["diffuse"].sum())})
+    path = os.path.abspath(d["agreement"])
+    return {"settings": settings, "scenes": scenes, "rows": [row_dict(r) for _, r in a.iterrows()],
+            "path": os.path.relpath(path, REPO) if path.startswith(REPO + os.sep) else d["agreement"]}
+
+
 def record_equal_error(d):
     """The table's equal-error curve, per estimate (equal_error_record)."""
     return {"estimates": equal_error_record(load(d["equal_error"], EQUAL_ERROR_COLUMNS, "make reproduce-table"))}
@@ -992,7 +1051,8 @@ def record_peers(d):
 
 
 RECORDS = {"table": record_table, "precompute": record_precompute, "reference_error": record_reference_error,
-           "figure3": record_figure3, "judges": record_judges, "equal_error": record_equal_error,
+           "figure3": record_figure3, "judges": record_judges, "references": record_references,
+           "equal_error": record_equal_error,
            "cost": record_cost, "bias": record_bias,
            "caustic": record_caustic, "scenes": record_scenes, "resolution": record_resolution,
            "baseline": record_baseline, "scale": record_scale, "stability": record_stability,
@@ -1336,7 +1396,7 @@ def md_judges(rec):
          "; ".join(REFERENCE_WHY[k] for k in x["kinds"]) or "not run here"] for x in rec["studies"]]
         + [[f"{x['study']} (`{x['make']}`)", x["by"], "no reference image"] for x in rec["none"]])
     lines.append("")
-    lines.append("pbrt-v3 judges no study. The converged references beyond/ uses, with their own error in "
+    lines.append("pbrt-v3 judges no study: it checks the other two (finding A). The converged references beyond/ uses, with their own error in "
                  f"{primary_name()} (the JSON beside each, written by reference.py, else a study's Markdown that "
                  "quotes it):")
     lines.append("")
@@ -1354,6 +1414,85 @@ def md_judges(rec):
         lines.append(f"- {count_list(r['cases'])}: noise {fmt(r['noise'])}, kernel bias {fmt(r['bias'])} "
                      f"(`{r['source']}`){share}.")
     return "What judges what", lines
+
+
+def span_text(sp, f="{:.3f}"):
+    """'0.986-0.996', one value when both ends agree, '-' for None."""
+    if sp is None:
+        return "-"
+    a, b = f.format(sp[0]), f.format(sp[1])
+    return a if a == b else f"{a}-{b}"
+
+
+def md_references(rec):
+    """Finding A: the three references side by side, region by region, and
+    where each is trusted and why."""
+    sc = rec["scenes"]
+    lines = [f"Three references of the same scenes, compared region by region (`{rec['path']}`, written by "
+             "`bash reference/measure-pbrt.sh`): pbrt-v3 (bidirectional path tracing, then path tracing; unbiased "
+             "for every path it can sample), the converged photonmap (ours; its kernel bias measured at half the "
+             "photons) and POV-Ray's reference preset (one render: no seed noise known). A region is the set of "
+             "pixels whose four subpixel rays all hit one shape first; every ratio is to pbrt's region mean, "
+             "photonmap's with its 95% interval. Settings: " + (rec["settings"] or "not recorded") + ".", ""]
+    lines += report.md_table(
+        ["scene", "size", "regions", "all three agree", "POV-Ray off", "photonmap holds (mirror, glass)",
+         "undetermined", "photonmap / pbrt where they agree (diffuse)", "POV-Ray / pbrt there"],
+        [[x["scene"], x["size"], x["regions"]] + [x["by"].get(c, {}).get("n", 0)
+                                                 for c in ("all", "pov_off", "pm_specular", "undetermined")]
+         + [span_text(x["agree_pm"]), span_text(x["agree_pov"])] for x in sc])
+    lines.append("")
+    agree_n = sum(x["agree_n"] for x in sc)
+    diffuse_n = sum(x["diffuse_n"] for x in sc)
+    pm_all = span([v for x in sc for v in (x["agree_pm"] or ())])
+    spec = [(x, x["by"]["pm_specular"]) for x in sc if "pm_specular" in x["by"]]
+    spec_n = sum(b["n"] for _, b in spec)
+    spec_pm = span([v for _, b in spec for v in (b["pm"] or ())])
+    spec_pov = span([v for _, b in spec for v in (b["pov"] or ())])
+    pov_ok = [x["scene"] for x in sc if x["by"].get("all") and not x["by"].get("pov_off")]
+    pov_off = [x for x in sc if x["by"].get("pov_off")]
+    lines.append("Where each is trusted, and why:")
+    lines.append("")
+    lines.append(f"- **pbrt-v3 on directly seen diffuse surfaces**: it is unbiased there, and the converged photonmap "
+                 f"agrees with it (within photonmap's interval, or 0.5%) in {agree_n} of {diffuse_n} diffuse regions, "
+                 f"at {span_text(pm_all)} of pbrt (the widest intervals are those of the smallest regions).")
+    if spec:
+        lines.append(f"- **The converged photonmap on mirror and glass surfaces** ({spec_n} regions in "
+                     f"{count_list([x['scene'] for x, _ in spec])}): what is seen there includes light that reached a "
+                     "diffuse surface off a mirror or through glass, seen again via a mirror or glass (light, "
+                     "specular, diffuse, specular, eye), a path BDPT cannot sample from a point light and a pinhole "
+                     f"camera. photonmap reads {span_text(spec_pm)} of pbrt there, and POV-Ray, whose photons carry "
+                     f"those paths, {span_text(spec_pov)}: it sides with photonmap, and pbrt is too dark there.")
+    if pov_ok:
+        lines.append(f"- **POV-Ray where few bounces carry the light** ({count_list(pov_ok)}): within 2% plus pbrt's "
+                     "interval on every diffuse region where pbrt and photonmap agree.")
+    for x in pov_off:
+        b = x["by"]["pov_off"]
+        lines.append(f"- **Not POV-Ray in {x['scene']}**: {b['n']} diffuse regions where pbrt and photonmap agree "
+                     f"read {span_text(b['pov'])} of pbrt in POV-Ray. "
+                     + POV_OFF_WHY.get(x["scene"], "Why is not measured here.")
+                     + " The studies of that scene are judged against the converged photonmap.")
+    und = [(x["scene"], r) for x in sc for r in rec["rows"]
+           if r["scene"] == x["scene"] and holds_class(r["holds"]) == "undetermined"]
+    if und:
+        lines.append("- **Undetermined** (pbrt and photonmap disagree beyond their noise, so neither is shown right): "
+                     + "; ".join(f"{s_} {r['region']}, {int(r['pixels'])} pixels: photonmap {float(r['pm_ratio']):.4f} "
+                                 f"± {float(r['pm_ci']):.4f} of pbrt, kernel bias {fmt(r['pm_bias'])}"
+                                 for s_, r in und) + ".")
+    corn = next((x for x in sc if x["scene"] == "cornell"), None)
+    if corn is not None and corn["agree_pov"] is not None:
+        sp = corn["by"].get("pm_specular", {}).get("pov")
+        lines.append(f"- **What this says of Table 1's reference** (POV-Ray, cornell): on the diffuse regions it "
+                     f"reads {span_text(corn['agree_pov'])} of pbrt (regions where photonmap agrees with pbrt)"
+                     + (f", and {span_text(sp)} of pbrt on mirror and glass, where photonmap holds" if sp else "")
+                     + ". Finding E gives its error in the studies' metric.")
+    lines += ["", "Every region (kernel bias: photonmap's bias as a share of pbrt's mean):", ""]
+    lines += report.md_table(
+        ["scene", "region", "pixels", "photonmap / pbrt", "kernel bias", "POV-Ray / pbrt", "holds"],
+        [[r["scene"], r["region"], int(r["pixels"]), f"{float(r['pm_ratio']):.4f} ± {float(r['pm_ci']):.4f}",
+          fmt(r["pm_bias"]) if isnum(r["pm_bias"]) else "-",
+          f"{float(r['pov_ratio']):.4f}" if isnum(r["pov_ratio"]) else "-", r["holds"]]
+         for r in rec["rows"] if isinstance(r["material_kind"], str)])
+    return "The three references side by side", lines
 
 
 def md_baseline(rec):
@@ -1505,7 +1644,8 @@ FINDINGS = ((1, "table", md_table, "The table's shape"),
             ("T", "precompute", md_precompute, "Where the precomputed method's time goes"),
             ("E", "reference_error", md_reference_error, "Table 1's reference and its own error"),
             ("F", "figure3", md_figure3, "The paper's Figure 3 claim"),
-            ("J", "judges", md_judges, "What judges what"), (2, "equal_error", md_equal_error, "Equal error"),
+            ("J", "judges", md_judges, "What judges what"),
+            ("A", "references", md_references, "The three references side by side"), (2, "equal_error", md_equal_error, "Equal error"),
             (3, "cost", md_cost, "What the speed costs in accuracy"),
             (4, "bias", md_bias, "The estimator's bias in the analytic scene"),
             (5, "caustic", md_caustic, "The caustic window's excess against the whole image's"),
@@ -1873,7 +2013,8 @@ def paths(root):
             "scenes": j(root, "scenes", "scenes.csv"), "resolution": j(root, "resolution"), "runs": j(root, "table1", "runs.csv"), "stability": j(root, "stability", "stability-extremes.md"),
             "repro": j(root, "reproducibility", "reproducibility.csv"), "rep": j(root, "rep-study", "rep-study-rules.csv"),
             "scaling": j(root, "bench", "scaling.csv"), "threads": j(root, "bench", "threads.csv"),
-            "beyond": j(root, "beyond", "beyond.csv"), "peers": j(root, "bench", "bench-peers.csv")}
+            "beyond": j(root, "beyond", "beyond.csv"), "peers": j(root, "bench", "bench-peers.csv"),
+            "agreement": AGREEMENT_CSV}
 
 
 def markdown(d, recs=None):

@@ -3,6 +3,10 @@
 Usage (reference/measure-pbrt.sh runs it):
   python3 reference/pbrt/agreement.py OUT.md SCENE:W:H:POV_EXR:PM_DIR:PM_HALF_DIR ...
 
+Writes OUT.md (a table per scene) and, beside it, OUT.csv with the same
+rows as numbers (CSV_FIELDS; empty where a value is undefined), which
+`make findings` reads for its section on the three references.
+
 For each scene: the regions are the pixels whose four subpixel rays (the
 renderer's 2x2 points (x + (s + 0.5)/2) / W) all hit one shape first; this
 file casts those rays itself (numpy, on the spheres, rectangles and camera
@@ -26,6 +30,7 @@ mean of the per-pixel median over pbrt's seeds divided by the mean one
 little below 1).
 The verdict column is worded by the rules in verdict() below.
 """
+import csv
 import glob
 import math
 import os
@@ -123,9 +128,14 @@ def verdict(kind_name, r_pm, e_pm, r_pov, e_pb):
     return "pbrt and photonmap disagree beyond their noise: undetermined"
 
 
+CSV_FIELDS = ("scene", "size", "region", "shape", "kind", "material", "material_kind", "pixels", "pbrt_mean",
+              "pbrt_ci", "robust", "pbrt_seeds", "pm_ratio", "pm_ci", "pm_bias", "pm_seeds", "pov_ratio", "holds")
+
+
 def main():
     out = sys.argv[1]
     lines = []
+    rows = []
     for spec in sys.argv[2:]:
         scene, w, h, pov, pmdir, halfdir = spec.split(":")
         w, h = int(w), int(h)
@@ -148,7 +158,7 @@ def main():
                     mats[t[1]] = t[2]
         one = (ids == ids[..., :1]).all(axis=2) & (ids[..., 0] >= 0)
         sid = np.where(one, ids[..., 0], -1)
-        regions = [("image (every pixel)", np.ones((h, w), bool), "-")]
+        regions = [("image (every pixel)", np.ones((h, w), bool), "-", "", "", "")]
         counts = np.bincount(sid[sid >= 0], minlength=len(shapes))
         order = np.argsort(-counts)
         minpix = max(64, (w * h) // 400)
@@ -156,13 +166,13 @@ def main():
             if counts[k] < minpix:
                 break
             kind, kv, mat = shapes[k]
-            regions.append((f"shape {k + 1} ({kind}, {mat})", sid == k, mats.get(mat, "?")))
+            regions.append((f"shape {k + 1} ({kind}, {mat})", sid == k, mats.get(mat, "?"), k + 1, kind, mat))
         lines.append(f"\n**{scene}** at {w}x{h}: pbrt {len(pb_files)} seeds, photonmap {len(pm_files)} seeds, "
                      f"POV-Ray `{os.path.basename(pov) if pv is not None else 'none'}`; "
                      f"{one.mean() * 100:.1f}% of the pixels lie in one shape.\n")
         lines.append("| region | pixels | pbrt mean | pbrt ±95% | robust | photonmap / pbrt | photonmap kernel bias | POV-Ray / pbrt | holds |")
         lines.append("|---|---|---|---|---|---|---|---|---|")
-        for name, m, kname in regions:
+        for name, m, kname, shape, kind, mat in regions:
             pbm = pb[:, m].mean(axis=1)
             pmm = pm[:, m].mean(axis=1)
             ref = pbm.mean()
@@ -173,12 +183,25 @@ def main():
             rpov = pv[m].mean() / ref if pv is not None else None
             pov_s = f"{rpov:.4f}" if rpov is not None else "-"
             bias_s = f"{(ph[:, m].mean() - pmm.mean()) / ref:+.4f}" if ph is not None else "-"
+            holds = verdict(kname, rpm, e_pm, rpov, e_pb)
             lines.append(f"| {name} | {int(m.sum())} | {ref:.5f} | {e_pb * 100:.2f}% | {robust:.3f} | "
-                         f"{rpm:.4f} ± {e_pm:.4f} | {bias_s} | {pov_s} | {verdict(kname, rpm, e_pm, rpov, e_pb)} |")
+                         f"{rpm:.4f} ± {e_pm:.4f} | {bias_s} | {pov_s} | {holds} |")
+            rows.append({"scene": scene, "size": f"{w}x{h}", "region": name, "shape": shape, "kind": kind,
+                         "material": mat, "material_kind": "" if kname == "-" else kname, "pixels": int(m.sum()),
+                         "pbrt_mean": f"{ref:.6g}", "pbrt_ci": f"{e_pb:.4g}", "robust": f"{robust:.4f}",
+                         "pbrt_seeds": len(pb_files), "pm_ratio": f"{rpm:.5f}", "pm_ci": f"{e_pm:.5f}",
+                         "pm_bias": bias_s.lstrip("+") if ph is not None else "", "pm_seeds": len(pm_files),
+                         "pov_ratio": f"{rpov:.5f}" if rpov is not None else "", "holds": holds})
     tmp = out + ".tmp"
     with open(tmp, "w") as f:
         f.write("\n".join(lines) + "\n")
     os.replace(tmp, out)
+    out_csv = os.path.splitext(out)[0] + ".csv"
+    with open(out_csv + ".tmp", "w", newline="") as f:
+        wr = csv.DictWriter(f, fieldnames=CSV_FIELDS)
+        wr.writeheader()
+        wr.writerows(rows)
+    os.replace(out_csv + ".tmp", out_csv)
 
 
 if __name__ == "__main__":
