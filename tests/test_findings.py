@@ -853,3 +853,35 @@ def test_references_missing():
         assert "measure-pbrt.sh" in str(e)
     else:
         raise AssertionError("no Missing")
+
+
+def test_gather_finding():
+    """Finding G counts, per grid, only the targets that enough resamples
+    reach, and says a grid pays at every target only when each interval lies
+    wholly above 1: a grid with one interval touching 1 does not count."""
+    rows = ["scene,size,kind,target,conventional_s,precomputed_s,speedup,lo,hi,defined",
+            "scenes/a.scene,8x6,equal_error,0.01,2,1,2.0,1.5,2.5,0.99",
+            "scenes/a.scene,8x6,equal_error,0.02,2,1,1.8,1.2,2.2,0.97",
+            "scenes/a.scene,8x6,equal_error,0.005,2,1,9.0,0.5,20,0.40",  # too few resamples: not counted
+            "scenes/a.scene,8x6,gather_phase,,,,3.0,2.8,3.2,",
+            "scenes/a.scene,8x6,precompute_share,,,,0.02,0.01,0.03,",
+            "scenes/a.scene,8x6,memory_increase,,,,0.25,,,",
+            "scenes/a.scene,8x6,work_bound,,,,2.5,,,",
+            "scenes/b.scene,8x6,equal_error,0.01,2,1,1.3,0.9,1.6,0.99",
+            "scenes/b.scene,8x6,equal_error,0.02,2,1,0.7,0.6,0.8,0.99",
+            "scenes/b.scene,8x6,gather_phase,,,,1.5,1.4,1.6,"]
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "gather.csv")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write("\n".join(rows) + "\n")
+        rec = findings.record_gather({"gather": path})
+        a, b = rec["grids"]
+        assert (a["scene"], a["targets"], a["above"], a["below"]) == ("a", 2, 2, 0)
+        assert a["speedup"] == (1.8, 2.0) and a["gather"] == (3.0, 2.8, 3.2)
+        assert (b["targets"], b["above"], b["below"]) == (2, 0, 1)
+        text = "\n".join(findings.md_gather(rec)[1])
+        assert "pays (its interval wholly above 1) at every one of its 2 targets" in text
+        assert "pays at 0 of 2 targets, does not (wholly below 1) at 1, undetermined at 1" in text
+        assert "in 1 of 2 grids (a at 8x6)" in text
+        bullet = findings.readme_gather(rec)
+        assert "0.70-2.00x" in bullet and "in 1 of 2 grids" in bullet and "1.50-3.00x" in bullet

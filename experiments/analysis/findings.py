@@ -688,6 +688,35 @@ def record_references(d):
             "path": os.path.relpath(path, REPO) if path.startswith(REPO + os.sep) else d["agreement"]}
 
 
+def record_gather(d):
+    """Final gathering (results/gather/gather.csv, make gather): per grid
+    (scene, size) the equal-error speed-up over the targets that at least
+    gather.DEFINED_MIN of the resamples reach on both fronts (how many lie
+    wholly above 1, wholly below, the span of the speed-ups and of the
+    targets), the gather phase's own speed-up with its interval, the
+    precompute's share of the time saved (median and range), the memory
+    increase and the work counters' bound."""
+    from experiments.analysis import gather as study
+    g = load(d["gather"], ["scene", "size", "kind", "target", "speedup", "lo", "hi", "defined"], "make gather")
+    grids = []
+    for (scene, size), x in g.groupby(["scene", "size"], sort=False):
+        ee = x[(x["kind"] == "equal_error") & (x["defined"] >= study.DEFINED_MIN)]
+
+        def one(kind):
+            r = x[x["kind"] == kind]
+            return (float(r["speedup"].iloc[0]), float(r["lo"].iloc[0]), float(r["hi"].iloc[0])) if len(r) \
+                else (math.nan,) * 3
+        grids.append({"scene": os.path.splitext(os.path.basename(str(scene)))[0], "size": size, "targets": len(ee),
+                      "above": int((ee["lo"] > 1).sum()), "below": int((ee["hi"] < 1).sum()),
+                      "speedup": span(ee["speedup"]), "target": span(ee["target"]),
+                      "lo": float(ee["lo"].min()) if len(ee) else math.nan,
+                      "gather": one("gather_phase"), "share": one("precompute_share"),
+                      "memory": one("memory_increase")[0], "bound": one("work_bound")[0]})
+    if not grids:
+        raise Missing(f"`{d['gather']}` has no grid (`make gather`)")
+    return {"grids": grids, "published": study.PUBLISHED, "defined_min": study.DEFINED_MIN}
+
+
 def record_equal_error(d):
     """The table's equal-error curve, per estimate (equal_error_record)."""
     return {"estimates": equal_error_record(load(d["equal_error"], EQUAL_ERROR_COLUMNS, "make reproduce-table"))}
@@ -1057,7 +1086,7 @@ RECORDS = {"table": record_table, "precompute": record_precompute, "reference_er
            "caustic": record_caustic, "scenes": record_scenes, "resolution": record_resolution,
            "baseline": record_baseline, "scale": record_scale, "stability": record_stability,
            "beyond": record_beyond, "repro": record_repro, "rules": record_rules, "metric": record_metric,
-           "peers": record_peers}
+           "peers": record_peers, "gather": record_gather}
 
 
 # the figures each finding shows, relative to the results directory (a
@@ -1067,7 +1096,7 @@ FIGURES = {"table": ("figures/ratio-vs-n.png",), "precompute": ("figures/phases.
            "equal_error": ("table1/equal-error.png", "figures/tradeoff.png"), "caustic": ("figures/caustic.png",),
            "scenes": ("figures/scenes.png",), "resolution": ("resolution/equal-error-*.png",),
            "scale": ("figures/bench-scaling.png",), "beyond": ("figures/beyond.png",),
-           "rules": ("figures/rep-study.png", "figures/fig2.png")}
+           "rules": ("figures/rep-study.png", "figures/fig2.png"), "gather": ("figures/gather.png",)}
 
 
 def figures_of(d):
@@ -1495,6 +1524,53 @@ def md_references(rec):
     return "The three references side by side", lines
 
 
+def gather_grid_word(x):
+    """Where one grid's equal-error speed-up pays: 'pays at every one of its
+    N targets', 'pays at A of N targets (B below 1, the rest undetermined)',
+    or 'no target ...'."""
+    n = x["targets"]
+    if n == 0:
+        return "no target that enough resamples reach on both fronts"
+    if x["above"] == n:
+        return f"pays (its interval wholly above 1) at every one of its {n} targets"
+    rest = n - x["above"] - x["below"]
+    return (f"pays at {x['above']} of {n} targets, does not (wholly below 1) at {x['below']}"
+            + (f", undetermined at {rest}" if rest else ""))
+
+
+def md_gather(rec):
+    """Finding G: final gathering, where the method was designed to pay."""
+    gs = rec["grids"]
+    every = [x for x in gs if x["targets"] and x["above"] == x["targets"]]
+    lines = [f"Both methods with final gathering (`make gather`, `results/gather/gather.md`): at each eye path's "
+             "first diffuse hit, direct light by a shadow ray, caustics from a caustic map, and N gather rays whose "
+             "first diffuse hits read the global map, by the n-nearest estimate (conventional) or the nearest "
+             "precomputed representative (precomputed). The equal-error speed-up counts at targets that at least "
+             f"{rec['defined_min']:.0%} of the bootstrap resamples reach on both fronts.", ""]
+    lines += report.md_table(
+        ["scene", "size", "equal-error speed-up at the counted targets", "where it pays", "gather phase speed-up",
+         "precompute / time saved (median)", "memory added", "bound (lookups at y free)"],
+        [[x["scene"], x["size"], span_text(x["speedup"], "{:.2f}") + "x" if x["speedup"] else "-",
+          gather_grid_word(x), ci(*x["gather"]) + "x", f"{pct(100 * x['share'][0])}%", f"{pct(100 * x['memory'])}%",
+          f"{fmt(x['bound'])}x"] for x in gs])
+    lines += ["", f"- The interval lies above 1 at every counted target in {len(every)} of {len(gs)} grids"
+              + (f" ({count_list([x['scene'] + ' at ' + x['size'] for x in every])})" if every else "") + "."]
+    lines.append(f"- Published: {rec['published']}.")
+    return "Final gathering: where the method was designed to pay", lines
+
+
+def readme_gather(rec):
+    """README's bullet on final gathering."""
+    gs = rec["grids"]
+    every = [x for x in gs if x["targets"] and x["above"] == x["targets"]]
+    sp = span([v for x in gs for v in (x["speedup"] or ())])
+    gp = span([x["gather"][0] for x in gs])
+    return (f"- **Final gathering** (Christensen's setting, `make gather`): the precomputed method's equal-error "
+            f"speed-up is {span_text(sp, '{:.2f}')}x over the grids' counted targets, its interval above 1 at every "
+            f"one of them in {len(every)} of {len(gs)} grids; the gather phase alone runs {span_text(gp, '{:.2f}')}x "
+            "faster (Christensen reports 5-7x) (`results/gather/gather.md`).")
+
+
 def md_baseline(rec):
     """Finding 8: the baseline and the drift control."""
     return "The baseline, and drift between runs", [
@@ -1655,7 +1731,8 @@ FINDINGS = ((1, "table", md_table, "The table's shape"),
             ("B", "beyond", md_beyond, "Beyond the paper's rule"),
             ("R", "repro", md_repro, "Reproducibility between two runs (make reproducibility)"),
             ("S", "rules", md_rules, "Which representative rule is compatible with the paper's slopes"),
-            ("M", "metric", md_metric, "The error metric"))
+            ("M", "metric", md_metric, "The error metric"),
+            ("G", "gather", md_gather, "Final gathering: where the method was designed to pay"))
 
 
 # ---- README's summary: one bullet per record, every number read from it
@@ -1972,7 +2049,8 @@ def readme_scale(rec):
 SUMMARY = (("table", readme_table), ("precompute", readme_precompute), ("figure3", readme_figure3),
            ("equal_error", readme_equal_error), ("cost", readme_cost),
            ("resolution", readme_resolution), ("bias", readme_bias), ("rules", readme_rules),
-           ("beyond", readme_beyond), ("repro", readme_repro), ("peers", readme_peers), ("scale", readme_scale))
+           ("beyond", readme_beyond), ("gather", readme_gather), ("repro", readme_repro), ("peers", readme_peers),
+           ("scale", readme_scale))
 
 
 def write(rec, writer):
@@ -2014,7 +2092,7 @@ def paths(root):
             "repro": j(root, "reproducibility", "reproducibility.csv"), "rep": j(root, "rep-study", "rep-study-rules.csv"),
             "scaling": j(root, "bench", "scaling.csv"), "threads": j(root, "bench", "threads.csv"),
             "beyond": j(root, "beyond", "beyond.csv"), "peers": j(root, "bench", "bench-peers.csv"),
-            "agreement": AGREEMENT_CSV}
+            "agreement": os.path.relpath(AGREEMENT_CSV), "gather": j(root, "gather", "gather.csv")}
 
 
 def markdown(d, recs=None):

@@ -13,7 +13,11 @@
 # through make). BENCH_REPS (5) runs per throughput cell, BENCH_HEAVY_REPS (3)
 # per heavy cell. The peers' raw timings go to results/bench/bench-peers.csv
 # (one row per answer and run: who, order, pe, stored, k, queries, rep,
-# seconds; the neighbour-set checks as rep = check).
+# seconds; the neighbour-set checks as rep = check). Last, final gathering
+# at full size: cornell 1024x768, --gather 32, P_e = 100k, n = 50, the
+# precomputed method, one thread (pbrt-v2's radiance-photon setting), its
+# minimum over BENCH_GATHER_REPEATS (2) repeats and the process's CPU
+# seconds per repeat.
 #
 #   run.sh --quick   (`make bench-quick`, about a minute): only the peers
 #                    table at k = 10 and 100, 3 runs a cell, on stdout;
@@ -31,6 +35,7 @@ if [ "${1:-}" = "--peers" ]; then PEERS_ONLY=1; fi
 REPS=${BENCH_REPS:-5}
 PEER_KS=${BENCH_PEER_KS:-1,10,100}
 HREPS=${BENCH_HEAVY_REPS:-3}
+GREPS=${BENCH_GATHER_REPEATS:-2}
 # the peers' map (photons emitted) and extra bench arguments: a tiny
 # instance (BENCH_PEER_PHOTONS=20000 BENCH_PEER_ARGS="--qw 64 --qh 48") checks the pipeline
 PEER_PHOTONS=${BENCH_PEER_PHOTONS:-500000}
@@ -140,6 +145,29 @@ heavy() { # method: one line per run, "method render precompute total rss"
 { heavy conventional; heavy precomputed; } > "$tmp/heavy.txt"
 "$PYTHON" experiments/bench/report.py heavy "$tmp/heavy.txt" > "$tmp/heavy.md"
 
+echo "bench: final gathering at 1024x768, --gather 32, precomputed ($GREPS repeats)" >&2
+load_gather=$(cut -d' ' -f1-3 /proc/loadavg)
+/usr/bin/time -f "%U %S" -o "$tmp/g.time" build/photonmap render scenes/cornell.scene --width 1024 --height 768 \
+  --gather 32 --photons 100000 --nn 50 --method precomputed --threads 1 --repeats "$GREPS" --quiet \
+  --stats "$tmp/g.json" -o "$tmp/g.exr" > /dev/null
+"$PYTHON" - "$tmp/g.json" "$tmp/g.time" "$GREPS" "$load_gather" > "$tmp/gather.md" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+t, reps = s["time_s"], int(sys.argv[3])
+user, system = (float(x) for x in open(sys.argv[2]).read().split()[-2:])
+g = s["gather_work"]
+print("cornell 1024x768, 2x2 samples, `--gather 32`, P_e = 100k, n = 50, `--method precomputed`, one thread "
+      f"(load average {sys.argv[4]} before it ran):\n")
+print("| total (s) | trace | build | precompute | eye pass | CPU s per repeat | gather share of the eye pass | "
+      "gather rays | lookups at y | rays cast per gather ray |")
+print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+print(f"| {t['total']:.2f} | {t['trace']:.3f} | {t['build']:.3f} | {t['precompute']:.3f} | {t['render']:.2f} | "
+      f"{(user + system) / reps:.1f} | {s['gather_time']['share']:.3f} | {g['rays']:,} | {g['lookups']:,} | "
+      f"{(g['rays'] + g['specular']) / g['rays']:.3f} |")
+print(f"\nTimes: the minimum over {reps} repeats in one process; CPU: the process's user + system seconds "
+      f"(/usr/bin/time) over its {reps} repeats, divided by {reps} (the first repeat pays the page faults).")
+PY
+
 # The scaling and two-thread sections: their own scripts write their own
 # files (results/bench/scaling.md, threads.md); bench.md carries them too,
 # headings one level down.
@@ -204,6 +232,9 @@ demote() { sed 's/^#/##/' "$1"; }
   echo
   cat "$tmp/prof_pre10.txt"
   echo
+  echo "## Final gathering at full size (pbrt-v2's radiance-photon setting, one thread)"
+  echo
+  cat "$tmp/gather.md"
   echo
   demote results/bench/scaling.md
   echo
