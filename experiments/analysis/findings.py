@@ -1500,13 +1500,13 @@ def md_references(rec):
                      f"read {span_text(b['pov'])} of pbrt in POV-Ray. "
                      + POV_OFF_WHY.get(x["scene"], "Why is not measured here.")
                      + " The studies of that scene are judged against the converged photonmap.")
-    und = [(x["scene"], r) for x in sc for r in rec["rows"]
-           if r["scene"] == x["scene"] and holds_class(r["holds"]) == "undetermined"]
+    und = [r for r in rec["rows"] if holds_class(r["holds"]) == "undetermined"]
     if und:
         lines.append("- **Undetermined** (pbrt and photonmap disagree beyond their noise, so neither is shown right): "
-                     + "; ".join(f"{s_} {r['region']}, {int(r['pixels'])} pixels: photonmap {float(r['pm_ratio']):.4f} "
-                                 f"± {float(r['pm_ci']):.4f} of pbrt, kernel bias {fmt(r['pm_bias'])}"
-                                 for s_, r in und) + ".")
+                     + "; ".join(f"{r['scene']} {r['region']}, {int(r['pixels'])} pixels: photonmap "
+                                 f"{float(r['pm_ratio']):.4f} ± {float(r['pm_ci']):.4f} of pbrt, kernel bias "
+                                 f"{fmt(r['pm_bias'])}"
+                                 for r in und) + ".")
     corn = next((x for x in sc if x["scene"] == "cornell"), None)
     if corn is not None and corn["agree_pov"] is not None:
         sp = corn["by"].get("pm_specular", {}).get("pov")
