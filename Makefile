@@ -46,7 +46,7 @@ TEST_LIST := $(BUILD)/unit/tests.list.h
 
 # ---- what users run (`make help`: one line each, from the ## comments) ----
 .PHONY: calibrate results results-check
-.PHONY: all deps test check help clean reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm evaluate beyond reproducibility findings bench-threads
+.PHONY: all deps test check help clean accel reproduce-table reproduce-runs list-runs figures rep-study caustic resolution estimator-bias scenes stability bench reference reference-small reference-pbrt fuzz sweep-slurm evaluate beyond reproducibility findings bench-threads
 all: $(BUILD)/photonmap ## build build/photonmap
 deps: $(DEPS_STAMP) $(DEPS_TEST) $(DEPS_CLUSTER) ## install the missing Debian packages of every tier (scripts/install-deps.sh)
 test: all unit-tests $(BUILD)/san/photonmap $(DEPS_TEST) $(DEPS_CLUSTER) ## every test; ends with "N passed, N failed, N skipped" (README)
@@ -67,6 +67,7 @@ findings: ## results/FINDINGS.md from the results files; checks that README's fi
 scenes: ## the grid on every scene: equal-error speed-up, kNN share, where the error lies -> results/scenes/
 beyond: ## the paper's rule, lazy, gated and lazy+gated representatives at equal error per scene and size -> results/beyond/, figures/beyond.png
 stability: ## every extreme with its expected value and verdict -> results/stability/stability-extremes.md
+accel: ## the BVH against the loop over shapes, photon and eye pass, repeat minima, images compared -> results/accel/accel.md (experiments/accel.sh)
 bench: ## kNN (against FLANN, cKDTree, nanoflann), lookup and eye-pass benchmarks -> results/bench/bench.md
 bench-quick: ## only the kNN against FLANN, cKDTree and nanoflann, about a minute, on stdout
 bench-scaling: ## each phase's cost and peak bytes per stored photon against the photons, log-log slopes -> results/bench/scaling.md (SCALING_PHOTONS)
@@ -96,6 +97,10 @@ stability: $(BUILD)/photonmap | $(DEPS_TEST)
 	@mkdir -p $(STABILITY_DIR)
 	$(PYTHON) -m experiments.stability --pm $(PM) > $(STABILITY_DIR)/stability-extremes.md.tmp
 	mv $(STABILITY_DIR)/stability-extremes.md.tmp $(STABILITY_DIR)/stability-extremes.md
+
+accel: $(BUILD)/photonmap
+	@mkdir -p $(ACCEL_DIR)
+	PM=$(PM) bash experiments/accel.sh $(ACCEL_DIR)/accel.md
 
 # ---- the build ----
 # provenance.o carries the commit, whether tracked files outside results/ had

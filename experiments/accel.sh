@@ -2,15 +2,18 @@
 # accel.sh: what the BVH (renderer/bvh.c) buys, and from how many shapes on
 # (the SCENE_BVH_MIN_SHAPES threshold of renderer/scene.h). Renders with
 # `--accel linear` and `--accel bvh`, one thread, and prints the photon-pass
-# (trace) and eye-pass (render) times from --stats, the median of REPS runs,
-# as a Markdown table; also checks that both images are bit-identical.
-#   bash experiments/accel.sh [OUT.md]     (default: stdout)
-# Knobs (environment): REPS (3), PM (build/photonmap), SIZE (1024x768),
+# (trace) and eye-pass (render) times from --stats, each the minimum over the
+# repeats of one process (--repeats REPEATS), as a Markdown table; also checks
+# that both images are bit-identical.
+#   make accel                             (results/accel/accel.md)
+#   bash experiments/accel.sh [OUT.md]     (default: stdout; a file is
+#                                           written under a temporary name and renamed)
+# Knobs (environment): REPEATS (auto), PM (build/photonmap), SIZE (1024x768),
 # PHOTONS (500000), NN (100), METHOD (precomputed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PM=${PM:-build/photonmap}
-REPS=${REPS:-3} SIZE=${SIZE:-1024x768} PHOTONS=${PHOTONS:-500000} NN=${NN:-100} METHOD=${METHOD:-precomputed}
+REPEATS=${REPEATS:-auto} SIZE=${SIZE:-1024x768} PHOTONS=${PHOTONS:-500000} NN=${NN:-100} METHOD=${METHOD:-precomputed}
 W=${SIZE%x*} H=${SIZE#*x}
 TMP=$(mktemp -d /tmp/accel.XXXXXX)
 trap 'rm -rf "$TMP"' EXIT
@@ -32,21 +35,14 @@ boxes_scene() {
     } }'
 }
 
-# median of the numbers on stdin
-median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
-
-# run SCENE ACCEL: "trace render" medians over REPS runs; the image of the
-# last run in $TMP/ACCEL.exr
+# run SCENE ACCEL: "trace render", each phase's minimum over the repeats of
+# one process (the stats' time_s); the image in $TMP/ACCEL.exr
 run() {
-  local scene=$1 accel=$2 r
-  for r in $(seq 1 "$REPS"); do
-    "$PM" render "$scene" --accel "$accel" --method "$METHOD" --photons "$PHOTONS" --nn "$NN" \
-      --width "$W" --height "$H" --threads 1 --quiet -o "$TMP/$accel.exr" --stats "$TMP/$accel-$r.json"
-  done
+  local scene=$1 accel=$2 f
+  "$PM" render "$scene" --accel "$accel" --method "$METHOD" --photons "$PHOTONS" --nn "$NN" \
+    --width "$W" --height "$H" --threads 1 --repeats "$REPEATS" --quiet -o "$TMP/$accel.exr" --stats "$TMP/$accel.json"
   for f in trace render; do
-    for r in $(seq 1 "$REPS"); do
-      sed -n "s/.*\"time_s\": {.*\"$f\": *\([0-9.e+-]*\).*/\1/p" "$TMP/$accel-$r.json"
-    done | median
+    sed -n "s/.*\"time_s\": {.*\"$f\": *\([0-9.e+-]*\).*/\1/p" "$TMP/$accel.json"
   done | paste -sd' '
 }
 
@@ -60,10 +56,12 @@ row() { # label, scene
   printf '| %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %s |\n' "$label" "$n" "$1" "$3" "$2" "$4" "$(awk -v a="$2" -v b="$4" 'BEGIN { print a / b }')" "$same"
 }
 
+OUT=${1:-}
 {
-  echo "Ray casting: linear loop vs BVH (\`bash experiments/accel.sh\`), $METHOD, P_e = $PHOTONS, n = $NN,"
-  echo "${W}x$H with 2x2 subpixels, 1 thread, median of $REPS runs; seconds from --stats (wall clock)."
-  echo "Machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg) at the start; commit $(git rev-parse --short HEAD 2>/dev/null || echo '?')."
+  echo "Ray casting: linear loop vs BVH (\`make accel\`, experiments/accel.sh), $METHOD, P_e = $PHOTONS, n = $NN,"
+  echo "${W}x$H with 2x2 subpixels, 1 thread; seconds from --stats (wall clock), each phase's minimum over the"
+  echo "repeats of one process (\`--repeats $REPEATS\`)."
+  echo "Machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg) at the start; commit \`$(git rev-parse --short HEAD 2>/dev/null || echo '?')\`; renderer \`$PM\`."
   echo
   echo "| scene | shapes | photon pass, linear | photon pass, BVH | eye pass, linear | eye pass, BVH | eye pass linear/BVH | images identical |"
   echo "|---|---:|---:|---:|---:|---:|---:|---|"
@@ -74,4 +72,5 @@ row() { # label, scene
   done
   row slabs scenes/slabs.scene
   row library scenes/library.scene
-} > "${1:-/dev/stdout}"
+} > "${OUT:-/dev/stdout}${OUT:+.tmp}"
+if [ -n "$OUT" ]; then mv "$OUT.tmp" "$OUT"; fi

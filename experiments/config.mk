@@ -11,6 +11,7 @@ PM ?= $(BUILD)/photonmap
 # the analysis layer runs on Debian's python3 (numpy, scipy, pandas, OIIO)
 PYTHON ?= /usr/bin/python3
 STABILITY_DIR = $(RESULTS)/stability
+ACCEL_DIR = $(RESULTS)/accel
 
 # make bench
 BENCH_BIN := $(BUILD)/bench/bench

@@ -26,8 +26,9 @@ from it; a killed attempt stays "running" in the log with no end.
 
 check: every render under DIR/runs (its stats file's provenance) was made by
 the pinned commit from a clean tree, and every Markdown file under DIR names
-one commit (report.commit's "commit `abc1234`"); prints what differs and
-exits 1 when not.
+a commit, the same one (report.commit's "commit `abc1234`", or a table's
+"Commit: `abc1234`"; README.md and stability/stability.md are written by
+hand and exempt); prints what differs and exits 1 when not.
 """
 
 import argparse
@@ -49,12 +50,14 @@ import time
 # studies, the benchmarks and the cost model, and the findings last (they
 # read every other file)
 TARGETS = ("reproduce-table", "reproducibility", "figures", "estimator-bias", "caustic", "rep-study", "resolution",
-           "scenes", "beyond", "gather", "stability", "bench", "calibrate", "findings")
+           "scenes", "beyond", "gather", "stability", "accel", "bench", "calibrate", "findings")
 # the sources of the renderer: a change here is a new renderer (the build's
 # flags are in every render's provenance, and check() finds them all one)
 PINNED_SOURCES = ("renderer",)
 LOG_FIELDS = ("started", "ended", "target", "commit", "renderer", "status", "renders", "seconds", "why")
-COMMIT_RE = re.compile(r"[Cc]ommit `([0-9a-f]{7,40})`")
+COMMIT_RE = re.compile(r"[Cc]ommit:?\s+`([0-9a-f]{7,40})`")
+# Markdown under results/ written by hand, not by a study: they name no commit
+HANDWRITTEN = ("README.md", os.path.join("stability", "stability.md"))
 
 
 class RegenError(Exception):
@@ -215,16 +218,18 @@ def render_commits(results):
 
 
 def file_commits(results):
-    """{commit: [Markdown files under RESULTS naming it]} ("commit `abc1234`";
-    the run layout and the log are not results files)."""
+    """{commit: [Markdown files under RESULTS naming it]} ("commit `abc1234`" or
+    "Commit: `abc1234`"), with the files that name none under the key None;
+    the run layout, the log and the HANDWRITTEN files are not results files."""
     out = {}
     for path in sorted(glob.glob(os.path.join(results, "**", "*.md"), recursive=True)):
         rel = os.path.relpath(path, results)
-        if rel.startswith("runs" + os.sep) or rel.startswith("regeneration-log"):
+        if rel.startswith("runs" + os.sep) or rel.startswith("regeneration-log") or rel in HANDWRITTEN:
             continue
         with open(path, encoding="utf-8", errors="replace") as f:
-            for c in set(COMMIT_RE.findall(f.read())):
-                out.setdefault(c[:7], []).append(rel)
+            found = {c[:7] for c in COMMIT_RE.findall(f.read())}
+        for c in found or {None}:
+            out.setdefault(c, []).append(rel)
     return out
 
 
@@ -247,6 +252,10 @@ def check(results):
     elif renders:
         problems.append(f"{results}/runs holds renders but no pinned renderer ({pin_dir(results)})")
     files = file_commits(results)
+    unnamed = files.pop(None, [])
+    if unnamed:
+        problems.append(f"{len(unnamed)} results file(s) name no commit: " + ", ".join(unnamed[:6])
+                        + (" ..." if len(unnamed) > 6 else ""))
     if len(files) > 1:
         problems.append("the results files name " + str(len(files)) + " commits: "
                         + "; ".join(f"{c}: {', '.join(fs[:4])}{' ...' if len(fs) > 4 else ''}"

@@ -85,7 +85,7 @@ def markdown(rows, load, commit, threads):
                "`results/bench/scaling.csv`: scenes/cornell.scene, n = 100, 512x384, %s threads, one "
                "render per count; times are the renderer's own phases (`time_s` in `--stats`), memory is "
                "the peak resident set (`/usr/bin/time -f %%M`) over the stored photons. Load average %s "
-               "when it finished; commit %s." % (threads, load, commit))
+               "when it finished; commit `%s`." % (threads, load, commit))
     out.append("")
     for method in METHODS:
         rs = sorted((r for r in rows if r["method"] == method), key=lambda r: r["photons_emitted"])
