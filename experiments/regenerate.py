@@ -51,9 +51,10 @@ import time
 # read every other file)
 TARGETS = ("reproduce-table", "reproducibility", "figures", "estimator-bias", "caustic", "rep-study", "resolution",
            "scenes", "beyond", "gather", "stability", "accel", "bench", "calibrate", "findings")
-# the sources of the renderer: a change here is a new renderer (the build's
-# flags are in every render's provenance, and check() finds them all one)
-PINNED_SOURCES = ("renderer",)
+# the sources of the renderer, as git pathspecs: a change here is a new
+# renderer (its Markdown documentation is not; the build's flags are in every
+# render's provenance, and check() finds them all one)
+PINNED_SOURCES = ("renderer", ":(exclude)renderer/*.md")
 LOG_FIELDS = ("started", "ended", "target", "commit", "renderer", "status", "renders", "seconds", "why")
 COMMIT_RE = re.compile(r"[Cc]ommit:?\s+`([0-9a-f]{7,40})`")
 # Markdown under results/ written by hand, not by a study: they name no commit

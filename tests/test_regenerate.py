@@ -80,7 +80,8 @@ def git(d, *args):
 
 def test_pin_refuses_a_changed_renderer(monkeypatch):
     """A pinned regeneration goes on while the renderer's sources are the
-    pinned commit's (a change elsewhere is fine) and stops, naming the file,
+    pinned commit's (a change elsewhere, or to renderer/'s Markdown, is fine)
+    and stops, naming the file,
     once they differ; control: an altered pinned binary is refused too."""
     with tempfile.TemporaryDirectory() as d:
         git(d, "init", "-q")
@@ -100,6 +101,7 @@ def test_pin_refuses_a_changed_renderer(monkeypatch):
         assert regenerate.pin(res) == (binary, head)
         write(os.path.join(d, "README.md"), "y\n")
         write(os.path.join(d, "Makefile"), "all:\n")
+        write(os.path.join(d, "renderer", "README.md"), "the renderer's documentation\n")
         git(d, "add", ".")
         git(d, "commit", "-q", "-m", "docs and the Makefile")
         assert regenerate.pin(res) == (binary, head)
