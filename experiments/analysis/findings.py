@@ -251,7 +251,8 @@ def regions_text(runs):
         if rs:
             where = ", ".join(f"{fmt(x['first'])}" if x["count"] == 1 else f"{fmt(x['first'])} to {fmt(x['last'])}"
                               for x in rs)
-            parts.append(f"{REGION_WORDS[k]} at {primary_name()} {where} ({sum(x['count'] for x in rs)} targets)")
+            count = sum(x["count"] for x in rs)
+            parts.append(f"{REGION_WORDS[k]} at {primary_name()} {where} ({count} target{'' if count == 1 else 's'})")
     out = "; ".join(parts)
     cr = crossing_of(runs)
     if cr is not None:
