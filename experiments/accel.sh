@@ -16,7 +16,9 @@ PM=${PM:-build/photonmap}
 REPEATS=${REPEATS:-auto} SIZE=${SIZE:-1024x768} PHOTONS=${PHOTONS:-500000} NN=${NN:-100} METHOD=${METHOD:-precomputed}
 W=${SIZE%x*} H=${SIZE#*x}
 TMP=$(mktemp -d /tmp/accel.XXXXXX)
-trap 'rm -rf "$TMP"' EXIT
+OUT=${1:-}
+# a failed or killed run leaves neither its scratch nor a half-written OUT.tmp
+trap 'rm -rf "$TMP"; if [ -n "$OUT" ]; then rm -f "$OUT.tmp"; fi' EXIT
 
 # cornell.scene with k small boxes (six rectangles each) in the back left
 # corner: 9 + 6k shapes, for the threshold
@@ -56,7 +58,6 @@ row() { # label, scene
   printf '| %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %s |\n' "$label" "$n" "$1" "$3" "$2" "$4" "$(awk -v a="$2" -v b="$4" 'BEGIN { print a / b }')" "$same"
 }
 
-OUT=${1:-}
 {
   echo "Ray casting: linear loop vs BVH (\`make accel\`, experiments/accel.sh), $METHOD, P_e = $PHOTONS, n = $NN,"
   echo "${W}x$H with 2x2 subpixels, 1 thread; seconds from --stats (wall clock), each phase's minimum over the"

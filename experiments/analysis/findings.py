@@ -2031,8 +2031,8 @@ def readme_peers(rec):
             + (f"; without the carried state ours answers "
                f"{count_list([report.fmt_fixed(r['stateless_ratio'], 2) + 'x' for r in rows])} as many as the "
                "strongest peer" if all("stateless_ratio" in r for r in rows) else
-               " (bench-peers.csv has no stateless run of ours to measure what the state is worth)")
-            + " (`results/bench/bench.md`).")
+               " (peers.csv has no stateless run of ours to measure what the state is worth)")
+            + " (`results/bench/peers.md`).")
 
 
 def readme_scale(rec):
@@ -2107,7 +2107,7 @@ def paths(root):
             "scenes": j(root, "scenes", "scenes.csv"), "resolution": j(root, "resolution"), "runs": j(root, "table1", "runs.csv"), "stability": j(root, "stability", "stability-extremes.md"),
             "repro": j(root, "reproducibility", "reproducibility.csv"), "rep": j(root, "rep-study", "rep-study-rules.csv"),
             "scaling": j(root, "bench", "scaling.csv"), "threads": j(root, "bench", "threads.csv"),
-            "beyond": j(root, "beyond", "beyond.csv"), "peers": j(root, "bench", "bench-peers.csv"),
+            "beyond": j(root, "beyond", "beyond.csv"), "peers": j(root, "bench", "peers.csv"),
             "agreement": os.path.relpath(AGREEMENT_CSV), "gather": j(root, "gather", "gather.csv")}
 
 

@@ -11,10 +11,10 @@
 # two-thread sections (scaling.sh, threads.sh: SCALING_PHOTONS,
 # SCALING_THREADS, THREADS_PHOTONS, THREADS_PAIRS from experiments/config.mk
 # through make). BENCH_REPS (5) runs per throughput cell, BENCH_HEAVY_REPS (3)
-# per heavy cell. The peers' raw timings go to results/bench/bench-peers.csv
-# (one row per answer and run: who, order, pe, stored, k, queries, rep,
-# seconds; the neighbour-set checks as rep = check), and the peers section
-# alone to results/bench/peers.{md,csv}, as --peers writes them. Last, final gathering
+# per heavy cell. The peers section also goes alone to results/bench/peers.md,
+# with its raw timings in peers.csv (one row per answer and run: who, order,
+# pe, stored, k, queries, rep, seconds; the neighbour-set checks as rep =
+# check), as --peers writes them; README's summary is computed from peers.csv. Last, final gathering
 # at full size: cornell 1024x768, --gather 32, P_e = 100k, n = 50, the
 # precomputed method, one thread (pbrt-v2's radiance-photon setting), its
 # minimum over BENCH_GATHER_REPEATS (2) repeats and the process's CPU
@@ -251,9 +251,7 @@ demote() { sed 's/^#/##/' "$1"; }
   cat experiments/bench/kdtree-notes.md
 } > "$OUT.tmp"
 mv "$OUT.tmp" "$OUT"
-# the peers' raw timings beside it, for what is computed from them (findings.py)
-cp "$tmp/peers.csv" results/bench/bench-peers.csv.tmp
-mv results/bench/bench-peers.csv.tmp results/bench/bench-peers.csv
-echo "bench: wrote $OUT, results/bench/bench-peers.csv" >&2
-# the same peers section on its own, as `make bench-peers` writes it
+echo "bench: wrote $OUT" >&2
+# the same peers section on its own with its raw timings (what findings.py
+# reads), as `make bench-peers` writes them
 peers_files "experiments/bench/run.sh (\`make bench\`)"
