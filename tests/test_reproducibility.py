@@ -45,7 +45,8 @@ def test_reproducibility_compare():
 
 def test_reproducibility_phase_load():
     """Each phase's ratio busy / A over the renders both runs made: the
-    medians of known ratios; a render only one run made is left out."""
+    medians of known ratios and of their distance from 1; a render only one
+    run made is left out."""
     def runs(scale, seeds):
         return pd.DataFrame([{"method": m, "estimate": "paper", "photons": 50000, "nn": 10, "seed": k, "status": "ok",
                               "trace_s": 0.1 * scale[k - 1], "build_s": 0.05, "precompute_s": 0.0,
@@ -55,6 +56,7 @@ def test_reproducibility_phase_load():
     by = {(r["method"], r["phase"]): r for r in rows}
     assert by[("precomputed", "trace")]["renders"] == 3
     assert abs(by[("precomputed", "trace")]["median_ratio"] - 1.2) < 1e-12
+    assert abs(by[("precomputed", "trace")]["median_abs_change"] - 0.2) < 1e-12  # |1.1, 1.3, 1.2 - 1|
     assert abs(by[("conventional", "render")]["max_ratio"] - 1.3) < 1e-12
     assert by[("conventional", "build")]["median_ratio"] == 1.0
     assert by[("conventional", "precompute")]["renders"] == 0  # 0 s: no ratio
@@ -105,3 +107,24 @@ def test_reproducibility_prints_reference_error():
             text = f.read()
         assert "busy loop on the other core" in text and "median |delta| 2.00 pp" in text
         assert list(pd.read_csv(os.path.join(d, "r3.csv"))["runs"]) == ["a-b"] * 3 + ["a-busy"] * 3
+
+
+def test_reproducibility_pooled_drift():
+    """The drift control with each render's time the minimum over several
+    runs' processes, against the geometric mean computed by hand: one slow
+    precomputed trace in A (1.2x) puts the cell outside [97, 103] alone and
+    inside once B's process is pooled; control: a pool whose other run is
+    slow too stays outside."""
+    def runs(prec_trace):
+        return pd.DataFrame([{"method": m, "estimate": "paper", "photons": 50000, "nn": 10, "seed": k,
+                              "status": "ok", "trace_s": (prec_trace[k - 1] if m == "precomputed" else 0.1)}
+                             for m in ("conventional", "precomputed") for k in (1, 2)])
+    a, b, slow = runs([0.12, 0.1]), runs([0.1, 0.1]), runs([0.13, 0.1])
+    one = reproducibility.pooled_drift([a], (97, 103))
+    assert one["cells"] == 1 and one["inside"] == 0
+    assert abs(one["min"] - 100 * (1.2 ** 0.5)) < 1e-9  # exp(mean(log 1.2, log 1))
+    two = reproducibility.pooled_drift([a, b], (97, 103))
+    assert two["inside"] == 1 and abs(two["max"] - 100) < 1e-9
+    assert reproducibility.pooled_drift([a, slow], (97, 103))["inside"] == 0
+    # a render one run lacks is left out of the pool
+    assert reproducibility.pooled_drift([a, b.iloc[:3]], (97, 103))["cells"] == 1

@@ -14,7 +14,10 @@ cells at most REPRO_GOAL_PP and the largest at most REPRO_MAX_PP, the drift
 control inside REPRO_DRIFT in every cell of both runs. The busy run against
 A: the median |difference| against REPRO_BUSY_GOAL_PP, and what the load did
 to each phase (the median ratio busy / A of each phase's repeat-minimum time
-over the renders, per method). The images of
+over the renders, per method). Where the noise arises: how far each phase's
+repeat minimum moves between A and B (the same render in another process),
+and the drift control if each render's time were the minimum over the
+processes of two or three runs. The images of
 one seed are the same bit for bit in both runs (the renderer is
 deterministic), so the error columns must agree exactly: the largest
 difference of any render's relMSE between the runs is reported, and a
@@ -148,8 +151,66 @@ def phase_load(runs_a, runs_c):
             rows.append({"method": method, "phase": ph[:-2], "renders": int(ok.sum()),
                          "median_ratio": float(np.median(r)) if r.size else math.nan,
                          "min_ratio": float(np.min(r)) if r.size else math.nan,
-                         "max_ratio": float(np.max(r)) if r.size else math.nan})
+                         "max_ratio": float(np.max(r)) if r.size else math.nan,
+                         "median_abs_change": float(np.median(np.abs(r - 1))) if r.size else math.nan,
+                         "p90_abs_change": float(np.percentile(np.abs(r - 1), 90)) if r.size else math.nan})
     return rows
+
+
+def pooled_drift(runs, drift):
+    """The drift control if every render's time were the minimum over the
+    processes of several runs: RUNS is a list of runs.csv frames of the same
+    grid; per (estimate, P_e, n) the per-seed geometric mean of precomputed /
+    conventional trace time, each the minimum over RUNS' renders of that
+    seed, in %. Returns {"cells", "inside" (cells within DRIFT), "min",
+    "max"}; cells 0 when the runs share no pair."""
+    keys = ["method", "estimate", "photons", "nn", "seed"]
+    frames = [r[r["status"] == "ok"].set_index(keys)["trace_s"] for r in runs]
+    both = frames[0].index
+    for f in frames[1:]:
+        both = both.intersection(f.index)
+    t = pd.concat([f.loc[both] for f in frames], axis=1).min(axis=1)
+    t = t[t > 0]
+    values = []
+    cells = sorted({k[1:4] for k in t.index})
+    for est, pe, nn in cells:
+        logs = [math.log(t[("precomputed", est, pe, nn, s)] / t[("conventional", est, pe, nn, s)])
+                for s in sorted({k[4] for k in t.index if k[1:4] == (est, pe, nn)})
+                if ("precomputed", est, pe, nn, s) in t.index and ("conventional", est, pe, nn, s) in t.index]
+        if logs:
+            values.append(100 * math.exp(float(np.mean(logs))))
+    v = np.array(values)
+    return {"cells": int(v.size), "inside": int(np.sum((v >= drift[0]) & (v <= drift[1]))),
+            "min": float(v.min()) if v.size else math.nan, "max": float(v.max()) if v.size else math.nan}
+
+
+def noise_lines(runs_a, runs_b, runs_c, drift):
+    """Markdown lines of where the time noise arises: how far a phase's
+    repeat minimum moves between two processes of the same render (A and B:
+    same bits, same work, another time), and the drift control if each
+    render's time were the minimum over the processes of two or three runs."""
+    lines = ["## Where the noise arises", "",
+             "Each render's time is the minimum over the repeats inside one process. Between two processes of "
+             "the same render (A and B: the same bits and the same work counters, another time), that minimum "
+             "moves by (|B / A - 1|, over the renders both runs made):", ""]
+    lines += report.md_table(["method", "phase", "renders", "median |change| %", "90th percentile %", "range B / A"],
+                             [[r["method"], r["phase"], str(r["renders"]), fmt_fixed(100 * r["median_abs_change"], 1),
+                               fmt_fixed(100 * r["p90_abs_change"], 1),
+                               f"{fmt_fixed(r['min_ratio'], 3)}-{fmt_fixed(r['max_ratio'], 3)}"]
+                              for r in phase_load(runs_a, runs_b) if r["renders"] > 0])
+    pools = [("A", [runs_a]), ("B", [runs_b]), ("min over A and B", [runs_a, runs_b])]
+    if runs_c is not None:
+        pools.append(("min over A, B and busy", [runs_a, runs_b, runs_c]))
+    lines += ["", "The drift control if each render's time were the minimum over the processes of several runs "
+              "(a design with that many processes per render; the per-seed geometric mean of the trace ratio):", ""]
+    rows = []
+    for name, rs in pools:
+        d = pooled_drift(rs, drift)
+        rows.append([name, str(len(rs)), f"{d['inside']} of {d['cells']}",
+                     f"{fmt_fixed(d['min'], 1)}-{fmt_fixed(d['max'], 1)}"])
+    lines += report.md_table(["renders' times", "processes per render", f"cells inside [{fmt(drift[0])}%, "
+                              f"{fmt(drift[1])}%]", "range %"], rows)
+    return lines + [""]
 
 
 def interval_text(row, name, run):
@@ -183,7 +244,7 @@ def load_text(runs):
 
 def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, ref_text="", busy=None):
     """The text of reproducibility.md; BUSY: (frame, summary, phase rows,
-    runs) of the busy run against A, or None."""
+    runs) of the busy run against A, or None. The drift window is SUMM's."""
     first = runs_a.iloc[0]
     lines = ["# Reproducibility: `make reproduce-table` rendered again", "",
              f"Run A is Table 1's own renders; run B is the same grid ({first['scene']} at "
@@ -220,6 +281,9 @@ def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, ref_text="", busy=Non
                   f"The paired relMSE differences' intervals overlap in {summ['relmse_diff_overlap_cells']} of "
                   f"{summ['cells']} cells.", ""]
     lines += ["## A against B", ""] + comparison_table(frame, "b") + [""]
+    if "trace_s" in runs_a.columns and "trace_s" in runs_b.columns:
+        lines += noise_lines(runs_a, runs_b, busy[3] if busy is not None else None,
+                             (summ["drift_lo"], summ["drift_hi"]))
     if busy is not None:
         bframe, bsumm, phases, runs_c = busy
         lines += ["## A against the run with a busy loop on the other core", "",
