@@ -794,6 +794,17 @@ def test_record_repro_runs_a_b_busy():
             assert False, "a file without runs a-b answered"
         except findings.Missing as e:
             assert "a-b" in str(e)
+        # where the noise arises: said from the process columns, absent without them
+        assert not any("Where the noise" in x for x in findings.md_repro(r)[1])
+        assert "between two processes" not in findings.readme_repro(r)
+        noisy = {**row("a-b", 1.5, True), "summary_process_change_median": 0.076, "summary_process_change_p90": 0.3,
+                 "summary_drift_inside_cells_a": 8, "summary_drift_inside_cells_b": 7,
+                 "summary_drift_inside_cells_min2": 10, "summary_drift_inside_cells_min3": 11}
+        r = findings.record_repro({"repro": write_csv(d, "r.csv", [noisy])})
+        text = "\n".join(findings.md_repro(r)[1])
+        assert "moves by a median 7.6% between two processes" in text and "(90th percentile 30.0%)" in text
+        assert "in 8 (run a) and 7 (run b) of 12 cells" in text and "over 2 in 10, over 3 in 11" in text
+        assert "moves by a median 7.6% between two processes" in findings.readme_repro(r)
 
 
 AGREEMENT_HEADER = "scene,size,region,material_kind,pixels,pm_ratio,pm_ci,pm_bias,pov_ratio,holds"

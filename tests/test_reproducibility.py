@@ -13,6 +13,7 @@ import json
 import os
 import tempfile
 
+import numpy as np
 import pandas as pd
 
 from experiments.analysis import reproducibility
@@ -128,3 +129,19 @@ def test_reproducibility_pooled_drift():
     assert reproducibility.pooled_drift([a, slow], (97, 103))["inside"] == 0
     # a render one run lacks is left out of the pool
     assert reproducibility.pooled_drift([a, b.iloc[:3]], (97, 103))["cells"] == 1
+
+
+def test_reproducibility_process_change():
+    """How far the same render's time moves between two processes: the
+    median and 90th percentile of |B / A - 1| against numpy on known ratios
+    (both methods pooled); a render one run lacks is left out."""
+    def runs(totals):
+        return pd.DataFrame([{"method": m, "estimate": "paper", "photons": 50000, "nn": 10, "seed": k + 1,
+                              "status": "ok", "total_s": t} for m in ("conventional", "precomputed")
+                             for k, t in enumerate(totals)])
+    a, b = runs([1.0, 1.0, 1.0, 1.0, 1.0]), runs([1.1, 0.8, 1.0, 1.3, 1.05])
+    med, p90 = reproducibility.process_change(a, b)
+    d = np.abs(np.array([1.1, 0.8, 1.0, 1.3, 1.05] * 2) - 1)
+    assert abs(med - np.median(d)) < 1e-12 and abs(p90 - np.percentile(d, 90)) < 1e-12
+    med, _ = reproducibility.process_change(a, b.iloc[:1])  # one render in common: |1.1 - 1|
+    assert abs(med - 0.1) < 1e-12

@@ -1006,7 +1006,9 @@ def record_repro(d):
                "design": "two runs of `make reproduce-table`, one after the other" if "runs" in r.columns
                else "two interleaved runs of the grid"}
         # the goal's other clauses, where the file has them (the sequential design)
-        for k in ("max_pp", "drift_lo", "drift_hi", "drift_inside_cells", "drift_min", "drift_max"):
+        for k in ("max_pp", "drift_lo", "drift_hi", "drift_inside_cells", "drift_min", "drift_max",
+                  "process_change_median", "process_change_p90", "drift_inside_cells_a", "drift_inside_cells_b",
+                  "drift_inside_cells_min2", "drift_inside_cells_min3"):
             v = s.get(f"summary_{k}")
             out[f"goal_{k}" if k == "max_pp" else k] = float(v) if isnum(v) else None
         return out
@@ -1679,6 +1681,25 @@ def md_beyond(rec):
     return "Beyond the paper's rule", lines
 
 
+def noise_bullet(rec):
+    """[the bullet of where the time noise arises] from reproducibility.csv's
+    process columns, or [] when the file has none."""
+    med, p90 = rec.get("process_change_median"), rec.get("process_change_p90")
+    if med is None or p90 is None:
+        return []
+    pooled = [f"over {k} in {int(rec[f'drift_inside_cells_min{k}'])}"
+              for k in (2, 3) if rec.get(f"drift_inside_cells_min{k}") is not None]
+    one = (rec.get("drift_inside_cells_a"), rec.get("drift_inside_cells_b"))
+    return [f"- Where the noise arises: the same render's total (the minimum of its repeats in one process) moves by "
+            f"a median {report.fmt_fixed(100 * med, 1)}% between two processes, run a's and run b's "
+            f"(90th percentile {report.fmt_fixed(100 * p90, 1)}%), so repeats inside one process do not remove it"
+            + (f"; the drift control lies inside its window in {int(one[0])} (run a) and {int(one[1])} (run b) of "
+               f"{rec['cells']} cells, and with each render's time the minimum over several runs' processes it "
+               "would lie inside " + ", ".join(pooled)
+               if pooled and None not in one else "")
+            + " (`reproducibility/reproducibility.md`, \"Where the noise arises\")."]
+
+
 def md_repro(rec):
     """Finding R: reproducibility between two runs."""
     return "Reproducibility between two runs", [
@@ -1693,7 +1714,7 @@ def md_repro(rec):
            f"{rec['cells']} cells (range {report.fmt_fixed(rec['drift_min'], 1)}-"
            f"{report.fmt_fixed(rec['drift_max'], 1)}%)" if rec.get("drift_inside_cells") is not None
            and rec.get("drift_lo") is not None and math.isfinite(rec["drift_lo"]) else "")
-        + "; goal " + ("met." if rec["met"] else "not met.")] + (
+        + "; goal " + ("met." if rec["met"] else "not met.")] + noise_bullet(rec) + (
         [f"- Run a against the run beside a busy loop: median |difference| "
          f"{report.fmt_fixed(rec['busy']['median_pp'], 2)} pp (goal {fmt(rec['busy']['goal_pp'])} pp), largest "
          f"{report.fmt_fixed(rec['busy']['max_pp'], 2)} pp; intervals overlap in {rec['busy']['overlap']} of "
@@ -2009,8 +2030,11 @@ def readme_repro(rec):
     return (f"- **{head}**: in {rec.get('design', 'two runs of the grid')}, the paired ratios' intervals overlap in {rec['overlap']} of "
             f"{rec['cells']} cells, with a median shift of the paired ratios of "
             f"{report.fmt_fixed(rec['median_pp'], 2)} pp against the goal of "
-            f"{fmt(rec['goal_pp'])}; the largest shift is {report.fmt_fixed(rec['max_pp'], 2)} pp "
-            "(`results/reproducibility/reproducibility.md`).")
+            f"{fmt(rec['goal_pp'])}; the largest shift is {report.fmt_fixed(rec['max_pp'], 2)} pp"
+            + (f". The same render's time moves by a median {report.fmt_fixed(100 * rec['process_change_median'], 1)}% "
+               "between two processes, which repeats inside one process cannot remove"
+               if rec.get("process_change_median") is not None else "")
+            + " (`results/reproducibility/reproducibility.md`).")
 
 
 def readme_peers(rec):

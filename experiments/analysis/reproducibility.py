@@ -157,6 +157,22 @@ def phase_load(runs_a, runs_c):
     return rows
 
 
+def process_change(runs_a, runs_b, phase="total_s"):
+    """(median, 90th percentile) of |B / A - 1| of PHASE's repeat-minimum
+    time over the renders (both methods) both runs made ok: how far the same
+    render's time moves between two processes; (nan, nan) without any."""
+    keys = ["method", "estimate", "photons", "nn", "seed"]
+    a = runs_a[runs_a["status"] == "ok"].set_index(keys)[phase]
+    b = runs_b[runs_b["status"] == "ok"].set_index(keys)[phase]
+    both = a.index.intersection(b.index)
+    va, vb = a.loc[both].to_numpy(np.float64), b.loc[both].to_numpy(np.float64)
+    ok = (va > 0) & (vb > 0)
+    if not ok.any():
+        return math.nan, math.nan
+    d = np.abs(vb[ok] / va[ok] - 1)
+    return float(np.median(d)), float(np.percentile(d, 90))
+
+
 def pooled_drift(runs, drift):
     """The drift control if every render's time were the minimum over the
     processes of several runs: RUNS is a list of runs.csv frames of the same
@@ -345,10 +361,19 @@ def main(argv=None):
     for k, v in summ.items():
         out[f"summary_{k}"] = v
     out["max_relmse_ref_difference"] = img_diff
+    rc = report.read_csv(args.runs_busy, need_r, WHERE) if args.table_busy else None
+    if all("trace_s" in r.columns and "total_s" in r.columns for r in (ra, rb)):
+        # where the noise arises (noise_lines): the same render in two
+        # processes, and the drift control timed over two or three runs
+        out["summary_process_change_median"], out["summary_process_change_p90"] = process_change(ra, rb)
+        out["summary_drift_inside_cells_a"] = pooled_drift([ra], drift)["inside"]
+        out["summary_drift_inside_cells_b"] = pooled_drift([rb], drift)["inside"]
+        out["summary_drift_inside_cells_min2"] = pooled_drift([ra, rb], drift)["inside"]
+        if rc is not None and "trace_s" in rc.columns:
+            out["summary_drift_inside_cells_min3"] = pooled_drift([ra, rb, rc], drift)["inside"]
     busy = None
     if args.table_busy:
         tc = report.read_csv(args.table_busy, need_t, WHERE)
-        rc = report.read_csv(args.runs_busy, need_r, WHERE)
         bframe = compare(ta, tc)
         bsumm = summary(bframe, args.busy_goal_pp)
         busy = (bframe, bsumm, phase_load(ra, rc), rc)
