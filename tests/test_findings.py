@@ -660,16 +660,27 @@ def test_reference_error_and_figure3():
     assert findings.verdict_at_margin(-0.002, -0.001, 0.0006) == "lower"
     assert findings.verdict_at_margin(0.0004, 0.0008, 0.0006) == "undetermined"
     assert findings.verdict_at_margin(float("nan"), 0.1, 0.0006) == "undetermined"
-    rows = []
-    for (ph, n, _), (m, lo, hi, v) in zip(findings.FIGURE3, ((0.03, 0.02, 0.04, "higher"),
-                                                             (-1e-5, -5e-5, 3e-5, "equivalent"),
-                                                             (-1.5e-4, -1.8e-4, -1.2e-4, "lower"))):
-        rows.append({"photons": ph, "nn": n, "method": "precomputed", "relmse_diff_mean": m, "relmse_diff_lo": lo,
-                     "relmse_diff_hi": hi, "relmse_diff_delta": 2e-4, "relmse_diff_verdict": v,
-                     "relmse_ref_floor": 6e-4})
-        rows.append({"photons": ph, "nn": n, "method": "conventional", "relmse_ref_floor": 6e-4})
+    def table(last):
+        rows = []
+        for (ph, n, _), (m, lo, hi, v) in zip(findings.FIGURE3, ((0.03, 0.02, 0.04, "higher"),
+                                                                 (-1e-5, -5e-5, 3e-5, "equivalent"), last)):
+            rows.append({"photons": ph, "nn": n, "method": "precomputed", "relmse_diff_mean": m,
+                         "relmse_diff_lo": lo, "relmse_diff_hi": hi, "relmse_diff_delta": 2e-4,
+                         "relmse_diff_verdict": v, "relmse_ref_floor": 6e-4})
+            rows.append({"photons": ph, "nn": n, "method": "conventional", "relmse_ref_floor": 6e-4})
+        return rows
     with tempfile.TemporaryDirectory() as d:
-        path = write_csv(d, "table1.csv", rows)
+        # the last cell ranked, but its interval inside +-delta: alike, said as
+        # a difference smaller than the margin
+        r = findings.record_figure3({"table": write_csv(d, "inside.csv", table((-1.5e-4, -1.8e-4, -1.2e-4, "lower")))})
+        if findings.PRIMARY_ESTIMATE == "paper":
+            assert [x["paper"]["word"] for x in r["rows"]] == ["differ", "alike", "alike"]
+            assert [x["paper"]["ranked_within"] for x in r["rows"]] == [False, False, True]
+            text = "\n".join(findings.md_figure3(r)[1])
+            assert "so the data disagree" not in text and "(ranked, by less than delta)" in text
+            assert "by less than 2%" in findings.readme_figure3(r)
+        # control: ranked beyond the margin is 'differ', never 'alike'
+        path = write_csv(d, "table1.csv", table((-3e-4, -4e-4, -2.5e-4, "lower")))
         r = findings.record_figure3({"table": path})
         words = [x[findings.PRIMARY_ESTIMATE]["word"] for x in r["rows"]] if findings.PRIMARY_ESTIMATE == "paper" \
             else None
@@ -896,3 +907,18 @@ def test_gather_finding():
         assert "in 1 of 2 grids (a at 8x6)" in text
         bullet = findings.readme_gather(rec)
         assert "0.70-2.00x" in bullet and "in 1 of 2 grids" in bullet and "1.50-3.00x" in bullet
+
+
+def test_within_margin_text():
+    """Ranked cells whose interval lies inside +-delta are said to differ by
+    less than the margin: all of a group, some of it (named), or none
+    (control: nothing is added)."""
+    a = {"photons": 500000, "nn": 50, "inside": True}
+    b = {"photons": 500000, "nn": 100, "inside": True}
+    c = {"photons": 50000, "nn": 10, "inside": False}
+    assert findings.within_margin_text([a, b]) == " (each by less than the 2% margin)"
+    assert findings.within_margin_text([a]) == " (by less than the 2% margin)"
+    assert findings.within_margin_text([a, c]) == " (by less than the 2% margin at (500k, 50))"
+    assert findings.within_margin_text([c]) == ""
+    assert findings.inside_margin(-1.8e-4, -1.2e-4, 2e-4) and not findings.inside_margin(-3e-4, -1e-4, 2e-4)
+    assert not findings.inside_margin(float("nan"), 0.0, 1.0)

@@ -477,17 +477,30 @@ def record_reference_error(d):
     return {"floor": floor, "tightest": tightest, "estimates": out}
 
 
-def figure3_word(v):
-    """'differ', 'alike' or 'undetermined' of a paired verdict."""
+def inside_margin(lo, hi, delta):
+    """True when the paired interval [LO, HI] lies wholly inside [-DELTA,
+    DELTA]: any difference is smaller than the margin, ranked or not."""
+    return bool(np.isfinite(lo) and np.isfinite(hi) and np.isfinite(delta) and -delta <= lo and hi <= delta)
+
+
+def figure3_word(v, inside=False):
+    """'differ', 'alike' or 'undetermined' of a paired verdict V: a visual
+    claim, so an interval INSIDE the margin is 'alike' even where the test
+    ranks the two (a difference smaller than the margin); 'differ' only for
+    a ranked difference the margin does not hold."""
+    if inside:
+        return "alike"
     return {"higher": "differ", "lower": "differ", "equivalent": "alike"}.get(v, "undetermined")
 
 
 def record_figure3(d):
     """The paper's Figure 3 statements (FIGURE3) against the paired relMSE
     difference precomputed - conventional at their cells: "differ" when
-    the Holm-corrected test ranks the two, "alike" when equivalent within
-    delta, per estimate, and at the reference's own error as the margin
-    (verdict_at_margin) when table1.csv has it."""
+    the Holm-corrected test ranks the two and the interval reaches beyond
+    delta, "alike" when the interval lies inside +-delta (equivalent, or
+    ranked by less than delta: "ranked_within"), per estimate, and at the
+    reference's own error as the margin (verdict_at_margin) when table1.csv
+    has it."""
     t = load(d["table"], ["photons", "nn", "method", "relmse_diff_mean", "relmse_diff_lo", "relmse_diff_hi",
                           "relmse_diff_delta", "relmse_diff_verdict"], "make reproduce-table")
     p = prec_rows(t)
@@ -509,9 +522,11 @@ def record_figure3(d):
                 wide = (figure3_word(verdict_at_margin(r[f"relmse_diff_lo{x}"], r[f"relmse_diff_hi{x}"],
                                                        max(r[f"relmse_diff_delta{x}"], floor)))
                         if floor is not None else None)
+                inside = inside_margin(r[f"relmse_diff_lo{x}"], r[f"relmse_diff_hi{x}"], r[f"relmse_diff_delta{x}"])
                 row[est] = {"mean": r[f"relmse_diff_mean{x}"], "lo": r[f"relmse_diff_lo{x}"],
                             "hi": r[f"relmse_diff_hi{x}"], "delta": r[f"relmse_diff_delta{x}"], "verdict": v,
-                            "word": figure3_word(v), "wide": wide}
+                            "word": figure3_word(v, inside), "wide": wide,
+                            "ranked_within": inside and v in ("higher", "lower")}
         rows.append(row)
     return {"rows": rows, "floor": floor}
 
@@ -768,7 +783,9 @@ def record_cost(d):
         for _, r in p.iterrows():
             groups.setdefault(str(r[col]) if isinstance(r[col], str) else "undetermined", []).append(
                 {"photons": r["photons"], "nn": r["nn"], "mean": r[f"relmse_diff_mean{x}"],
-                 "lo": r[f"relmse_diff_lo{x}"], "hi": r[f"relmse_diff_hi{x}"]})
+                 "lo": r[f"relmse_diff_lo{x}"], "hi": r[f"relmse_diff_hi{x}"],
+                 "inside": inside_margin(r[f"relmse_diff_lo{x}"], r[f"relmse_diff_hi{x}"],
+                                         r.get(f"relmse_diff_delta{x}", np.nan))})
         verdicts[est] = {"pairs": span_of(p[f"pairs{x}"]), "groups": groups}
     by_cell = {est: {(c["photons"], c["nn"]): k for k, cs in v["groups"].items() for c in cs}
                for est, v in verdicts.items()}
@@ -1223,7 +1240,10 @@ def md_cost(rec):
              "undetermined": "undetermined"}
     for est, v in rec["verdicts"].items():
         parts = [f"{words[k]} in " + ", ".join(f"{cell(c['photons'], c['nn'])} ({fmt(c['mean'])} "
-                                               f"[{fmt(c['lo'])}, {fmt(c['hi'])}])" for c in v["groups"][k])
+                                               f"[{fmt(c['lo'])}, {fmt(c['hi'])}]"
+                                               + (", inside delta: ranked, by less than the margin"
+                                                  if k in ("higher", "lower") and c.get("inside") else "") + ")"
+                                               for c in v["groups"][k])
                  for k in VERDICTS if k in v["groups"]]
         lines.append(f"- {est} estimate, paired {metrics.PRIMARY} difference precomputed - conventional per seed "
                      f"({v['pairs'][0]} pairs per cell): " + "; ".join(parts) + ".")
@@ -1381,8 +1401,10 @@ def md_figure3(rec):
     """Finding F: the paper's Figure 3 statements against the paired data."""
     lines = [f"The paper's Figure 3 says the two methods' images differ or are alike at three cells; the verdict "
              f"here is the paired {primary_name()} difference precomputed - conventional per seed: \"differ\" "
-             "when the Holm-corrected test ranks the two, \"alike\" when equivalent within delta "
-             f"({fmt(100 * stats.EQUIVALENCE_MARGIN)}% of the conventional error), else undetermined"
+             "when the Holm-corrected test ranks the two and the 95% interval reaches beyond delta "
+             f"({fmt(100 * stats.EQUIVALENCE_MARGIN)}% of the conventional error), \"alike\" when the interval lies "
+             "inside +-delta (a difference the test detects but smaller than delta is alike: the claim is about "
+             "how the images look), else undetermined"
              + (f"; beside it, the verdict with the margin widened to the reference's own error ({fmt(rec['floor'])})"
                 if rec["floor"] is not None else "") + ".", ""]
     for r in rec["rows"]:
@@ -1393,7 +1415,8 @@ def md_figure3(rec):
         agree = ("agree" if a["word"] == r["said"] else "decide nothing" if a["word"] == "undetermined"
                  else "disagree")
         s = (f"- {cell(r['photons'], r['nn'])}: the paper says {r['said']}; {PRIMARY_ESTIMATE} estimate "
-             f"{ci(a['mean'], a['lo'], a['hi'])} (delta {fmt(a['delta'])}): {a['word']}, so the data {agree}")
+             f"{ci(a['mean'], a['lo'], a['hi'])} (delta {fmt(a['delta'])}): {a['word']}"
+             + (" (ranked, by less than delta)" if a.get("ranked_within") else "") + f", so the data {agree}")
         if a["wide"] is not None:
             s += f"; at the reference's error: {a['wide']}"
         o = r.get(OTHER_ESTIMATE)
@@ -1412,13 +1435,15 @@ def readme_figure3(rec):
             beside = f", {OTHER_ESTIMATE} estimate {o['word']}" if o is not None and o["word"] != a["word"] else ""
             wide = (f" (within the reference's own error: {a['wide']})"
                     if a["wide"] is not None and a["wide"] != a["word"] else "")
+            within = (f" (a difference is detected, by less than {fmt(100 * stats.EQUIVALENCE_MARGIN)}%)"
+                      if a.get("ranked_within") else "")
             parts.append(f"at {cell(r['photons'], r['nn'])} the paper says {r['said']}, the paired data say "
-                         f"{a['word']}{wide}{beside}")
+                         f"{a['word']}{within}{wide}{beside}")
     if not parts:
         raise Missing("`table1.csv` has none of Figure 3's cells (`make reproduce-table`)")
     return (f"- **The paper's Figure 3 claim, against the paired {primary_name()}** ({PRIMARY_ESTIMATE} estimate; "
-            f"differ = ranked by the Holm-corrected test, alike = equivalent within "
-            f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}%): " + "; ".join(parts) + " (`results/FINDINGS.md`).")
+            f"differ = ranked by the Holm-corrected test beyond a {fmt(100 * stats.EQUIVALENCE_MARGIN)}% margin, "
+            f"alike = the difference's interval inside that margin): " + "; ".join(parts) + " (`results/FINDINGS.md`).")
 
 
 def md_judges(rec):
@@ -1907,6 +1932,18 @@ def verdict_changes_text(changed, word=None, cells=None):
             count_list([f"{cell(*k)} ({word(b)})" for k, _, b in changed]))
 
 
+def within_margin_text(group):
+    """' (by less than the 2% margin ...)' for the ranked cells of GROUP whose
+    interval lies inside +-delta, '' when none does."""
+    inside = [c for c in group if c.get("inside")]
+    if not inside:
+        return ""
+    m = f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}%"
+    if len(inside) == len(group):
+        return f" ({'each ' if len(group) > 1 else ''}by less than the {m} margin)"
+    return f" (by less than the {m} margin at {count_list([cell(c['photons'], c['nn']) for c in inside])})"
+
+
 def readme_cost(rec):
     words = {"higher": "higher", "equivalent": f"equivalent within {fmt(100 * stats.EQUIVALENCE_MARGIN)}%",
              "lower": "lower", "undetermined": "undetermined"}
@@ -1914,6 +1951,7 @@ def readme_cost(rec):
         raise Missing(f"`table1.csv` has no {PRIMARY_ESTIMATE}-estimate verdicts (`make reproduce-table`)")
     groups = rec["verdicts"][PRIMARY_ESTIMATE]["groups"]
     parts = [f"{words[v]} in {count_list([cell(c['photons'], c['nn']) for c in groups[v]])}"
+             + within_margin_text(groups[v] if v in ("higher", "lower") else [])
              for v in ("higher", "equivalent", "lower", "undetermined") if v in groups]
     worst = ""
     w = rec["worst"]
