@@ -106,7 +106,7 @@ def test_readme_summary_negative_control():
         with open(path, "w", encoding="utf-8") as f:
             f.write(good.replace("40.0% [38.0, 42.0]", "41.0% [38.0, 42.0]"))
         r = run("--check-readme", path)
-        assert r.returncode == 1 and "README.md:8: the findings summary is not the one" in r.stderr, r.stderr
+        assert r.returncode == 1 and "README.md:10: the findings summary is not the one" in r.stderr, r.stderr
         with open(path, "w", encoding="utf-8") as f:
             f.write(good)
         table1_frame([(80, 75, 85), (45, 43, 47), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(
@@ -725,6 +725,14 @@ def test_record_judges():
         (b,) = findings.record_judges({"root": root})["beyond"]
         assert b["noise"] is None and b["bias"] is None
         assert "is missing here" in "\n".join(findings.md_judges(findings.record_judges({"root": root}))[1])
+        # the committed runs file carries the reference's error (collect.py's
+        # ref_noise, ref_bias); control: empty columns do not count
+        runs = write_csv(root, "beyond/studies/runs-cornell-64x48-paper.csv",
+                         [{"ref_noise": "", "ref_bias": ""}, {"ref_noise": 0.0003, "ref_bias": 2e-05}])
+        (b,) = findings.record_judges({"root": root})["beyond"]
+        assert (b["noise"], b["bias"]) == (0.0003, 2e-05) and b["source"] == os.path.relpath(runs, root)
+        write_csv(root, "beyond/studies/runs-cornell-64x48-paper.csv", [{"ref_noise": "", "ref_bias": ""}])
+        assert findings.record_judges({"root": root})["beyond"][0]["noise"] is None
 
 
 def test_scale_both_methods():
@@ -907,6 +915,11 @@ def test_gather_finding():
         assert "in 1 of 2 grids (a at 8x6)" in text
         bullet = findings.readme_gather(rec)
         assert "0.70-2.00x" in bullet and "in 1 of 2 grids" in bullet and "1.50-3.00x" in bullet
+        # the gather phase's intervals: both above 1, neither reaches 5x
+        assert "its 95% interval lies above 1 in 2 of 2 grids" in bullet and "in 0 (" in bullet
+        b["gather"] = (1.5, 0.9, 6.0)  # control: touching 1 is undetermined, reaching 5x counts
+        assert "lies above 1 in 1 of 2 grids" in findings.gather_phase_intervals(rec["grids"])
+        assert findings.gather_phase_intervals(rec["grids"]).endswith("in 1")
 
 
 def test_within_margin_text():

@@ -358,7 +358,17 @@ def record_table(d):
     und = known[(known["paper_ratio_percent"] > 100) & (known["paired_ratio_ci95_lo"] <= 100)
                 & (known["paired_ratio_ci95_hi"] >= 100)]
     slower = known[known["paper_ratio_percent"] > 100]
+    # the other estimate's intervals against the paper's values (the paper
+    # used its own estimate; ours is given beside it where the count differs)
+    ox = sfx(OTHER_ESTIMATE)
+    inside_other = None
+    if f"paired_ratio_ci95_lo{ox}" in known.columns:
+        lo, hi = known[f"paired_ratio_ci95_lo{ox}"].astype(float), known[f"paired_ratio_ci95_hi{ox}"].astype(float)
+        ok = np.isfinite(lo) & np.isfinite(hi)
+        inside_other = (int(((lo <= known["paper_ratio_percent"]) & (known["paper_ratio_percent"] <= hi))[ok].sum()),
+                        int(ok.sum()))
     return {"pairs": span_of(p["pairs"]), "nns": nns, "photons": phs, "grid": grid, "over_n": over_n,
+            "inside_other": inside_other,
             "reversed": [val(r) for _, r in rev.sort_values(["photons", "nn"]).iterrows()],
             "undetermined_vs_slower": [val(r) for _, r in und.sort_values(["photons", "nn"]).iterrows()],
             "paper_slower": len(slower), "ours_faster": int((p["paired_ratio_ci95_hi"] < 100).sum()),
@@ -596,12 +606,33 @@ def quoted_reference_error(root, ref):
     return None
 
 
+def runs_reference_error(root, cases):
+    """(noise, bias, file) of a converged reference as the runs files of
+    beyond/ CASES carry it (collect.py's ref_noise and ref_bias, copied from
+    the reference's JSON when the study ran: committed, unlike the JSON), or
+    None when no such file has them."""
+    for case in sorted(cases):
+        for f in sorted(glob.glob(os.path.join(root, "beyond", "studies", f"runs-{case}-*.csv"))):
+            try:
+                c = pd.read_csv(f, comment="#")
+            except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError):
+                continue
+            if "ref_noise" not in c.columns or "ref_bias" not in c.columns:
+                continue
+            n, b = c["ref_noise"].astype(float), c["ref_bias"].astype(float)
+            ok = np.isfinite(n) & np.isfinite(b)
+            if ok.any():
+                return float(n[ok].iloc[0]), float(b[ok].iloc[0]), os.path.relpath(f, root)
+    return None
+
+
 def record_judges(d):
     """Per study, the kinds of reference its cells files name (column ref)
     and why; the studies that judge no image; and for every converged
-    reference beyond/ uses, its noise and bias from the JSON beside it
-    (reference.py; None when there is none) with the tightest target it
-    judges there."""
+    reference beyond/ uses, its noise and bias from beyond's runs files
+    (runs_reference_error), else the JSON beside it (reference.py), else a
+    study's Markdown that quotes it (None when none has them), with the
+    tightest target it judges there."""
     from experiments.analysis import reference
     root = d["root"]
     repo = os.path.dirname(os.path.abspath(root))
@@ -633,7 +664,10 @@ def record_judges(d):
               for e in glob.glob(os.path.join(root, "beyond", "studies", f"equal-error-{case}-*.csv"))]
         ts = [t for t in ts if t is not None]
         noise = bias = src = None
-        if info is not None:
+        q = runs_reference_error(root, cases)
+        if q is not None:
+            noise, bias, src = q
+        elif info is not None:
             noise, bias, src = info.get("noise"), info.get("bias"), reference.sidecar(r)
         else:
             q = quoted_reference_error(root, r)
@@ -1187,7 +1221,7 @@ def md_table(rec):
             lines.append(f"- Over P_e at n = {int(n)}: " + word_rank(s["rank"], f"the ratio at P_e = {int(s['last']['photons'])}",
                                                                        f"the one at P_e = {int(s['first']['photons'])}") + ".")
     lines.append("- The paper's value lies inside our interval in " + ", ".join(
-        f"{k} of {m} cells at P_e = {int(ph)}" for ph, (k, m) in rec["inside"].items()) +
+        f"{k} of {m} cells at P_e = {int(ph)}" for ph, (k, m) in rec["inside"].items()) + other_inside_text(rec) +
         " (the paper's values are one run each, with no interval: a value outside ours is a difference "
         "only if the paper's own run-to-run spread is smaller than our interval).")
     return "The time ratio over n and P_e, against the paper's", lines
@@ -1454,16 +1488,17 @@ def md_judges(rec):
         + [[f"{x['study']} (`{x['make']}`)", x["by"], "no reference image"] for x in rec["none"]])
     lines.append("")
     lines.append("pbrt-v3 judges no study: it checks the other two (finding A). The converged references beyond/ uses, with their own error in "
-                 f"{primary_name()} (the JSON beside each, written by reference.py, else a study's Markdown that "
-                 "quotes it):")
+                 f"{primary_name()} (as beyond's runs files carry it from the JSON reference.py writes beside "
+                 "each, else that JSON, else a study's Markdown that quotes it):")
     lines.append("")
     if not rec["beyond"]:
         lines.append("- beyond/ names no reference (`make beyond`).")
     for r in rec["beyond"]:
         if r["noise"] is None:
-            lines.append(f"- {count_list(r['cases'])}: `{r['ref']}`: its JSON is missing here (the references live "
-                         "under results/runs/, which is not committed; `make beyond` writes them) and no study's "
-                         "Markdown quotes its error, so its noise and bias are not reported.")
+            lines.append(f"- {count_list(r['cases'])}: `{r['ref']}`: beyond's runs files carry no ref_noise, its "
+                         "JSON is missing here (the references live under results/runs/, which is not committed; "
+                         "`make beyond` writes them) and no study's Markdown quotes its error, so its noise and bias "
+                         "are not reported.")
             continue
         t = r["tightest"]
         share = (f"; the tightest target it judges there is {fmt(t)}: noise {pct(100 * r['noise'] / t)}%, bias "
@@ -1587,8 +1622,9 @@ def md_gather(rec):
     bd = span([x["bound"] for x in gs])
     over = [f"{x['scene']} at {x['size']}" for x in gs if x["speedup"] and isnum(x["bound"]) and x["speedup"][1] > x["bound"]]
     lines.append(f"- The gather phase alone runs {span_text(gp, '{:.2f}')}x faster (median over each grid's pairs), "
-                 "against Christensen's 5-7x and pbrt-v2's 12.7-18.7x below. The work counters say why it is not "
-                 f"more: with every lookup at y free, a render would run at most {span_text(bd, '{:.2f}')}x faster than "
+                 f"{gather_phase_intervals(gs)}; the point estimates lie under Christensen's 5-7x and pbrt-v2's "
+                 "12.7-18.7x (quoted below), but the intervals do not rank them. The work counters bound the "
+                 f"point estimates: with every lookup at y free, a render would run at most {span_text(bd, '{:.2f}')}x faster than "
                  "the conventional one of the same setting (the bound column: the ray casting, shading and caustic "
                  "estimates both methods share stay). Our k-nearest search costs little beside a ray cast, while "
                  "pbrt-v2's naive gather made three k = 50 searches per gather hit, so there the lookups were most of "
@@ -1602,6 +1638,16 @@ def md_gather(rec):
     return "Final gathering: where the method was designed to pay", lines
 
 
+def gather_phase_intervals(gs):
+    """'its 95% interval lies above 1 in K of G grids and reaches 5x (the
+    low end of Christensen's 5-7x) in M' of the grids GS' gather-phase
+    speed-ups (value, lo, hi)."""
+    above = sum(1 for x in gs if isnum(x["gather"][1]) and x["gather"][1] > 1)
+    reach = sum(1 for x in gs if isnum(x["gather"][2]) and x["gather"][2] >= 5)
+    return (f"its 95% interval lies above 1 in {above} of {len(gs)} grids (the others contain 1: undetermined) and "
+            f"reaches 5x, the low end of Christensen's 5-7x, in {reach}")
+
+
 def readme_gather(rec):
     """README's bullet on final gathering."""
     gs = rec["grids"]
@@ -1611,7 +1657,8 @@ def readme_gather(rec):
     return (f"- **Final gathering** (Christensen's setting, `make gather`): the precomputed method's equal-error "
             f"speed-up is {span_text(sp, '{:.2f}')}x over the grids' counted targets, its interval above 1 at every "
             f"one of them in {len(every)} of {len(gs)} grids; the gather phase alone runs {span_text(gp, '{:.2f}')}x "
-            "faster (Christensen reports 5-7x) (`results/gather/gather.md`).")
+            f"faster at its point estimates (Christensen reports 5-7x): {gather_phase_intervals(gs)} "
+            "(`results/gather/gather.md`).")
 
 
 def md_baseline(rec):
@@ -1850,8 +1897,22 @@ def readme_table(rec):
             f"{pct_ci(a['ratio'], a['lo'], a['hi'])} at "
             f"n = {int(a['nn'])} to {pct_ci(b['ratio'], b['lo'], b['hi'])} "
             f"at n = {int(b['nn'])} (the paper's {pct(a['paper'])}% and {pct(b['paper'])}%); "
-            f"the paper's value lies inside our interval in {', '.join(per)}; outside it, ours is the lower in "
+            f"the paper's value lies inside our interval in {', '.join(per)}" + other_inside_text(rec)
+            + f"; outside it, ours is the lower in "
             f"{rec['outside_lower']} of {rec['outside']}" + reversal_text(rec) + " (`results/table1/table1.md`).")
+
+
+def other_inside_text(rec):
+    """' (the corrected estimate's interval: in K of M cells)' where the
+    other estimate's count of cells whose interval holds the paper's value
+    differs from the primary one's, else ''."""
+    o = rec.get("inside_other")
+    if o is None:
+        return ""
+    k = sum(v[0] for v in rec["inside"].values())
+    if o[0] == k:
+        return ""
+    return f" ({OTHER_ESTIMATE} estimate: in {o[0]} of {o[1]} cells, against {k} of {o[1]} for the {PRIMARY_ESTIMATE} estimate)"
 
 
 def reversal_text(rec):
@@ -2140,10 +2201,10 @@ def write(rec, writer):
 
 def summary(d, recs=None):
     """README's summary block from the records RECS (read from D when not
-    given): SUMMARY_BEGIN, one bullet per SUMMARY writer (a missing input is
-    said as such), SUMMARY_END."""
+    given): SUMMARY_BEGIN, which estimate is primary and why, one bullet per
+    SUMMARY writer (a missing input is said as such), SUMMARY_END."""
     recs = records(d) if recs is None else recs
-    out = [SUMMARY_BEGIN]
+    out = [SUMMARY_BEGIN, PRIMARY_ESTIMATE_REASON, ""]
     for name, writer in SUMMARY:
         try:
             out.append(write(recs[name], writer))
