@@ -935,3 +935,37 @@ def test_within_margin_text():
     assert findings.within_margin_text([c]) == ""
     assert findings.inside_margin(-1.8e-4, -1.2e-4, 2e-4) and not findings.inside_margin(-3e-4, -1e-4, 2e-4)
     assert not findings.inside_margin(float("nan"), 0.0, 1.0)
+
+
+def test_brief_writers():
+    """FINDINGS.md's two-minute opening: one sentence per finding from the
+    same records, the counts computed here by hand; a zero count is left
+    out; a record without the needed rows raises Missing (control)."""
+    groups = {"higher": [{"photons": 50000, "nn": 10, "inside": False}],
+              "lower": [{"photons": 500000, "nn": 100, "inside": True}],
+              "equivalent": [{"photons": 100000, "nn": 50}, {"photons": 50000, "nn": 50}]}
+    text = findings.brief_cost({"verdicts": {findings.PRIMARY_ESTIMATE: {"groups": groups}}, "cells": 4})
+    assert "higher in 1 of 4 cells, equivalent within 2% in 2, lower in 1 (1 of the ranked cells by less" in text
+    assert "undetermined" not in text
+    res = {"dir": "resolution", "sizes": [
+        {"size": "64x48", "estimates": [{"estimate": findings.PRIMARY_ESTIMATE, "tightest": {}, "regions": [
+            {"class": "contains", "count": 3}, {"class": "above", "count": 10}]}]}, {"size": "128x96"}]}
+    assert "of the 13 error targets enough resamples reach, the precomputation pays at 10 and is " \
+        "undetermined at 3." in findings.brief_resolution(res)
+    try:
+        findings.brief_resolution({"dir": "resolution", "sizes": res["sizes"][:1]})
+        assert False, "one size answered"
+    except findings.Missing:
+        pass
+    rec = {"median_pp": 2.3376, "goal_pp": 1.5, "met": False, "process_change_median": 0.076}
+    assert findings.brief_repro(rec) == ("- **A rerun.** A second run of Table 1 moves the time ratios by a median "
+                                         "2.34 pp (goal 1.5 pp: not met); the same render's time moves by a median "
+                                         "7.6% between two processes.")
+    # the opening: brief sentences first, the detailed bullets after, a
+    # missing record left out of both
+    out = findings.opener({name: findings.Missing("x") for name, _ in findings.SUMMARY} | {"repro": rec | {
+        "max_pp": 9.2, "overlap": 24, "cells": 24}})
+    i = out.index("## The summary in numbers")
+    assert any(x.startswith("- **A rerun.**") and "(#finding-R)" in x for x in out[:i])
+    assert any("median shift of the paired ratios of 2.34 pp" in x for x in out[i:])
+    assert len([x for x in out if x.startswith("- ")]) == 2

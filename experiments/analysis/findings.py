@@ -1150,7 +1150,8 @@ FIGURES = {"table": ("figures/ratio-vs-n.png",), "precompute": ("figures/phases.
            "equal_error": ("table1/equal-error.png", "figures/tradeoff.png"), "caustic": ("figures/caustic.png",),
            "scenes": ("figures/scenes.png",), "resolution": ("resolution/equal-error-*.png",),
            "scale": ("figures/bench-scaling.png",), "beyond": ("figures/beyond.png",),
-           "rules": ("figures/rep-study.png", "figures/fig2.png"), "gather": ("figures/gather.png",)}
+           "rules": ("figures/rep-study.png", "figures/fig2.png"), "gather": ("figures/gather.png",),
+           "repro": ("reproducibility/equal-error-a.png", "reproducibility/equal-error-b.png")}
 
 
 def figures_of(d):
@@ -1825,6 +1826,18 @@ def md_metric(rec):
 
 
 # (number, record, writer, the title said when the record is missing)
+def md_peers(rec):
+    """Finding K: the k-nearest search against FLANN, cKDTree and nanoflann."""
+    text = readme_peers(rec)
+    head, _, body = text[2:].partition(": ")
+    return "The k-nearest search against the peers", [
+        f"- {body[0].upper()}{body[1:]}",
+        "- FLANN and nanoflann run from C++, scipy's cKDTree from Python, on the same points and query streams "
+        "(experiments/bench/; `make bench-peers` runs this part alone). Before the timed runs our neighbour sets "
+        "are checked against brute force on a sample of the queries, and each peer's against ours "
+        "(`results/bench/peers.md`)."]
+
+
 FINDINGS = ((1, "table", md_table, "The table's shape"),
             ("T", "precompute", md_precompute, "Where the precomputed method's time goes"),
             ("E", "reference_error", md_reference_error, "Table 1's reference and its own error"),
@@ -1841,7 +1854,8 @@ FINDINGS = ((1, "table", md_table, "The table's shape"),
             ("R", "repro", md_repro, "Reproducibility between two runs (make reproducibility)"),
             ("S", "rules", md_rules, "Which representative rule is compatible with the paper's slopes"),
             ("M", "metric", md_metric, "The error metric"),
-            ("G", "gather", md_gather, "Final gathering: where the method was designed to pay"))
+            ("G", "gather", md_gather, "Final gathering: where the method was designed to pay"),
+            ("K", "peers", md_peers, "The k-nearest search against the peers"))
 
 
 # ---- README's summary: one bullet per record, every number read from it
@@ -2184,6 +2198,146 @@ def readme_scale(rec):
             "`results/bench/scaling.md`).")
 
 
+# ---- FINDINGS.md's opening: one plain sentence per finding, its key
+# numbers only (the intervals and the tests are in the bullets after it and
+# in the sections), so that the whole reads in two minutes. Each returns one
+# Markdown bullet from its record or raises Missing, like the README writers.
+
+def brief_table(rec):
+    first = rec["over_n"][rec["photons"][0]]
+    a, b = first["first"], first["last"]
+    rv = rec["reversed"]
+    ns = count_list(["n = " + str(int(r["nn"])) for r in rv])
+    tail = (f" One feature does not: at P_e = {count_list(sorted({k_of(r['photons']) for r in rv}))} with "
+            f"{ns} the paper's method was slower than its "
+            f"baseline ({count_list([pct(r['paper']) + '%' for r in rv])}), ours is faster "
+            f"({count_list([pct(r['ratio']) + '%' for r in rv])})." if rv else "")
+    return (f"- **Table 1.** As n grows from {int(a['nn'])} to {int(b['nn'])} at P_e = {k_of(a['photons'])}, the "
+            f"precomputed method's time falls from {pct(a['ratio'])}% to {pct(b['ratio'])}% of the conventional "
+            f"one's, as in the paper ({pct(a['paper'])}% and {pct(b['paper'])}%).{tail}")
+
+
+def brief_precompute(rec):
+    return (f"- **Why.** At P_e = {k_of(rec['top'])} our precompute is {pct(100 * rec['ours_share'][0])}-"
+            f"{pct(100 * rec['ours_share'][1])}% of the precomputed method's time; modelled from the paper's times, "
+            f"its precompute was {pct(100 * rec['paper_share'][0])}-{pct(100 * rec['paper_share'][1])}% of its time.")
+
+
+def brief_figure3(rec):
+    rows = [r for r in rec["rows"] if r["present"] and PRIMARY_ESTIMATE in r]
+    if not rows:
+        raise Missing("`table1.csv` has none of Figure 3's cells (`make reproduce-table`)")
+    agree = sum(r[PRIMARY_ESTIMATE]["word"] == r["said"] for r in rows)
+    return (f"- **Figure 3.** The paired errors agree with the paper's reading of its images at {agree} of "
+            f"{len(rows)} cells: " + "; ".join(f"{cell(r['photons'], r['nn'])} {r[PRIMARY_ESTIMATE]['word']} "
+                                               f"(the paper: {r['said']})" for r in rows) + ".")
+
+
+def brief_equal_error(rec):
+    r = estimate_of(rec["estimates"], PRIMARY_ESTIMATE)
+    if r["span"] is None:
+        raise Missing("the equal-error curve has no target that 95% of the resamples reach (`make reproduce-table`)")
+    a, b = r["span"]
+    trend = ("it depends on the target" if r["span_rank"] in ("lower", "higher") else
+             "no trend with the target is claimed")
+    return (f"- **Equal error.** To reach the same error the precomputed method is {fmt(a['speedup'], 3)}x faster at "
+            f"the tightest target most resamples reach ({primary_name()} {fmt(a['target'])}) and "
+            f"{fmt(b['speedup'], 3)}x at {fmt(b['target'])}: {trend}.")
+
+
+def brief_cost(rec):
+    if PRIMARY_ESTIMATE not in rec["verdicts"]:
+        raise Missing(f"`table1.csv` has no {PRIMARY_ESTIMATE}-estimate verdicts (`make reproduce-table`)")
+    g = rec["verdicts"][PRIMARY_ESTIMATE]["groups"]
+    n = lambda k: len(g.get(k, []))  # noqa: E731
+    small = [c for k in ("lower", "higher") for c in g.get(k, []) if c.get("inside")]
+    return (f"- **Its cost in accuracy.** The precomputed method's error is higher in {n('higher')} of "
+            f"{rec['cells']} cells, equivalent within {fmt(100 * stats.EQUIVALENCE_MARGIN)}% in {n('equivalent')}, "
+            f"lower in {n('lower')}" + (f" ({len(small)} of the ranked cells by less than the margin)" if small else "")
+            + (f", undetermined in {n('undetermined')}" if n("undetermined") else "") + ".")
+
+
+def brief_resolution(rec):
+    sizes = rec["sizes"]
+    if len(sizes) < 2:
+        raise Missing(f"fewer than two `{rec['dir']}/equal-error-WxH.csv` (`make resolution`)")
+    r = estimate_of(sizes[0]["estimates"], PRIMARY_ESTIMATE)
+    cnt = {c: sum(x["count"] for x in r["regions"] if x["class"] == c) for c in ("above", "below", "contains")}
+    parts = [f"{w} at {cnt[c]}" for c, w in (("above", "pays"), ("below", "is slower"), ("contains", "is undetermined"))
+             if cnt[c]]
+    return (f"- **Small images.** At {sizes[0]['size']}, of the {sum(cnt.values())} error targets enough resamples "
+            f"reach, the precomputation {count_list(parts)}.")
+
+
+def brief_bias(rec):
+    at = rec["quoted"]
+    return (f"- **The paper's estimator is biased{' by n/(n-1)' if at['on_law'] else ''}.** In the analytic scene "
+            f"it gives {report.fmt_fixed(at['mean'], 3)} at n = {int(at['n'])} where the law gives "
+            f"{report.fmt_fixed(at['law'], 3)}; "
+            f"corrected, it is within {fmt(100 * rec['margin'])}% of the exact value in {rec['equivalent']} of "
+            f"{rec['intervals']} cases.")
+
+
+def brief_rules(rec):
+    bad, n = rec["rejected"], len(rec["rows"])
+    return ("- **Representatives.** " + (f"The paper's times reject none of the {n} rules we tried for which "
+                                         "photons are representatives." if not bad else
+                                         f"The paper's times reject {len(bad)} of the {n} rules we tried "
+                                         f"({count_list(bad)})."))
+
+
+def brief_beyond(rec):
+    r = rec["readme"]
+    if rec["best_rows"] == 0 or r is None:
+        raise Missing("`beyond.csv` quotes no best variant (`make beyond`)")
+    return (f"- **Beyond the paper's rule.** The best of lazy evaluation and the plane-gated lookup is faster at "
+            f"equal error in {r['met']} of {r['cases']} scene and size cases.")
+
+
+def brief_gather(rec):
+    gs = rec["grids"]
+    every = [x for x in gs if x["targets"] and x["above"] == x["targets"]]
+    sp = span([v for x in gs for v in (x["speedup"] or ())])
+    return (f"- **Final gathering** (Christensen's setting). The precomputed method reaches equal error "
+            f"{span_text(sp, '{:.2f}')}x faster, faster at every counted target in {len(every)} of {len(gs)} grids.")
+
+
+def brief_repro(rec):
+    met = rec["met"]
+    return (f"- **A rerun.** A second run of Table 1 moves the time ratios by a median "
+            f"{report.fmt_fixed(rec['median_pp'], 2)} pp (goal {fmt(rec['goal_pp'])} pp: "
+            + ("met" if met else "not met") + ")"
+            + (f"; the same render's time moves by a median "
+               f"{report.fmt_fixed(100 * rec['process_change_median'], 1)}% between two processes"
+               if rec.get("process_change_median") is not None else "") + ".")
+
+
+def brief_peers(rec):
+    rows = rec["rows"]
+    if not rows:
+        raise Missing(f"`{rec['file']}` has no tile-order cell (`make bench`)")
+    names = dict(bench_report.PEERS)
+    return (f"- **The k-nearest search.** Ours answers {count_list([report.fmt_fixed(r['strongest_ratio'], 1) + 'x' for r in rows])} "
+            f"as many queries as the strongest peer ({names[rows[0]['strongest']]}) at k = "
+            f"{count_list([str(r['k']) for r in rows])}, with advantages the peers lack (state between queries, AVX2).")
+
+
+def brief_scale(rec):
+    r, b = rec["conventional"], rec["both"]
+    if r is None:
+        raise Missing("`scaling.csv` has no conventional row (`make bench-scaling`)")
+    return (f"- **At scale.** {int(r['photons_emitted']) // 1000000}M photons take {fmt(r['total_s'])} s "
+            f"conventionally on {int(r['threads'])} threads at {fmt(r['bytes_per_stored'])} bytes per stored photon"
+            + (f"; the precomputed method took {fmt(b['precomputed'])} s in the same run (one render each), "
+               f"{fmt(b['precompute_s'])} s of it its precompute" if b is not None else "") + ".")
+
+
+BRIEF = {"table": brief_table, "precompute": brief_precompute, "figure3": brief_figure3,
+         "equal_error": brief_equal_error, "cost": brief_cost, "resolution": brief_resolution, "bias": brief_bias,
+         "rules": brief_rules, "beyond": brief_beyond, "gather": brief_gather, "repro": brief_repro,
+         "peers": brief_peers, "scale": brief_scale}
+
+
 # (record, writer), in the block's order
 SUMMARY = (("table", readme_table), ("precompute", readme_precompute), ("figure3", readme_figure3),
            ("equal_error", readme_equal_error), ("cost", readme_cost),
@@ -2262,12 +2416,23 @@ def anchor(num):
 
 
 def opener(recs):
-    """FINDINGS.md's summary: the estimate that is primary and why, then
-    README's summary bullets (the same writers, the same records), each
+    """FINDINGS.md's opening: the estimate that is primary and why, one
+    plain sentence per finding (BRIEF), then README's summary bullets (the
+    same writers, the same records) with their intervals and tests, each
     linked to its finding's section; a bullet whose record is missing is
     left to its section."""
     num_of = {name: num for num, name, _, _ in FINDINGS}
     out = ["## In short", "", PRIMARY_ESTIMATE_REASON, ""]
+    for name, _ in SUMMARY:
+        try:
+            text = write(recs[name], BRIEF[name])
+        except Missing:
+            continue
+        if name in num_of:
+            text += f" [Finding {num_of[name]}](#{anchor(num_of[name])})."
+        out.append(text)
+    out += ["", "## The summary in numbers", "",
+            "The same findings with their intervals and tests (README's summary is this list):", ""]
     for name, writer in SUMMARY:
         try:
             text = write(recs[name], writer)
