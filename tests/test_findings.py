@@ -577,6 +577,9 @@ def test_record_precompute():
         assert abs(r["machine"] - 5.0) < 1e-12 and abs(r["paper_per_rep_here"] - 0.012) < 1e-12
         assert r["negative"] == []
         assert "60.0-60.0% of its time" in findings.readme_precompute(r)
+        # the model's spread: 60 ms per representative in both cells
+        assert "over the P_e = 500k cells and from 6e+04 to 6e+04 µs over the others" \
+            in "\n".join(findings.md_precompute(r)[1])
         r = findings.record_precompute({"table": write_csv(d, "table1.csv", table(30.0)), "runs": rp})
         assert r["negative"] == [(50000, 10), (500000, 10)]
         assert "says nothing" in "\n".join(findings.md_precompute(r)[1])

@@ -1404,6 +1404,15 @@ def md_precompute(rec):
         lines.append(f"- The model gives a negative precompute at {count_list([cell(*k) for k in rec['negative']])}: "
                      "there its assumption fails or the paper's single times are noisier than the difference, and "
                      "the model says nothing.")
+    top = [1e6 * c["paper_per_rep"] for c in rec["cells"] if c["photons"] == rec["top"]]
+    rest = [1e6 * c["paper_per_rep"] for c in rec["cells"] if c["photons"] != rec["top"]]
+    if top and rest:
+        lines.append(f"- How far to trust it: the model's cost per representative on the paper's machine, which "
+                     f"should not depend on the cell, runs from {fmt(min(top))} to {fmt(max(top))} µs over the "
+                     f"P_e = {k_of(rec['top'])} cells and from {fmt(min(rest))} to {fmt(max(rest))} µs over the others. The "
+                     f"P_e = {k_of(rec['top'])} shares are an estimate with that spread, from single runs, not a "
+                     "measurement; what stands without the model is that the paper's method was slower than its "
+                     "baseline there and ours is not.")
     return "Where the precomputed method's time goes, ours against the paper's", lines
 
 
