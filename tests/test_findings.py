@@ -356,6 +356,14 @@ def test_record_bias():
         rows[0].update(n=5, conventional_paper_mean=1.2)  # no n = 10 row: the smallest n, off its law
         r = findings.record_bias({"bias": write_csv(d, "b.csv", rows)})
         assert r["at10"] is None and r["quoted"]["n"] == 5 and not r["quoted"]["on_law"]
+        assert "not shown equivalent to it within 1%" in findings.law_text(r)
+        # on the law within the 1% margin: a 95% interval of +-0.5% of the law is
+        # inside it; control: one of +-1.5% (containing the law) is not
+        rows[0].update(n=10, conventional_paper_mean=10 / 9, conventional_paper_ci95=0.005 * 10 / 9)
+        rows[1].update(conventional_paper_ci95=0.015 * 20 / 19, conventional_paper_mean=20 / 19)
+        r = findings.record_bias({"bias": write_csv(d, "b.csv", rows)})
+        assert r["quoted"]["on_law"] and (r["law_equivalent"], r["law_rows"]) == (1, 2)
+        assert "(its 95% interval is 0.9950-1.0050 of the law); so are 1 of the 2 n measured" in findings.law_text(r)
 
 
 def test_record_caustic_scenes_baseline():

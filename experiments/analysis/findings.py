@@ -895,14 +895,24 @@ def record_bias(d):
                          "conventional_corrected_mean", "conventional_corrected_ci95", "precomputed_corrected_mean",
                          "precomputed_corrected_ci95", "conventional_paper_seeds"], "make estimator-bias")
 
+    def on_law(r):
+        """(lo, hi, equivalent) of the paper estimate's 95% interval over the
+        law n/(n-1): equivalent when it lies inside 1 +- BIAS_MARGIN."""
+        m, h, law = r["conventional_paper_mean"], r["conventional_paper_ci95"], r["law_n_over_n_minus_1"]
+        lo, hi = (m - h) / law, (m + h) / law
+        return lo, hi, bool(np.isfinite(lo) and np.isfinite(hi) and 1 - BIAS_MARGIN <= lo and hi <= 1 + BIAS_MARGIN)
+
     def at(s):
         r = s.iloc[0]
+        lo, hi, eq = on_law(r)
         return {"n": r["n"], "mean": r["conventional_paper_mean"], "ci95": r["conventional_paper_ci95"],
                 "seeds": r["conventional_paper_seeds"], "law": r["law_n_over_n_minus_1"],
-                "on_law": abs(r["conventional_paper_mean"] - r["law_n_over_n_minus_1"]) <= r["conventional_paper_ci95"]}
+                "law_lo": lo, "law_hi": hi, "on_law": eq}
     k_in, k_all, vals = corrected_coverage(b)
     eq = equivalence_to_one(b, BIAS_MARGIN)
+    laws = [on_law(r)[2] for _, r in b.iterrows() if np.isfinite(r["conventional_paper_mean"])]
     return {"equivalence": eq, "margin": BIAS_MARGIN, "equivalent": sum(e["equivalent"] for e in eq),
+            "law_equivalent": sum(laws), "law_rows": len(laws),
             "at10": at(b[b["n"] == 10]) if (b["n"] == 10).any() else None,
             "quoted": at(b[b["n"] == 10] if (b["n"] == 10).any() else b[b["n"] == b["n"].min()]),
             "covered": k_in, "intervals": k_all,
@@ -1314,7 +1324,7 @@ def md_bias(rec):
     if r is not None:
         lines.append(f"- Conventional, paper estimate, at n = 10: {fmt(r['mean'], 5)} ± "
                      f"{fmt(r['ci95'], 2)} ({int(r['seeds'])} seeds); the law "
-                     f"n/(n-1) gives {fmt(r['law'], 5)}.")
+                     f"n/(n-1) gives {fmt(r['law'], 5)}{law_text(rec)}.")
     lo, hi = rec["lowest"], rec["highest"]
     if lo is None:
         raise Missing("`estimator-bias.csv` has no finite corrected interval (`make estimator-bias`)")
@@ -2111,8 +2121,22 @@ def readme_bias(rec):
     at = rec["quoted"]
     return (f"- **The paper's estimator is biased{' by a law' if at['on_law'] else ''}**: "
             f"{fmt(at['mean'], 5)} ± {fmt(at['ci95'], 2)} at n = {int(at['n'])} "
-            f"in the analytic scene, where n/(n-1) gives {fmt(at['law'], 5)}; with `--bias-correction` "
+            f"in the analytic scene, where n/(n-1) gives {fmt(at['law'], 5)}{law_text(rec)}; with `--bias-correction` "
             f"{bias_equivalence_text(rec)} (`results/estimator-bias/estimator-bias.md`).")
+
+
+def law_text(rec):
+    """', equivalent to it within 1% (...); so at K of M n' of a bias
+    record: the quoted n's interval over the law and the count of n whose
+    interval lies inside 1 +- the margin; ', not shown equivalent ...' when
+    the quoted one does not."""
+    at, m = rec["quoted"], fmt(100 * rec["margin"])
+    where = f"; so are {rec['law_equivalent']} of the {rec['law_rows']} n measured"
+    if at["on_law"]:
+        return (f", equivalent to it within {m}% (its 95% interval is {report.fmt_fixed(at['law_lo'], 4)}-"
+                f"{report.fmt_fixed(at['law_hi'], 4)} of the law){where}")
+    return (f", not shown equivalent to it within {m}% (its 95% interval is {report.fmt_fixed(at['law_lo'], 4)}-"
+            f"{report.fmt_fixed(at['law_hi'], 4)} of the law){where}")
 
 
 def readme_rules(rec):
