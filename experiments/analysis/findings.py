@@ -1525,6 +1525,12 @@ def md_judges(rec):
                  f"{pct(100 * r['bias'] / t)}% of it" if t else "")
         lines.append(f"- {count_list(r['cases'])}: noise {fmt(r['noise'])}, kernel bias {fmt(r['bias'])} "
                      f"(`{r['source']}`){share}.")
+    lines += ["", "Corrected for the reference's own noise: every runs file carries `relmse_ref_less_noise`, a "
+              f"render's {primary_name()} less its reference's measured noise (collect.py; equal to {primary_name()} "
+              "where the noise is not measured). A reference's noise is independent of the renders it judges, so "
+              "to first order it adds the same constant to every render's error against it: the paired differences, "
+              "their verdicts and the speed-ups at equal error do not change under the correction, only the targets' "
+              "labels move by that constant, which the list above gives as a share of each study's tightest target."]
     return "What judges what", lines
 
 
