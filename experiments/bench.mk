@@ -23,7 +23,7 @@ $(BENCH_BIN): $(LIB_OBJ) $(BUILD)/bench/bench.o $(BUILD)/bench/nano.o $(BUILD)/b
 .PHONY: bench-bin
 bench-bin: $(BENCH_BIN) $(BUILD)/photonmap
 bench: bench-bin
-	SCALING_PHOTONS="$(SCALING_PHOTONS)" SCALING_THREADS="$(SCALING_THREADS)" \
+	SCALING_PHOTONS="$(SCALING_PHOTONS)" SCALING_THREADS="$(SCALING_THREADS)" SCALING_REPEATS="$(SCALING_REPEATS)" \
 	  THREADS_PHOTONS="$(THREADS_PHOTONS)" THREADS_PAIRS="$(THREADS_PAIRS)" PYTHON="$(PYTHON)" \
 	  bash experiments/bench/run.sh
 	$(PYTHON) -m experiments.analysis.repeats_cost --results $(RESULTS) --out $(RESULTS)/bench/repeats
@@ -38,12 +38,12 @@ bench-quick: bench-bin
 # into bench.md): each phase's cost and the peak memory per stored photon
 # against the emitted photons, with fitted log-log slopes ->
 # results/bench/scaling.{csv,md}, results/figures/bench-scaling.png
-# (experiments/bench/scaling.sh; SCALING_PHOTONS, SCALING_THREADS in
-# experiments/config.mk).
+# (experiments/bench/scaling.sh; SCALING_PHOTONS, SCALING_THREADS,
+# SCALING_REPEATS in experiments/config.mk).
 .PHONY: bench-scaling
 bench-scaling: $(BUILD)/photonmap
-	SCALING_PHOTONS="$(SCALING_PHOTONS)" SCALING_THREADS="$(SCALING_THREADS)" PYTHON="$(PYTHON)" \
-	  bash experiments/bench/scaling.sh $(BUILD)/photonmap
+	SCALING_PHOTONS="$(SCALING_PHOTONS)" SCALING_THREADS="$(SCALING_THREADS)" SCALING_REPEATS="$(SCALING_REPEATS)" \
+	  PYTHON="$(PYTHON)" bash experiments/bench/scaling.sh $(BUILD)/photonmap
 # `make bench-peers`: the kNN against FLANN, cKDTree and nanoflann alone, both
 # query streams, k = 1, 10 and 100 (ours also by packets of four and stateless),
 # written to results/bench/peers.md.

@@ -16,10 +16,13 @@ ACCEL_DIR = $(RESULTS)/accel
 # make bench
 BENCH_BIN := $(BUILD)/bench/bench
 # make bench (experiments/bench.mk): the scaling section (bench-scaling:
-# emitted photon counts and threads; 50k..20M takes about 3 minutes on two
-# idle cores) and the two-thread section (bench-threads: counts and pairs of
+# emitted photon counts and threads; 50k..20M takes about 10 minutes on two
+# idle cores with SCALING_REPEATS) and the two-thread section (bench-threads: counts and pairs of
 # 1-thread/2-thread renders, back to back, order alternating).
 SCALING_PHOTONS ?= 50000 100000 200000 500000 1000000 2000000 5000000 10000000 20000000
 SCALING_THREADS ?= 2
+# each scaling render's times: the minimum over this many repeats in its
+# process (--repeats; the 20M renders then take about a minute each)
+SCALING_REPEATS ?= 3
 THREADS_PHOTONS ?= 5000000 20000000
 THREADS_PAIRS ?= 3

@@ -45,7 +45,7 @@ else
   cp scenes/cornell.scene "$W/scenes/"
   cp "$PM" "$W/build/photonmap"
   check "scaling.sh end to end at 2000 and 4000 photons" bash -c "
-    SCALING_PHOTONS=2000,4000 SCALING_THREADS=2 PYTHON='$PY' bash '$W/experiments/bench/scaling.sh' build/photonmap || exit 1
+    SCALING_PHOTONS=2000,4000 SCALING_THREADS=2 SCALING_REPEATS=2 PYTHON='$PY' bash '$W/experiments/bench/scaling.sh' build/photonmap || exit 1
     '$PY' - '$W/results/bench/scaling.csv' <<'EOF'
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
@@ -56,6 +56,7 @@ for r in rows:
     assert stored > 0 and float(r['trace_s']) > 0 and float(r['eye_s']) > 0, r
     assert abs(float(r['bytes_per_stored']) - int(r['peak_rss_bytes']) / stored) < 0.01, r
     assert (float(r['precompute_s']) > 0) == (r['method'] == 'precomputed'), r
+    assert r['repeats'] == '2', r
 EOF
     test -s '$W/results/bench/scaling.md' && test -s '$W/results/figures/bench-scaling.png' &&
     grep -q '^## precomputed' '$W/results/bench/scaling.md'"

@@ -762,6 +762,13 @@ def test_scale_both_methods():
         assert r["both"]["largest_phase"] == "precompute" and r["both"]["phases"]["eye"] == -1.0
         text = findings.readme_scale(r)
         assert "the precomputed method took 6 s against the conventional 4 s" in text
+        assert "(one render each)" in text  # no repeats column: timed once
+        assert findings.timed_text(3) == "one process each, the minimum of its 3 repeats"
+        assert findings.timed_text(3, each=False) == "one process, the minimum of its 3 repeats"
+        for row in rows:
+            row["repeats"] = 3
+        r = findings.record_scale({"scaling": write_csv(d, "scaling.csv", rows), "threads": tp})
+        assert "(one process each, the minimum of its 3 repeats)" in findings.readme_scale(r)
         assert "the difference is its precompute, 3 s, of which its eye pass wins back 1 s" in text
         r = findings.record_scale({"scaling": write_csv(d, "scaling.csv", rows[:1]), "threads": tp})
         assert r["both"] is None and "precomputed method took" not in findings.readme_scale(r)

@@ -970,6 +970,21 @@ def speedup_stats(g, col):
     return (np.median(x), x.min(), x.max(), len(x)) if len(x) else None
 
 
+def scaling_repeats(*rows):
+    """The smallest repeats count of scaling.csv ROWS (1 where the file has
+    no repeats column: one render, timed once)."""
+    reps = [int(r["repeats"]) for r in rows if "repeats" in r and isnum(r["repeats"])]
+    return min(reps) if reps else 1
+
+
+def timed_text(repeats, each=True):
+    """'one render each' or 'one process each, the minimum of its 3
+    repeats' for a scaling comparison timed with REPEATS."""
+    if repeats <= 1:
+        return "one render each" if each else "one render"
+    return f"one process{' each' if each else ''}, the minimum of its {repeats} repeats"
+
+
 def record_scale(d):
     """Performance at scale: the largest map of each method in the scaling
     table, the two-thread speed-ups per map size, and for the conventional
@@ -998,6 +1013,7 @@ def record_scale(d):
         b = q[q["photons_emitted"] == common[-1]].iloc[0]
         phases = {k: float(b[f"{k}_s"] - a[f"{k}_s"]) for k in ("trace", "build", "precompute", "eye")}
         both = {"photons_emitted": common[-1], "photons_stored": a["photons_stored"], "threads": a["threads"],
+                "repeats": scaling_repeats(a, b),
                 "conventional": float(a["total_s"]), "precomputed": float(b["total_s"]),
                 "precompute_s": float(b["precompute_s"]), "phases": phases,
                 "largest_phase": max(phases, key=lambda k: abs(phases[k]))}
@@ -1706,7 +1722,7 @@ def md_scale(rec):
         lines.append(f"- {m}, n = 100, 512x384, {int(r['threads'])} threads, {int(r['photons_emitted']):,} emitted "
                      f"photons ({int(r['photons_stored']):,} stored): {fmt(r['total_s'])} s in total (trace "
                      f"{fmt(r['trace_s'])}, build {fmt(r['build_s'])}, precompute {fmt(r['precompute_s'])}, eye pass "
-                     f"{fmt(r['eye_s'])} s; one render, `bench/scaling.csv`), peak memory "
+                     f"{fmt(r['eye_s'])} s; {timed_text(scaling_repeats(r), each=False)}, `bench/scaling.csv`), peak memory "
                      f"{fmt(r['bytes_per_stored'])} bytes per stored photon.")
     b = rec.get("both")
     if b is not None:
@@ -2225,11 +2241,11 @@ def readme_scale(rec):
     if b is not None:
         ph = b["phases"]
         methods = (f"; in the scaling run at {int(b['photons_emitted']) // 1000000}M the precomputed method took "
-                   f"{fmt(b['precomputed'])} s against the conventional {fmt(b['conventional'])} s (one render each): "
+                   f"{fmt(b['precomputed'])} s against the conventional {fmt(b['conventional'])} s ({timed_text(b['repeats'])}): "
                    f"the difference is its precompute, {fmt(b['precompute_s'])} s, of which its eye pass wins back "
                    f"{fmt(-ph['eye'])} s" if b["largest_phase"] == "precompute" else
                    f"; in the scaling run at {int(b['photons_emitted']) // 1000000}M the precomputed method took "
-                   f"{fmt(b['precomputed'])} s against the conventional {fmt(b['conventional'])} s (one render each), "
+                   f"{fmt(b['precomputed'])} s against the conventional {fmt(b['conventional'])} s ({timed_text(b['repeats'])}), "
                    f"the largest phase difference in its {b['largest_phase']} ({fmt(ph[b['largest_phase']])} s)")
     return (f"- **At scale**: {int(r['photons_emitted']) // 1000000}M emitted photons ({int(r['photons_stored']):,} "
             f"stored), conventional, n = 100, 512x384, {int(r['threads'])} threads: {pairs}, peak memory "
@@ -2367,7 +2383,7 @@ def brief_scale(rec):
         raise Missing("`scaling.csv` has no conventional row (`make bench-scaling`)")
     return (f"- **At scale.** {int(r['photons_emitted']) // 1000000}M photons take {fmt(r['total_s'])} s "
             f"conventionally on {int(r['threads'])} threads at {fmt(r['bytes_per_stored'])} bytes per stored photon"
-            + (f"; the precomputed method took {fmt(b['precomputed'])} s in the same run (one render each), "
+            + (f"; the precomputed method took {fmt(b['precomputed'])} s in the same run ({timed_text(b['repeats'])}), "
                f"{fmt(b['precompute_s'])} s of it its precompute" if b is not None else "") + ".")
 
 

@@ -79,13 +79,24 @@ def fmt_slope(s, lo, hi):
     return "%.2f [%.2f, %.2f]" % (s, lo, hi)
 
 
+def repeats_text(rows):
+    """How each count was timed, from the CSV's repeats column: 'one
+    render per count, each phase the minimum over its R repeats in one
+    process', or 'one render per count' without the column."""
+    reps = sorted({int(r["repeats"]) for r in rows if not math.isnan(r.get("repeats", math.nan))})
+    if not reps:
+        return "one render per count"
+    return ("one process per count, each phase the minimum over its %s repeats"
+            % ("-".join(str(x) for x in (reps[0], reps[-1])) if len(reps) > 1 else reps[0]))
+
+
 def markdown(rows, load, commit, threads):
     out = ["# Scaling: each phase's cost against the work", ""]
     out.append("Written by `make bench-scaling` (experiments/bench/scaling.sh, scaling.py) from "
-               "`results/bench/scaling.csv`: scenes/cornell.scene, n = 100, 512x384, %s threads, one "
-               "render per count; times are the renderer's own phases (`time_s` in `--stats`), memory is "
+               "`results/bench/scaling.csv`: scenes/cornell.scene, n = 100, 512x384, %s threads, %s; "
+               "times are the renderer's own phases (`time_s` in `--stats`), memory is "
                "the peak resident set (`/usr/bin/time -f %%M`) over the stored photons. Load average %s "
-               "when it finished; commit `%s`." % (threads, load, commit))
+               "when it finished; commit `%s`." % (threads, repeats_text(rows), load, commit))
     out.append("")
     for method in METHODS:
         rs = sorted((r for r in rows if r["method"] == method), key=lambda r: r["photons_emitted"])

@@ -5,7 +5,8 @@
 # SCALING_THREADS threads, at each count of emitted photons in
 # SCALING_PHOTONS (space- or comma-separated; defaults in
 # experiments/config.mk), and records the renderer's own
-# phase times (time_s from --stats: trace, build, precompute, eye pass) and
+# phase times (time_s from --stats: trace, build, precompute, eye pass, each
+# the minimum over SCALING_REPEATS repeats in the render's process) and
 # the peak resident set (/usr/bin/time -f %M) per stored photon. Writes
 # results/bench/scaling.csv, then experiments/bench/scaling.py fits each
 # phase's slope of log(cost) against log(emitted photons) and writes
@@ -20,6 +21,7 @@ cd "$(dirname "$0")/../.."
 BIN=${1:-build/photonmap}
 PHOTONS=${SCALING_PHOTONS:?scaling.sh: SCALING_PHOTONS unset (make bench-scaling sets it from experiments/config.mk)}
 THREADS=${SCALING_THREADS:?scaling.sh: SCALING_THREADS unset (make bench-scaling sets it from experiments/config.mk)}
+REPEATS=${SCALING_REPEATS:?scaling.sh: SCALING_REPEATS unset (make bench-scaling sets it from experiments/config.mk)}
 PYTHON=${PYTHON:-/usr/bin/python3}
 TIME=/usr/bin/time
 CSV=results/bench/scaling.csv
@@ -37,12 +39,12 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p results/bench results/figures
 
-echo "method,photons_emitted,photons_stored,representatives,threads,trace_s,build_s,precompute_s,eye_s,total_s,peak_rss_bytes,bytes_per_stored" > "$tmp/scaling.csv"
+echo "method,photons_emitted,photons_stored,representatives,threads,repeats,trace_s,build_s,precompute_s,eye_s,total_s,peak_rss_bytes,bytes_per_stored" > "$tmp/scaling.csv"
 for method in conventional precomputed; do
   for p in ${PHOTONS//,/ }; do
     echo "scaling: $method, $p photons" >&2
     "$TIME" -f %M -o "$tmp/rss" "$BIN" render scenes/cornell.scene --method "$method" --nn 100 --photons "$p" \
-      --width 512 --height 384 --threads "$THREADS" --quiet --stats "$tmp/stats.json"
+      --width 512 --height 384 --threads "$THREADS" --repeats "$REPEATS" --quiet --stats "$tmp/stats.json"
     "$PYTHON" - "$tmp/stats.json" "$tmp/rss" "$method" "$THREADS" >> "$tmp/scaling.csv" <<'EOF'
 import json, sys
 st = json.load(open(sys.argv[1]))
@@ -51,7 +53,7 @@ rss = int(open(sys.argv[2]).read().split()[-1]) * 1024
 t = st["time_s"]
 stored = st["photons_stored"]
 print(",".join(str(v) for v in (
-    sys.argv[3], st["photons_emitted"], stored, st["representatives"], sys.argv[4],
+    sys.argv[3], st["photons_emitted"], stored, st["representatives"], sys.argv[4], st["repeats"],
     t["trace"], t["build"], t["precompute"], t["render"], t["total"], rss,
     "%.3f" % (rss / stored) if stored else "")))
 EOF
