@@ -618,6 +618,14 @@ def test_curve_regions():
     up = findings.curve_regions(pd.DataFrame(curve_rows([(0.001, 1.1, 1.3, 1.0), (0.002, 1.2, 1.4, 1.0)])))
     assert findings.crossing_of(up) is None and "crosses" not in findings.regions_text(up)
     assert findings.regions_head(up).startswith("Small images: the precomputation still pays")
+    # undetermined only at the tight end: said as such; control: in the middle it is "the rest"
+    tight = findings.curve_regions(pd.DataFrame(curve_rows([(0.001, 0.9, 1.2, 1.0), (0.002, 1.2, 1.4, 1.0),
+                                                            (0.003, 1.3, 1.5, 1.0)])))
+    assert findings.regions_head(tight).endswith("pays at the looser targets enough resamples reach and is "
+                                                 "undetermined at the tightest")
+    mid = findings.curve_regions(pd.DataFrame(curve_rows([(0.001, 1.1, 1.2, 1.0), (0.002, 0.9, 1.4, 1.0),
+                                                          (0.003, 1.3, 1.5, 1.0)])))
+    assert findings.regions_head(mid).endswith("is undetermined at the rest")
 
 
 def test_one_wording_of_the_curve():

@@ -2098,8 +2098,16 @@ def regions_head(runs):
         return "Small images: the precomputation pays at the looser targets, not at the tightest"
     if cr is not None:
         return "Small images: the precomputation pays at the tighter targets, not at the looser"
+    order = [x["class"] for x in runs]
+    if kinds == {"above", "contains"} and order[0] == "contains" and order.count("contains") == 1:
+        return ("Small images: the precomputation pays at the looser targets enough resamples reach and is "
+                "undetermined at the tightest")
+    if kinds == {"above", "contains"} and order[-1] == "contains" and order.count("contains") == 1:
+        return ("Small images: the precomputation pays at the tighter targets enough resamples reach and is "
+                "undetermined at the loosest")
     if "above" in kinds or "below" in kinds:
-        return "Small images: the precomputation pays at some targets and is undetermined at the others"
+        return ("Small images: the precomputation pays at some targets enough resamples reach and is undetermined "
+                "at the rest")
     return "Small images: undetermined at every target"
 
 
@@ -2123,8 +2131,13 @@ def readme_resolution(rec):
             beside = f" (the {OTHER_ESTIMATE} estimate: {regions_text(o['regions'])})"
     except Missing:
         pass
+    counted = sum(x["count"] for x in ra["regions"])
+    rest = ra["curve_targets"] - counted
+    rest = (f" (the curve's other {rest} targets, of {ra['curve_targets']}, are ones that fewer than "
+            f"{100 * ee.DEFINED_MIN:.0f}% of the resamples reach)"
+            if rest > 0 else "")
     return (f"- **{regions_head(ra['regions'])}**: at {s0}, {PRIMARY_ESTIMATE} estimate, where at least "
-            f"{100 * ee.DEFINED_MIN:.0f}% of the resamples reach both fronts, {regions_text(ra['regions'])}{beside}; "
+            f"{100 * ee.DEFINED_MIN:.0f}% of the resamples reach both fronts, {regions_text(ra['regions'])}{rest}{beside}; "
             f"at {s1}, at the tightest such target ({fmt(b['target'])}), the speed-up is "
             f"{ci(b['speedup'], b['lo'], b['hi'])}x, {vs_one_word(rb['headline_vs_one'])} "
             "(`results/resolution/resolution.md`).")
