@@ -995,3 +995,11 @@ def test_brief_writers():
     assert any(x.startswith("- **A rerun.**") and "(#finding-R)" in x for x in out[:i])
     assert any("median shift of the paired ratios of 2.34 pp" in x for x in out[i:])
     assert len([x for x in out if x.startswith("- ")]) == 2
+
+
+def test_max_bias_term():
+    """A reference's relative bias b adds at most b^2 to relMSE: the largest
+    |ratio - 1| of the span, squared, from either side of 1."""
+    assert abs(findings.max_bias_term((0.986, 0.996)) - 0.014 ** 2) < 1e-15
+    assert abs(findings.max_bias_term((0.99, 1.03)) - 0.03 ** 2) < 1e-15
+    assert findings.max_bias_term((1.0, 1.0)) == 0.0

@@ -1550,6 +1550,14 @@ def md_judges(rec):
     return "What judges what", lines
 
 
+def max_bias_term(sp):
+    """The most a relative bias inside the ratio span SP = (lo, hi) of a
+    reference to the truth can add to relMSE = mean((x - r)^2 / (r^2 +
+    0.01)): b^2 with b the largest |ratio - 1| (each pixel's term is b^2
+    r^2 / (r^2 + 0.01) <= b^2)."""
+    return max(abs(sp[0] - 1), abs(sp[1] - 1)) ** 2
+
+
 def span_text(sp, f="{:.3f}"):
     """'0.986-0.996', one value when both ends agree, '-' for None."""
     if sp is None:
@@ -1618,7 +1626,10 @@ def md_references(rec):
         lines.append(f"- **What this says of Table 1's reference** (POV-Ray, cornell): on the diffuse regions it "
                      f"reads {span_text(corn['agree_pov'])} of pbrt (regions where photonmap agrees with pbrt)"
                      + (f", and {span_text(sp)} of pbrt on mirror and glass, where photonmap holds" if sp else "")
-                     + ". Finding E gives its error in the studies' metric.")
+                     + f". To a render without bias of its own, a reference's relative bias b adds about b^2 to the "
+                     f"{primary_name()} against it (at most b^2 per pixel, to first order): on those diffuse regions "
+                     f"at most {fmt(max_bias_term(corn['agree_pov']))} (a render biased itself gains a cross term of "
+                     "either sign); finding E sets the reference's error against the cells' margins.")
     lines += ["", "Every region (kernel bias: photonmap's bias as a share of pbrt's mean):", ""]
     lines += report.md_table(
         ["scene", "region", "pixels", "photonmap / pbrt", "kernel bias", "POV-Ray / pbrt", "holds"],
