@@ -164,10 +164,36 @@ def write_log(results, rows):
              "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append("| " + " | ".join(str(r.get(k, "")).replace("|", "/") for k in LOG_FIELDS) + " |")
+    lines += totals_lines(rows)
     md = os.path.join(results, "regeneration-log.md")
     with open(md + ".tmp", "w", encoding="utf-8") as f:
         f.write("\n".join(lines) + "\n")
     os.replace(md + ".tmp", md)
+
+
+def totals_lines(rows):
+    """Markdown lines of the log's totals per pinned renderer, in the order
+    the renderers first ran: the finished attempts (ok or failed), their
+    renders and seconds, and the killed ones (no end: their time is not
+    counted); [] for an empty log."""
+    by = {}
+    for r in rows:
+        t = by.setdefault(r["renderer"], {"done": 0, "renders": 0, "seconds": 0, "killed": 0})
+        if r.get("ended"):
+            t["done"] += 1
+            t["renders"] += int(r["renders"] or 0)
+            t["seconds"] += int(r["seconds"] or 0)
+        else:
+            t["killed"] += 1
+    if not by:
+        return []
+    out = ["", "## Totals", "",
+           "Per pinned renderer (the last one is the regeneration's; the earlier ones' renders are superseded):", ""]
+    for ren, t in by.items():
+        out.append(f"- `{ren[:7]}`: {t['done']} finished attempt(s), {t['renders']} renders, {t['seconds']} s "
+                   f"({t['seconds'] / 3600:.1f} h)" + (f"; {t['killed']} killed attempt(s), their time not counted"
+                                                      if t["killed"] else "") + ".")
+    return out
 
 
 def count_records_since(results, t0):

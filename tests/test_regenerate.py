@@ -125,6 +125,16 @@ def test_log_rows_round_trip():
         with open(os.path.join(d, "regeneration-log.md"), encoding="utf-8") as f:
             md = f.read()
         assert md.count("| reproduce-table |") == 1 and "a / b" in md
+        # the totals per renderer: a killed attempt counts no time (control)
+        rows += [{"started": "t1", "ended": "t2", "target": "figures", "commit": "c", "renderer": "r2",
+                  "status": "ok", "renders": "3", "seconds": "7200", "why": ""},
+                 {"started": "t3", "ended": "t4", "target": "caustic", "commit": "c", "renderer": "r2",
+                  "status": "ok", "renders": "2", "seconds": "1800", "why": ""}]
+        regenerate.write_log(d, rows)
+        with open(os.path.join(d, "regeneration-log.md"), encoding="utf-8") as f:
+            md = f.read()
+        assert "- `r`: 0 finished attempt(s), 0 renders, 0 s (0.0 h); 1 killed attempt(s), their time not counted." in md
+        assert "- `r2`: 2 finished attempt(s), 5 renders, 9000 s (2.5 h)." in md
 
 
 def test_committed_results_are_one_regeneration():
