@@ -174,25 +174,27 @@ def write_log(results, rows):
 def totals_lines(rows):
     """Markdown lines of the log's totals per pinned renderer, in the order
     the renderers first ran: the finished attempts (ok or failed), their
-    renders and seconds, and the killed ones (no end: their time is not
-    counted); [] for an empty log."""
+    renders and seconds, and the unfinished ones (no end: killed, or the
+    one running now; their time is not counted); [] for an empty log."""
     by = {}
     for r in rows:
-        t = by.setdefault(r["renderer"], {"done": 0, "renders": 0, "seconds": 0, "killed": 0})
+        t = by.setdefault(r["renderer"], {"done": 0, "renders": 0, "seconds": 0, "open": 0})
         if r.get("ended"):
             t["done"] += 1
             t["renders"] += int(r["renders"] or 0)
             t["seconds"] += int(r["seconds"] or 0)
         else:
-            t["killed"] += 1
+            t["open"] += 1
     if not by:
         return []
     out = ["", "## Totals", "",
            "Per pinned renderer (the last one is the regeneration's; the earlier ones' renders are superseded):", ""]
     for ren, t in by.items():
-        out.append(f"- `{ren[:7]}`: {t['done']} finished attempt(s), {t['renders']} renders, {t['seconds']} s "
-                   f"({t['seconds'] / 3600:.1f} h)" + (f"; {t['killed']} killed attempt(s), their time not counted"
-                                                      if t["killed"] else "") + ".")
+        parts = ([f"{t['done']} finished attempt(s), {t['renders']} renders, {t['seconds']} s "
+                  f"({t['seconds'] / 3600:.1f} h)"] if t["done"] else [])
+        parts += ([f"{t['open']} unfinished attempt(s) (killed, or running now), their time not counted"]
+                  if t["open"] else [])
+        out.append(f"- `{ren[:7]}`: " + "; ".join(parts) + ".")
     return out
 
 

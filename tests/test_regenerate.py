@@ -133,7 +133,7 @@ def test_log_rows_round_trip():
         regenerate.write_log(d, rows)
         with open(os.path.join(d, "regeneration-log.md"), encoding="utf-8") as f:
             md = f.read()
-        assert "- `r`: 0 finished attempt(s), 0 renders, 0 s (0.0 h); 1 killed attempt(s), their time not counted." in md
+        assert "- `r`: 1 unfinished attempt(s) (killed, or running now), their time not counted." in md
         assert "- `r2`: 2 finished attempt(s), 5 renders, 9000 s (2.5 h)." in md
 
 

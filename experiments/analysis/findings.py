@@ -489,8 +489,9 @@ def record_reference_error(d):
 
 def inside_margin(lo, hi, delta):
     """True when the paired interval [LO, HI] lies wholly inside [-DELTA,
-    DELTA]: any difference is smaller than the margin, ranked or not."""
-    return bool(np.isfinite(lo) and np.isfinite(hi) and np.isfinite(delta) and -delta <= lo and hi <= delta)
+    DELTA] (verdict_at_margin's "equivalent"): any difference is smaller
+    than the margin, ranked by the test or not."""
+    return bool(np.isfinite(delta)) and verdict_at_margin(lo, hi, delta) == "equivalent"
 
 
 def figure3_word(v, inside=False):
@@ -506,8 +507,8 @@ def figure3_word(v, inside=False):
 def record_figure3(d):
     """The paper's Figure 3 statements (FIGURE3) against the paired relMSE
     difference precomputed - conventional at their cells: "differ" when
-    the Holm-corrected test ranks the two and the interval reaches beyond
-    delta, "alike" when the interval lies inside +-delta (equivalent, or
+    the Holm-corrected test ranks the two and the interval is not inside
+    +-delta, "alike" when the interval lies inside +-delta (equivalent, or
     ranked by less than delta: "ranked_within"), per estimate, and at the
     reference's own error as the margin (verdict_at_margin) when table1.csv
     has it."""
@@ -910,7 +911,10 @@ def record_bias(d):
                 "law_lo": lo, "law_hi": hi, "on_law": eq}
     k_in, k_all, vals = corrected_coverage(b)
     eq = equivalence_to_one(b, BIAS_MARGIN)
-    laws = [on_law(r)[2] for _, r in b.iterrows() if np.isfinite(r["conventional_paper_mean"])]
+    # the n where the law can be told from no bias at all: its margin and
+    # 1's margin do not touch (n/(n-1) - 1 > 2 BIAS_MARGIN)
+    laws = [on_law(r)[2] for _, r in b.iterrows() if np.isfinite(r["conventional_paper_mean"])
+            and r["law_n_over_n_minus_1"] - 1 > 2 * BIAS_MARGIN]
     return {"equivalence": eq, "margin": BIAS_MARGIN, "equivalent": sum(e["equivalent"] for e in eq),
             "law_equivalent": sum(laws), "law_rows": len(laws),
             "at10": at(b[b["n"] == 10]) if (b["n"] == 10).any() else None,
@@ -1248,9 +1252,9 @@ def md_table(rec):
             lines.append(f"- Over P_e at n = {int(n)}: " + word_rank(s["rank"], f"the ratio at P_e = {int(s['last']['photons'])}",
                                                                        f"the one at P_e = {int(s['first']['photons'])}") + ".")
     lines.append("- The paper's value lies inside our interval in " + ", ".join(
-        f"{k} of {m} cells at P_e = {int(ph)}" for ph, (k, m) in rec["inside"].items()) + other_inside_text(rec) +
+        f"{k} of {m} cells at P_e = {int(ph)}" for ph, (k, m) in rec["inside"].items()) +
         " (the paper's values are one run each, with no interval: a value outside ours is a difference "
-        "only if the paper's own run-to-run spread is smaller than our interval).")
+        "only if the paper's own run-to-run spread is smaller than our interval)" + other_inside_text(rec) + ".")
     return "The time ratio over n and P_e, against the paper's", lines
 
 
@@ -1430,12 +1434,15 @@ def md_precompute(rec):
         lines.append(f"- The model gives a negative precompute at {count_list([cell(*k) for k in rec['negative']])}: "
                      "there its assumption fails or the paper's single times are noisier than the difference, and "
                      "the model says nothing.")
-    top = [1e6 * c["paper_per_rep"] for c in rec["cells"] if c["photons"] == rec["top"]]
-    rest = [1e6 * c["paper_per_rep"] for c in rec["cells"] if c["photons"] != rec["top"]]
+    neg = set(rec["negative"])
+    kept = [c for c in rec["cells"] if (c["photons"], c["nn"]) not in neg]
+    top = [1e6 * c["paper_per_rep"] for c in kept if c["photons"] == rec["top"]]
+    rest = [1e6 * c["paper_per_rep"] for c in kept if c["photons"] != rec["top"]]
     if top and rest:
         lines.append(f"- How far to trust it: the model's cost per representative on the paper's machine, which "
                      f"should not depend on the cell, runs from {fmt(min(top))} to {fmt(max(top))} µs over the "
-                     f"P_e = {k_of(rec['top'])} cells and from {fmt(min(rest))} to {fmt(max(rest))} µs over the others. The "
+                     f"P_e = {k_of(rec['top'])} cells and from {fmt(min(rest))} to {fmt(max(rest))} µs over the others"
+                     + (" (the negative cells left out)" if neg else "") + ". The "
                      f"P_e = {k_of(rec['top'])} shares are an estimate with that spread, from single runs, not a "
                      "measurement; what stands without the model is that the paper's method was slower than its "
                      "baseline there and ours is not.")
@@ -1471,7 +1478,7 @@ def md_figure3(rec):
     """Finding F: the paper's Figure 3 statements against the paired data."""
     lines = [f"The paper's Figure 3 says the two methods' images differ or are alike at three cells; the verdict "
              f"here is the paired {primary_name()} difference precomputed - conventional per seed: \"differ\" "
-             "when the Holm-corrected test ranks the two and the 95% interval reaches beyond delta "
+             "when the Holm-corrected test ranks the two and the 95% interval is not inside +-delta "
              f"({fmt(100 * stats.EQUIVALENCE_MARGIN)}% of the conventional error), \"alike\" when the interval lies "
              "inside +-delta (a difference the test detects but smaller than delta is alike: the claim is about "
              "how the images look), else undetermined"
@@ -1512,8 +1519,8 @@ def readme_figure3(rec):
     if not parts:
         raise Missing("`table1.csv` has none of Figure 3's cells (`make reproduce-table`)")
     return (f"- **The paper's Figure 3 claim, against the paired {primary_name()}** ({PRIMARY_ESTIMATE} estimate; "
-            f"differ = ranked by the Holm-corrected test beyond a {fmt(100 * stats.EQUIVALENCE_MARGIN)}% margin, "
-            f"alike = the difference's interval inside that margin): " + "; ".join(parts) + " (`results/FINDINGS.md`).")
+            f"differ = ranked by the Holm-corrected test, its interval not inside a "
+            f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}% margin; alike = the interval inside that margin): " + "; ".join(parts) + " (`results/FINDINGS.md`).")
 
 
 def md_judges(rec):
@@ -1544,18 +1551,21 @@ def md_judges(rec):
     lines += ["", "Corrected for the reference's own noise: every runs file carries `relmse_ref_less_noise`, a "
               f"render's {primary_name()} less its reference's measured noise (collect.py; equal to {primary_name()} "
               "where the noise is not measured). A reference's noise is independent of the renders it judges, so "
-              "to first order it adds the same constant to every render's error against it: the paired differences, "
-              "their verdicts and the speed-ups at equal error do not change under the correction, only the targets' "
-              "labels move by that constant, which the list above gives as a share of each study's tightest target."]
+              "to first order it adds the same constant to every render's error against it: the paired differences "
+              "and the speed-ups at equal error do not change under the correction; the targets' labels move by that "
+              "constant (the list above gives it as a share of each study's tightest target), and the equivalence "
+              f"margins, {fmt(100 * stats.EQUIVALENCE_MARGIN)}% of the conventional error, shrink by "
+              f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}% of it, so a verdict of equivalence near its margin could turn "
+              "undetermined."]
     return "What judges what", lines
 
 
 def max_bias_term(sp):
-    """The most a relative bias inside the ratio span SP = (lo, hi) of a
-    reference to the truth can add to relMSE = mean((x - r)^2 / (r^2 +
-    0.01)): b^2 with b the largest |ratio - 1| (each pixel's term is b^2
-    r^2 / (r^2 + 0.01) <= b^2)."""
-    return max(abs(sp[0] - 1), abs(sp[1] - 1)) ** 2
+    """What a reference r = q t off the truth t by a ratio q in the span SP
+    = (lo, hi) adds to an unbiased render's relMSE = mean((x - r)^2 / (r^2 +
+    0.01)), at most: (1/q - 1)^2 at the q farthest from 1 (a pixel's term
+    is (1 - q)^2 t^2 / (q^2 t^2 + 0.01) <= (1/q - 1)^2)."""
+    return max((1 / sp[0] - 1) ** 2, (1 / sp[1] - 1) ** 2)
 
 
 def span_text(sp, f="{:.3f}"):
@@ -1626,10 +1636,10 @@ def md_references(rec):
         lines.append(f"- **What this says of Table 1's reference** (POV-Ray, cornell): on the diffuse regions it "
                      f"reads {span_text(corn['agree_pov'])} of pbrt (regions where photonmap agrees with pbrt)"
                      + (f", and {span_text(sp)} of pbrt on mirror and glass, where photonmap holds" if sp else "")
-                     + f". To a render without bias of its own, a reference's relative bias b adds about b^2 to the "
-                     f"{primary_name()} against it (at most b^2 per pixel, to first order): on those diffuse regions "
-                     f"at most {fmt(max_bias_term(corn['agree_pov']))} (a render biased itself gains a cross term of "
-                     "either sign); finding E sets the reference's error against the cells' margins.")
+                     + f". A reference at q times the truth adds at most (1/q - 1)^2 per pixel to the {primary_name()} "
+                     "of a render without bias of its own; with q the regions' means, on those diffuse regions about "
+                     f"{fmt(max_bias_term(corn['agree_pov']))} (a render biased itself gains a cross term of either "
+                     "sign); finding E sets the reference's error against the cells' margins.")
     lines += ["", "Every region (kernel bias: photonmap's bias as a share of pbrt's mean):", ""]
     lines += report.md_table(
         ["scene", "region", "pixels", "photonmap / pbrt", "kernel bias", "POV-Ray / pbrt", "holds"],
@@ -1675,8 +1685,8 @@ def md_gather(rec):
     bd = span([x["bound"] for x in gs])
     over = [f"{x['scene']} at {x['size']}" for x in gs if x["speedup"] and isnum(x["bound"]) and x["speedup"][1] > x["bound"]]
     lines.append(f"- The gather phase alone runs {span_text(gp, '{:.2f}')}x faster (median over each grid's pairs), "
-                 f"{gather_phase_intervals(gs)}; the point estimates lie under Christensen's 5-7x and pbrt-v2's "
-                 "12.7-18.7x (quoted below), but the intervals do not rank them. The work counters bound the "
+                 f"under {published_gather_text()} (quoted below) at its point estimates: "
+                 f"{gather_phase_intervals(gs)}. The work counters bound the "
                  f"point estimates: with every lookup at y free, a render would run at most {span_text(bd, '{:.2f}')}x faster than "
                  "the conventional one of the same setting (the bound column: the ray casting, shading and caustic "
                  "estimates both methods share stay). Our k-nearest search costs little beside a ray cast, while "
@@ -1691,14 +1701,27 @@ def md_gather(rec):
     return "Final gathering: where the method was designed to pay", lines
 
 
+def published_gather_text():
+    """"Christensen's 5-7x and pbrt-v2's 12.7-18.7x" from gather.PUBLISHED_GATHER."""
+    from experiments.analysis import gather as study
+    return count_list([f"{who} {fmt(lo)}-{fmt(hi)}x" for who, lo, hi in study.PUBLISHED_GATHER])
+
+
 def gather_phase_intervals(gs):
-    """'its 95% interval lies above 1 in K of G grids and reaches 5x (the
-    low end of Christensen's 5-7x) in M' of the grids GS' gather-phase
-    speed-ups (value, lo, hi)."""
+    """'its 95% interval lies above 1 in K of G grids (...), reaches 5x, the
+    low end of Christensen's 5-7x, in M of G, and lies below 12.7x,
+    pbrt-v2's low end, in P of G' of the grids GS' gather-phase speed-ups
+    (value, lo, hi), against gather.PUBLISHED_GATHER."""
+    from experiments.analysis import gather as study
+    n = len(gs)
     above = sum(1 for x in gs if isnum(x["gather"][1]) and x["gather"][1] > 1)
-    reach = sum(1 for x in gs if isnum(x["gather"][2]) and x["gather"][2] >= 5)
-    return (f"its 95% interval lies above 1 in {above} of {len(gs)} grids (the others contain 1: undetermined) and "
-            f"reaches 5x, the low end of Christensen's 5-7x, in {reach}")
+    parts = [f"its 95% interval lies above 1 in {above} of {n} grids"
+             + (" (the others contain 1: undetermined)" if above < n else "")]
+    for who, lo, hi in study.PUBLISHED_GATHER:
+        reach = sum(1 for x in gs if isnum(x["gather"][2]) and x["gather"][2] >= lo)
+        parts.append(f"reaches {fmt(lo)}x, {who} low end, in {reach} of {n}" if reach else
+                     f"lies below {fmt(lo)}x, {who} low end, in {n} of {n}")
+    return count_list(parts)
 
 
 def readme_gather(rec):
@@ -1710,7 +1733,7 @@ def readme_gather(rec):
     return (f"- **Final gathering** (Christensen's setting, `make gather`): the precomputed method's equal-error "
             f"speed-up is {span_text(sp, '{:.2f}')}x over the grids' counted targets, its interval above 1 at every "
             f"one of them in {len(every)} of {len(gs)} grids; the gather phase alone runs {span_text(gp, '{:.2f}')}x "
-            f"faster at its point estimates (Christensen reports 5-7x): {gather_phase_intervals(gs)} "
+            f"faster at its point estimates, under {published_gather_text()}: {gather_phase_intervals(gs)} "
             "(`results/gather/gather.md`).")
 
 
@@ -1812,7 +1835,7 @@ def noise_bullet(rec):
     med, p90 = rec.get("process_change_median"), rec.get("process_change_p90")
     if med is None or p90 is None:
         return []
-    pooled = [f"over {k} in {int(rec[f'drift_inside_cells_min{k}'])}"
+    pooled = [f"in {int(rec[f'drift_inside_cells_min{k}'])} timed over {k} runs' processes"
               for k in (2, 3) if rec.get(f"drift_inside_cells_min{k}") is not None]
     one = (rec.get("drift_inside_cells_a"), rec.get("drift_inside_cells_b"))
     return [f"- Where the noise arises: the same render's total (the minimum of its repeats in one process) moves by "
@@ -1820,7 +1843,7 @@ def noise_bullet(rec):
             f"(90th percentile {report.fmt_fixed(100 * p90, 1)}%), so repeats inside one process do not remove it"
             + (f"; the drift control lies inside its window in {int(one[0])} (run a) and {int(one[1])} (run b) of "
                f"{rec['cells']} cells, and with each render's time the minimum over several runs' processes it "
-               "would lie inside " + ", ".join(pooled)
+               "would lie inside " + count_list(pooled)
                if pooled and None not in one else "")
             + " (`reproducibility/reproducibility.md`, \"Where the noise arises\")."]
 
@@ -1877,11 +1900,9 @@ def md_metric(rec):
     return "The error metric", lines
 
 
-# (number, record, writer, the title said when the record is missing)
 def md_peers(rec):
     """Finding K: the k-nearest search against FLANN, cKDTree and nanoflann."""
-    text = readme_peers(rec)
-    head, _, body = text[2:].partition(": ")
+    body = peers_body(rec)
     return "The k-nearest search against the peers", [
         f"- {body[0].upper()}{body[1:]}",
         "- FLANN and nanoflann run from C++, scipy's cKDTree from Python, on the same points and query streams "
@@ -1890,6 +1911,7 @@ def md_peers(rec):
         "(`results/bench/peers.md`)."]
 
 
+# (number, record, writer, the title said when the record is missing)
 FINDINGS = ((1, "table", md_table, "The table's shape"),
             ("T", "precompute", md_precompute, "Where the precomputed method's time goes"),
             ("E", "reference_error", md_reference_error, "Table 1's reference and its own error"),
@@ -1968,17 +1990,24 @@ def readme_table(rec):
             f"{rec['outside_lower']} of {rec['outside']}" + reversal_text(rec) + " (`results/table1/table1.md`).")
 
 
+def count_word(k):
+    """'none' for 0, else the number: a count said in a sentence."""
+    return "none" if k == 0 else str(k)
+
+
 def other_inside_text(rec):
-    """' (the corrected estimate's interval: in K of M cells)' where the
-    other estimate's count of cells whose interval holds the paper's value
-    differs from the primary one's, else ''."""
+    """'; the corrected estimate's interval holds it in K of the M cells
+    (the paper estimate's: J)' where the other estimate's count of cells
+    whose interval holds the paper's value differs from the primary one's,
+    else ''."""
     o = rec.get("inside_other")
     if o is None:
         return ""
     k = sum(v[0] for v in rec["inside"].values())
     if o[0] == k:
         return ""
-    return f" ({OTHER_ESTIMATE} estimate: in {o[0]} of {o[1]} cells, against {k} of {o[1]} for the {PRIMARY_ESTIMATE} estimate)"
+    return (f"; the {OTHER_ESTIMATE} estimate's interval holds it in {count_word(o[0])} of the {o[1]} cells (the "
+            f"{PRIMARY_ESTIMATE} estimate's: {k})")
 
 
 def reversal_text(rec):
@@ -2144,8 +2173,8 @@ def readme_resolution(rec):
         pass
     counted = sum(x["count"] for x in ra["regions"])
     rest = ra["curve_targets"] - counted
-    rest = (f" (the curve's other {rest} targets, of {ra['curve_targets']}, are ones that fewer than "
-            f"{100 * ee.DEFINED_MIN:.0f}% of the resamples reach)"
+    rest = (f"; the curve's other {rest} targets, of {ra['curve_targets']}, are ones that fewer than "
+            f"{100 * ee.DEFINED_MIN:.0f}% of the resamples reach"
             if rest > 0 else "")
     return (f"- **{regions_head(ra['regions'])}**: at {s0}, {PRIMARY_ESTIMATE} estimate, where at least "
             f"{100 * ee.DEFINED_MIN:.0f}% of the resamples reach both fronts, {regions_text(ra['regions'])}{rest}{beside}; "
@@ -2172,17 +2201,16 @@ def readme_bias(rec):
 
 
 def law_text(rec):
-    """', equivalent to it within 1% (...); so at K of M n' of a bias
-    record: the quoted n's interval over the law and the count of n whose
-    interval lies inside 1 +- the margin; ', not shown equivalent ...' when
-    the quoted one does not."""
+    """', equivalent to it within 1% (its 95% interval is LO-HI of the law);
+    K of the M n where the law differs from 1 by more than twice the margin
+    are' of a bias record (', not shown equivalent to it ...' when the
+    quoted n's interval reaches beyond the margin)."""
     at, m = rec["quoted"], fmt(100 * rec["margin"])
-    where = f"; so are {rec['law_equivalent']} of the {rec['law_rows']} n measured"
-    if at["on_law"]:
-        return (f", equivalent to it within {m}% (its 95% interval is {report.fmt_fixed(at['law_lo'], 4)}-"
-                f"{report.fmt_fixed(at['law_hi'], 4)} of the law){where}")
-    return (f", not shown equivalent to it within {m}% (its 95% interval is {report.fmt_fixed(at['law_lo'], 4)}-"
-            f"{report.fmt_fixed(at['law_hi'], 4)} of the law){where}")
+    iv = f"(its 95% interval is {report.fmt_fixed(at['law_lo'], 4)}-{report.fmt_fixed(at['law_hi'], 4)} of the law)"
+    where = (f"; at the {rec['law_rows']} n where the law lies more than {fmt(200 * rec['margin'])}% from 1 (so that "
+             f"equivalence to it rules out no bias), {rec['law_equivalent']} are equivalent to it")
+    return (f", equivalent to it within {m}% {iv}" if at["on_law"] else
+            f", not shown equivalent to it within {m}% {iv}") + where
 
 
 def readme_rules(rec):
@@ -2230,6 +2258,13 @@ def readme_repro(rec):
 
 
 def readme_peers(rec):
+    return f"- **The kd-tree's k nearest against the peers**: {peers_body(rec)}"
+
+
+def peers_body(rec):
+    """The peers finding's sentence (README's bullet without its head):
+    ours against the strongest peer and nanoflann per k, and what makes the
+    comparison unlike; Missing without a tile-order cell."""
     rows = rec["rows"]
     if not rows:
         raise Missing(f"`{rec['file']}` has no tile-order cell (`make bench`)")
@@ -2237,7 +2272,7 @@ def readme_peers(rec):
     ks = [r["k"] for r in rows]
     who = [names[r["strongest"]] for r in rows]
     peer = f"{who[0]} at every k" if len(set(who)) == 1 else ", ".join(f"{w} at k = {k}" for w, k in zip(who, ks))
-    return (f"- **The kd-tree's k nearest against the peers**: on the {k_of(rows[0]['pe'])} map in tile order ours answers "
+    return (f"on the {k_of(rows[0]['pe'])} map in tile order ours answers "
             f"{count_list([report.fmt_fixed(r['strongest_ratio'], 2) + 'x' for r in rows])} as many queries per second "
             f"as the strongest peer at k = {count_list([str(k) for k in ks])} "
             f"({peer}; nanoflann: {count_list([report.fmt_fixed(r['nanoflann_ratio'], 2) + 'x' for r in rows])}), "
@@ -2328,12 +2363,17 @@ def brief_cost(rec):
     if PRIMARY_ESTIMATE not in rec["verdicts"]:
         raise Missing(f"`table1.csv` has no {PRIMARY_ESTIMATE}-estimate verdicts (`make reproduce-table`)")
     g = rec["verdicts"][PRIMARY_ESTIMATE]["groups"]
-    n = lambda k: len(g.get(k, []))  # noqa: E731
-    small = [c for k in ("lower", "higher") for c in g.get(k, []) if c.get("inside")]
-    return (f"- **Its cost in accuracy.** The precomputed method's error is higher in {n('higher')} of "
-            f"{rec['cells']} cells, equivalent within {fmt(100 * stats.EQUIVALENCE_MARGIN)}% in {n('equivalent')}, "
-            f"lower in {n('lower')}" + (f" ({len(small)} of the ranked cells by less than the margin)" if small else "")
-            + (f", undetermined in {n('undetermined')}" if n("undetermined") else "") + ".")
+    m = f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}%"
+
+    def part(k, word):
+        cs = g.get(k, [])
+        small = sum(1 for c in cs if c.get("inside"))
+        return (f"{word} in {len(cs)}" + (f" ({'each' if small == len(cs) else small} by less than {m})"
+                                          if small and k in ("higher", "lower") else ""))
+    parts = [part(k, w) for k, w in (("higher", "higher"), ("equivalent", f"equivalent within {m}"),
+                                     ("lower", "lower"), ("undetermined", "undetermined")) if g.get(k)]
+    return (f"- **Its cost in accuracy.** Of the {rec['cells']} cells, the precomputed method's error is "
+            f"{count_list(parts)}.")
 
 
 def brief_resolution(rec):
@@ -2396,19 +2436,25 @@ def brief_peers(rec):
     if not rows:
         raise Missing(f"`{rec['file']}` has no tile-order cell (`make bench`)")
     names = dict(bench_report.PEERS)
+    who = {names[r["strongest"]] for r in rows}
+    peer = (f"the strongest peer ({who.pop()})" if len(who) == 1 else
+            "the strongest peer (" + ", ".join(f"{names[r['strongest']]} at k = {r['k']}" for r in rows) + ")")
     return (f"- **The k-nearest search.** Ours answers {count_list([report.fmt_fixed(r['strongest_ratio'], 1) + 'x' for r in rows])} "
-            f"as many queries as the strongest peer ({names[rows[0]['strongest']]}) at k = "
-            f"{count_list([str(r['k']) for r in rows])}, with advantages the peers lack (state between queries, AVX2).")
+            f"as many queries as {peer} at k = {count_list([str(r['k']) for r in rows])}, with advantages the "
+            "peers lack (state between queries, AVX2).")
 
 
 def brief_scale(rec):
     r, b = rec["conventional"], rec["both"]
     if r is None:
         raise Missing("`scaling.csv` has no conventional row (`make bench-scaling`)")
-    return (f"- **At scale.** {int(r['photons_emitted']) // 1000000}M photons take {fmt(r['total_s'])} s "
-            f"conventionally on {int(r['threads'])} threads at {fmt(r['bytes_per_stored'])} bytes per stored photon"
-            + (f"; the precomputed method took {fmt(b['precomputed'])} s in the same run ({timed_text(b['repeats'])}), "
-               f"{fmt(b['precompute_s'])} s of it its precompute" if b is not None else "") + ".")
+    took = (f"{fmt(r['two_total_median'])} s (median of {r['two_total_pairs']} runs)" if r["two_total_pairs"]
+            else f"{fmt(r['total_s'])} s")
+    return (f"- **At scale.** {int(r['photons_emitted']) // 1000000}M photons take {took} conventionally on "
+            f"{int(r['threads'])} threads, at {fmt(r['bytes_per_stored'])} bytes per stored photon"
+            + (f"; in the scaling run the precomputed method took {fmt(b['precomputed'])} s against the "
+               f"conventional {fmt(b['conventional'])} s ({timed_text(b['repeats'])}), {fmt(b['precompute_s'])} s "
+               "of it its precompute" if b is not None else "") + ".")
 
 
 BRIEF = {"table": brief_table, "precompute": brief_precompute, "figure3": brief_figure3,

@@ -63,6 +63,9 @@ TARGETS = 6         # relMSE targets per grid, log-spaced over the fronts' commo
 PUBLISHED = ("Christensen (1999): the indirect part 5-7x faster, precompute 2-5% of the time saved, +28% memory; "
              "pbrt-v2 radiance photons on its Cornell box, 256x192: 12.7x (100k photons) and 18.7x (500k) "
              "against three k = 50 estimates per gather hit, precompute 0.7-2% of the time saved, +12.5% memory")
+# the published speed-ups of the gather (indirect) phase alone, low and high
+# end, that the findings set the gather phase's intervals against
+PUBLISHED_GATHER = (("Christensen's", 5.0, 7.0), ("pbrt-v2's", 12.7, 18.7))
 
 
 def stats_of(run):

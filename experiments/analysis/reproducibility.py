@@ -131,29 +131,39 @@ def summary(frame, goal_pp, max_pp=math.inf, drift=(-math.inf, math.inf)):
 PHASES = ("trace_s", "build_s", "precompute_s", "render_s", "total_s")
 
 
-def phase_load(runs_a, runs_c):
-    """One dict per (method, phase): the median and range over the renders
-    both runs made of the ratio C / A of the phase's time (each a repeat
-    minimum), the renders compared."""
-    keys = ["method", "estimate", "photons", "nn", "seed"]
-    a = runs_a[runs_a["status"] == "ok"].set_index(keys)
-    c = runs_c[runs_c["status"] == "ok"].set_index(keys)
+KEYS = ["method", "estimate", "photons", "nn", "seed"]
+
+
+def joined(runs_a, runs_c, phase):
+    """(A's, C's) values of PHASE over the renders both runs made ok with a
+    positive time, as arrays in one order, and the renders' keys (KEYS)."""
+    a = runs_a[runs_a["status"] == "ok"].set_index(KEYS)[phase]
+    c = runs_c[runs_c["status"] == "ok"].set_index(KEYS)[phase]
     both = a.index.intersection(c.index)
+    va, vc = a.loc[both].to_numpy(np.float64), c.loc[both].to_numpy(np.float64)
+    ok = (va > 0) & (vc > 0)
+    return va[ok], vc[ok], both[ok]
+
+
+def phase_load(runs_a, runs_c):
+    """One dict per (method, phase) of the ratio C / A of the phase's time
+    (each a repeat minimum) over the renders both runs made: its median,
+    smallest and largest (median_ratio, min_ratio, max_ratio), the median
+    and 90th percentile of |C / A - 1| (median_abs_change, p90_abs_change)
+    and the renders compared."""
     rows = []
-    for method in sorted({k[0] for k in both}):
-        idx = [k for k in both if k[0] == method]
+    for method in sorted(set(runs_a["method"]) & set(runs_c["method"])):
+        ma, mc = runs_a[runs_a["method"] == method], runs_c[runs_c["method"] == method]
         for ph in PHASES:
-            if ph not in a.columns or ph not in c.columns:
+            if ph not in runs_a.columns or ph not in runs_c.columns:
                 continue
-            va, vc = a.loc[idx, ph].to_numpy(np.float64), c.loc[idx, ph].to_numpy(np.float64)
-            ok = (va > 0) & (vc > 0)
-            r = vc[ok] / va[ok]
-            rows.append({"method": method, "phase": ph[:-2], "renders": int(ok.sum()),
-                         "median_ratio": float(np.median(r)) if r.size else math.nan,
-                         "min_ratio": float(np.min(r)) if r.size else math.nan,
-                         "max_ratio": float(np.max(r)) if r.size else math.nan,
-                         "median_abs_change": float(np.median(np.abs(r - 1))) if r.size else math.nan,
-                         "p90_abs_change": float(np.percentile(np.abs(r - 1), 90)) if r.size else math.nan})
+            va, vc, _ = joined(ma, mc, ph)
+            r = vc / va
+            q = (lambda f, x: float(f(x)) if x.size else math.nan)  # noqa: E731
+            rows.append({"method": method, "phase": ph[:-2], "renders": int(r.size),
+                         "median_ratio": q(np.median, r), "min_ratio": q(np.min, r), "max_ratio": q(np.max, r),
+                         "median_abs_change": q(np.median, np.abs(r - 1)),
+                         "p90_abs_change": q(lambda x: np.percentile(x, 90), np.abs(r - 1))})
     return rows
 
 
@@ -161,40 +171,34 @@ def process_change(runs_a, runs_b, phase="total_s"):
     """(median, 90th percentile) of |B / A - 1| of PHASE's repeat-minimum
     time over the renders (both methods) both runs made ok: how far the same
     render's time moves between two processes; (nan, nan) without any."""
-    keys = ["method", "estimate", "photons", "nn", "seed"]
-    a = runs_a[runs_a["status"] == "ok"].set_index(keys)[phase]
-    b = runs_b[runs_b["status"] == "ok"].set_index(keys)[phase]
-    both = a.index.intersection(b.index)
-    va, vb = a.loc[both].to_numpy(np.float64), b.loc[both].to_numpy(np.float64)
-    ok = (va > 0) & (vb > 0)
-    if not ok.any():
+    va, vb, _ = joined(runs_a, runs_b, phase)
+    if not va.size:
         return math.nan, math.nan
-    d = np.abs(vb[ok] / va[ok] - 1)
+    d = np.abs(vb / va - 1)
     return float(np.median(d)), float(np.percentile(d, 90))
 
 
 def pooled_drift(runs, drift):
     """The drift control if every render's time were the minimum over the
     processes of several runs: RUNS is a list of runs.csv frames of the same
-    grid; per (estimate, P_e, n) the per-seed geometric mean of precomputed /
-    conventional trace time, each the minimum over RUNS' renders of that
-    seed, in %. Returns {"cells", "inside" (cells within DRIFT), "min",
-    "max"}; cells 0 when the runs share no pair."""
-    keys = ["method", "estimate", "photons", "nn", "seed"]
-    frames = [r[r["status"] == "ok"].set_index(keys)["trace_s"] for r in runs]
+    grid; per (estimate, P_e, n) the paired ratio precomputed / conventional
+    of the trace time (stats.paired_log_ratio over the seeds, each time the
+    minimum over RUNS' renders of that seed), in %. Returns {"cells",
+    "inside" (cells within DRIFT), "min", "max"}; cells 0 when the runs
+    share no pair."""
+    frames = [r[r["status"] == "ok"].set_index(KEYS)["trace_s"] for r in runs]
     both = frames[0].index
     for f in frames[1:]:
         both = both.intersection(f.index)
-    t = pd.concat([f.loc[both] for f in frames], axis=1).min(axis=1)
-    t = t[t > 0]
+    t = pd.concat([f.loc[both] for f in frames], axis=1).min(axis=1).rename("trace_s").reset_index()
     values = []
-    cells = sorted({k[1:4] for k in t.index})
-    for est, pe, nn in cells:
-        logs = [math.log(t[("precomputed", est, pe, nn, s)] / t[("conventional", est, pe, nn, s)])
-                for s in sorted({k[4] for k in t.index if k[1:4] == (est, pe, nn)})
-                if ("precomputed", est, pe, nn, s) in t.index and ("conventional", est, pe, nn, s) in t.index]
-        if logs:
-            values.append(100 * math.exp(float(np.mean(logs))))
+    for _, g in t.groupby(["estimate", "photons", "nn"]):
+        q = g[g["method"] == "precomputed"].set_index("seed")["trace_s"]
+        c = g[g["method"] == "conventional"].set_index("seed")["trace_s"]
+        seeds = sorted(set(q.index) & set(c.index))
+        ratio = stats.paired_log_ratio(q.loc[seeds].to_numpy(), c.loc[seeds].to_numpy())[0]
+        if isnum(ratio):
+            values.append(100 * ratio)
     v = np.array(values)
     return {"cells": int(v.size), "inside": int(np.sum((v >= drift[0]) & (v <= drift[1]))),
             "min": float(v.min()) if v.size else math.nan, "max": float(v.max()) if v.size else math.nan}

@@ -81,8 +81,8 @@ def fmt_slope(s, lo, hi):
 
 def repeats_text(rows):
     """How each count was timed, from the CSV's repeats column: 'one
-    render per count, each phase the minimum over its R repeats in one
-    process', or 'one render per count' without the column."""
+    process per count, each phase the minimum over its R repeats', or 'one
+    render per count' without the column."""
     reps = sorted({int(r["repeats"]) for r in rows if not math.isnan(r.get("repeats", math.nan))})
     if not reps:
         return "one render per count"
