@@ -88,7 +88,7 @@ def main():
     except ValueError:
         report.die(a.cell, "--cell is not pP-nN")
 
-    rows, images = [], []
+    rows, images, times = [], [], set()
     for scene, table_csv, runs_csv, ee_csv, ref_path in a.scene:
         name = os.path.splitext(os.path.basename(scene))[0]
         for f in (table_csv, runs_csv, ee_csv, ref_path):
@@ -98,6 +98,8 @@ def main():
         runs = report.read_csv(runs_csv, ["method", "estimate", "photons", "nn", "seed", "status", "role", "run"], "scenes.py")
         ee = report.read_csv(ee_csv, ["estimate", "kind", "target", "speedup", "lo", "hi", "defined_fraction"],
                              "scenes.py")
+        if "time" in ee.columns:
+            times |= set(ee["time"].dropna())
         share, speed = knn_share(table, cell_p, cell_n)
         shares = [knn_share(table, p, n)[0] for p, n in table[["photons", "nn"]].drop_duplicates().itertuples(index=False)]
         ref = metrics.read_exr(ref_path)
@@ -162,8 +164,10 @@ def main():
           "- " + reference.describe(sc[4], reference.tightest_of(sc[3])) for sc in a.scene] + ["",
           "## Speed-up at equal error", "",
           "The precomputed method's time against the conventional one's at the same relMSE (each method's "
-          "Pareto front of (median CPU time, mean relMSE over seeds), interpolated; 95% bootstrap interval over "
-          "seeds in brackets; the targets are those both fronts reach):", ""]
+          "Pareto front of (median time, mean relMSE over seeds), interpolated; 95% bootstrap interval over "
+          "seeds in brackets; the targets are those both fronts reach; time: "
+          + ("; ".join(report.TIME_LABEL.get(t, t) for t in sorted(times)) or "as the equal-error files give it")
+          + "):", ""]
     md += report.md_table(["scene", "paper estimate: relMSE target: speed-up [95% CI]", "corrected estimate"],
                           [[r["scene"], r["ee_paper"], r["ee_corrected"]] for r in rows])
     md += ["", "## The share of the kNN, and the speed-up of the total", "",
