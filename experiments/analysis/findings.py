@@ -758,7 +758,9 @@ def record_gather(d):
     wholly above 1, wholly below, the span of the speed-ups and of the
     targets), the gather phase's own speed-up with its interval, the
     precompute's share of the time saved (median and range), the memory
-    increase and the work counters' bound."""
+    increase and the work counters' bound; over all grids, those whose
+    interval lies above 1 at every counted target (every) and the span of
+    every counted speed-up (speedup)."""
     from experiments.analysis import gather as study
     g = load(d["gather"], ["scene", "size", "kind", "target", "speedup", "lo", "hi", "defined"], "make gather")
     grids = []
@@ -777,7 +779,9 @@ def record_gather(d):
                       "memory": one("memory_increase")[0], "bound": one("work_bound")[0]})
     if not grids:
         raise Missing(f"`{d['gather']}` has no grid (`make gather`)")
-    return {"grids": grids, "published": study.PUBLISHED, "defined_min": study.DEFINED_MIN}
+    return {"grids": grids, "published": study.PUBLISHED, "defined_min": study.DEFINED_MIN,
+            "every": [x for x in grids if x["targets"] and x["above"] == x["targets"]],
+            "speedup": span([v for x in grids for v in (x["speedup"] or ())])}
 
 
 def record_equal_error(d):
@@ -1681,7 +1685,7 @@ def gather_grid_word(x):
 def md_gather(rec):
     """Finding G: final gathering, where the method was designed to pay."""
     gs = rec["grids"]
-    every = [x for x in gs if x["targets"] and x["above"] == x["targets"]]
+    every = rec["every"]
     lines = [f"Both methods with final gathering (`make gather`, `results/gather/gather.md`): at each eye path's "
              "first diffuse hit, direct light by a shadow ray, caustics from a caustic map, and N gather rays whose "
              "first diffuse hits read the global map, by the n-nearest estimate (conventional) or the nearest "
@@ -1741,8 +1745,8 @@ def gather_phase_intervals(gs):
 def readme_gather(rec):
     """README's bullet on final gathering."""
     gs = rec["grids"]
-    every = [x for x in gs if x["targets"] and x["above"] == x["targets"]]
-    sp = span([v for x in gs for v in (x["speedup"] or ())])
+    every = rec["every"]
+    sp = rec["speedup"]
     gp = span([x["gather"][0] for x in gs])
     return (f"- **Final gathering** (Christensen's setting, `make gather`): the precomputed method's equal-error "
             f"speed-up is {span_text(sp, '{:.2f}')}x over the grids' counted targets, its interval above 1 at every "
@@ -2429,8 +2433,8 @@ def brief_beyond(rec):
 
 def brief_gather(rec):
     gs = rec["grids"]
-    every = [x for x in gs if x["targets"] and x["above"] == x["targets"]]
-    sp = span([v for x in gs for v in (x["speedup"] or ())])
+    every = rec["every"]
+    sp = rec["speedup"]
     return (f"- **Final gathering** (Christensen's setting). The precomputed method reaches equal error "
             f"{span_text(sp, '{:.2f}')}x faster, faster at every counted target in {len(every)} of {len(gs)} grids.")
 
