@@ -47,10 +47,10 @@ import time
 # the study targets in the order a regeneration runs them: Table 1 first
 # (the main job), its rerun next (make reproducibility renders runs b and
 # busy after Table 1's), the figures drawn from Table 1, then the other
-# studies, the benchmarks and the cost model, and the findings last (they
-# read every other file)
+# studies, the cost model, the benchmarks (bench's repeats.md reads the cost
+# model calibrate writes), and the findings last (they read every other file)
 TARGETS = ("reproduce-table", "reproducibility", "figures", "estimator-bias", "caustic", "rep-study", "resolution",
-           "scenes", "beyond", "gather", "stability", "accel", "bench", "calibrate", "findings")
+           "scenes", "beyond", "gather", "stability", "accel", "calibrate", "bench", "findings")
 # the sources of the renderer, as git pathspecs: a change here is a new
 # renderer (its Markdown documentation is not; the build's flags are in every
 # render's provenance, and check() finds them all one)

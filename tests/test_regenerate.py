@@ -148,3 +148,16 @@ def test_committed_results_are_one_regeneration():
         pytest.skip("results/ holds no finished regeneration yet (results/regeneration-log.csv)")
     problems = [p for p in regenerate.check("results") if "render(s)" not in p or os.path.isdir("results/runs")]
     assert problems == []
+
+
+def test_targets_order_calibrate_before_bench():
+    """bench's repeats.md reads the cost model calibrate writes, and the
+    findings read every file: calibrate runs before bench, findings last
+    (control: the check sees a swapped order)."""
+    def ordered(t):
+        return t.index("calibrate") < t.index("bench") and t[-1] == "findings"
+    assert ordered(regenerate.TARGETS)
+    swapped = list(regenerate.TARGETS)
+    i, j = swapped.index("calibrate"), swapped.index("bench")
+    swapped[i], swapped[j] = swapped[j], swapped[i]
+    assert not ordered(swapped)
