@@ -230,3 +230,18 @@ def test_noise_sensitivity_larger_noise_rejects_less(tmp_path):
     assert base == list(res["scores"]["verdict"])  # factor 1 is the study itself
     wide = repstudy.noise_sensitivity(res["fits"], res["scores"], 1000.0)
     assert all(x["verdict"] == "not rejected" for x in wide)  # a paper known to nothing rejects nothing
+
+
+def test_rules_csv_carries_the_sensitivity_verdicts(tmp_path):
+    """The scores (rules CSV) carry, per SENSITIVITY factor, the verdicts
+    noise_sensitivity gives at that factor, and conclusions' kept lists are
+    read from them; control: a column changed by hand changes the list."""
+    res = study(tmp_path, off=3.0)
+    for f in repstudy.SENSITIVITY:
+        col = repstudy.sensitivity_column(f)
+        assert list(res["scores"][col]) == [x["verdict"] for x in
+                                            repstudy.noise_sensitivity(res["fits"], res["scores"], f)]
+    assert repstudy.sensitivity_column(0.5) == "verdict_noise_x0.5"
+    col = repstudy.sensitivity_column(2.0)
+    res["scores"][col] = "incompatible"
+    assert repstudy.conclusions(res)["sensitivity"][1]["kept"] == []

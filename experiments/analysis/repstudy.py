@@ -30,7 +30,9 @@ P_e: a Welch t test of ours - paper (compare_with_paper), turned into a
 normal score z; per rule chi^2 = sum z^2 with one degree of freedom per P_e,
 less one for a rule with a parameter fitted to the paper (countN by
 default, --fitted); Holm's correction over the rules (score_rules). Output
-STEM-rules.csv holds those tests; findings.py reads it.
+STEM-rules.csv holds those tests, and their verdicts with the paper's noise
+scaled by each SENSITIVITY factor (columns verdict_noise_xF); findings.py
+reads it.
 
 A cost model over the rules: per P_e the precomputed slope is linear in the
 number of representatives R (b_prec = beta0 + beta1 R, fitted over the
@@ -387,6 +389,9 @@ def analyse(base, variants, paper, time_col, fitted=None):
     fits = pd.DataFrame(fits).reindex(columns=FIT_COLUMNS)
     cells = pd.DataFrame(cells)
     scores = pd.DataFrame(scores).reindex(columns=SCORE_COLUMNS)
+    if math.isfinite(noise) and len(scores):
+        for factor in SENSITIVITY:
+            scores[sensitivity_column(factor)] = [a["verdict"] for a in noise_sensitivity(fits, scores, factor)]
     model = cost_model(fits)
     families = family_fits(model)
     return {"rules": [r for r, _ in rules], "fits": fits, "cells": cells, "scores": scores, "model": model,
@@ -460,6 +465,12 @@ def reps_of_family(row, stored):
 SENSITIVITY = (0.5, 2.0)  # the factors on the paper's assumed noise whose verdicts the report also gives
 
 
+def sensitivity_column(factor):
+    """The rules CSV's column of the verdicts with the paper's noise FACTOR
+    times the assumed one: 'verdict_noise_x0.5'."""
+    return f"verdict_noise_x{factor:g}"
+
+
 def conclusions(res):
     """What the report and the figure state beyond analyse's tables, from
     RES: the renders' size and conventional seeds, the paper's slope ratio
@@ -483,10 +494,10 @@ def conclusions(res):
         shape = scores.dropna(subset=["shape_factor"]).sort_values("shape_factor")
         if len(shape):
             rec["best_shape"] = (shape.iloc[0]["label"], shape.iloc[0]["shape_factor"])
-        for factor in SENSITIVITY:
-            alt = noise_sensitivity(fits, scores, factor)
+        for factor in (f for f in SENSITIVITY if sensitivity_column(f) in scores.columns):
+            col = sensitivity_column(factor)
             rec["sensitivity"].append({"factor": factor, "noise": factor * res["noise"], "kept": [
-                lab for lab, a in zip(scores["label"], alt) if a["verdict"] == "not rejected"]})
+                lab for lab, v in zip(scores["label"], scores[col]) if v == "not rejected"]})
     return rec
 
 
