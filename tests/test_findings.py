@@ -127,10 +127,10 @@ def test_summary_wording_from_tests():
         path = os.path.join(d, "table1.csv")
         table1_frame([(80, 75, 85), (40, 38, 42), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(path, index=False)
         line = readme("table", {"table": path})
-        assert "P_e = 50k falls from" in line and "holds at 1 of 2 photon counts" in line
+        assert "P_e = 50k falls from" in line and "falls over n at 1 of 2 photon counts" in line
         table1_frame([(80, 75, 85), (78, 70, 82), (100, 95, 105)], [(0.01, 0.005, 0.02)] * 3).to_csv(path, index=False)
         line = readme("table", {"table": path})
-        assert "P_e = 50k goes from" in line and "holds at 0 of 2 photon counts" in line
+        assert "P_e = 50k goes from" in line and "falls over n at 0 of 2 photon counts" in line
 
 
 def test_findings_wording_from_tests():
@@ -336,6 +336,11 @@ def test_record_cost():
         assert (s["largest"]["photons"], s["largest"]["nn"]) == (50000, 10)
         w = r["worst"]
         assert (w["photons"], w["nn"]) == (50000, 10) and abs(w["share"] - 0.25) < 1e-9 and w["mean"] == 0.05
+        assert w["overlaps"] == [] and "the largest excess is at (50k, 10)" in findings.readme_cost(r)
+        # control: an overlapping "higher" cell leaves the largest unranked, and is named
+        w["overlaps"] = [(50000, 100)]
+        text = findings.readme_cost(r)
+        assert "the largest excess is" not in text and "overlapping those of (50k, 100) (no cell is ranked" in text
         m = r["more_photons"]
         assert m["factor"] == 10 and [x["nn"] for x in m["per_n"]] == [10, 100]
         assert abs(m["per_n"][0]["removed"] - 0.75) < 1e-9 and m["per_n"][0]["disjoint"]
@@ -370,6 +375,13 @@ def test_record_bias():
         rows.append({**rows[1], "n": 100, "law_n_over_n_minus_1": 100 / 99, "conventional_paper_mean": 100 / 99})
         r = findings.record_bias({"bias": write_csv(d, "b.csv", rows)})
         assert r["law_rows"] == 2  # n = 100: its law lies 1.01% from 1, too close to tell (control)
+        # the precomputed method's paper estimate: said beside its own law, n/(n-2), when the file has it
+        assert r["quoted"]["precomputed"] is None and "precomputed method 1" not in findings.brief_bias(r)
+        rows[0].update(precomputed_paper_mean=1.17, precomputed_paper_ci95=0.004, law_n_over_n_minus_2=1.25)
+        r = findings.record_bias({"bias": write_csv(d, "b.csv", rows)})
+        assert r["quoted"]["precomputed"] == {"mean": 1.17, "ci95": 0.004, "law": 1.25}
+        assert "and the precomputed method 1.170 (its representatives follow n/(n-2), 1.250)" in findings.brief_bias(r)
+        assert "1.17 ± 0.004 at n = 10" in findings.readme_bias(r)
 
 
 def test_record_caustic_scenes_baseline():
@@ -471,6 +483,18 @@ def test_record_scale_stability_repro_rules():
                                         for k, v in (("a", "incompatible"), ("b", "not rejected"), ("c", "incompatible"))])
         r = findings.record_rules({"rep": ru})
         assert r["rejected"] == ["A", "C"] and len(r["rows"]) == 3
+        assert r["sensitivity"] == [] and findings.sensitivity_text(r) == ""  # an old file: nothing said
+        # the verdicts at half and twice the paper's assumed noise, when the rules file carries them
+        ru = write_csv(d, "rules2.csv", [{"rule": k, "label": k.upper(), "fitted": False, "chi2": 1.0, "dof": 3,
+                                          "p_value": 0.5, "p_holm": 0.9, "verdict": "not rejected",
+                                          "verdict_noise_x0.5": h, "verdict_noise_x2": "not rejected"}
+                                         for k, h in (("a", "incompatible"), ("b", "not rejected"),
+                                                      ("c", "incompatible"))])
+        r = findings.record_rules({"rep": ru})
+        assert r["sensitivity"] == [{"factor": 0.5, "rejected": ["A", "C"]}, {"factor": 2.0, "rejected": []}]
+        assert findings.sensitivity_text(r) == "; rejected at half that noise 2 (A and C) and at twice that noise none"
+        assert "reject none of the 3 rules" in findings.brief_rules(r) and "half that noise 2 (A and C)" in \
+            findings.brief_rules(r)
 
 
 def test_record_metric_and_peers():
@@ -548,12 +572,13 @@ def test_table_reversal():
         assert r["ours_faster"] == 3 and r["cells"] == 3
         text = findings.readme_table(r)
         assert "One feature does not reproduce: at P_e = 500k with n = 10 the paper's method is slower (119.0%)" in text
-        assert "except at P_e = 500k with n = 10" in text
+        assert ("and at P_e = 500k with n = 10, where the paper's method was slower than its baseline, ours is "
+                "faster.**") in text
         assert "undetermined" not in text
         table_with_paper((95, 88, 101), 119.0).to_csv(path, index=False)
         r = findings.record_table({"table": path})
         text = findings.readme_table(r)
-        assert r["reversed"] == [] and "does not reproduce" not in text
+        assert r["reversed"] == [] and "One feature does not reproduce" not in text and "ours is faster.**" not in text
         # the paper's method slower, our interval containing 100%: said, as undetermined
         assert ". At P_e = 500k with n = 10 the paper's method is slower (119.0%) and ours is undetermined " \
                "(95.0% [88.0, 101.0]: the interval contains 100%)" in text
@@ -762,7 +787,8 @@ def test_record_judges():
 def test_scale_both_methods():
     """The scaling bullet gives both methods at the largest map and names
     the phase that makes the difference (the precompute, 3 s of the 2 s
-    more, the eye pass winning 1 s back); negative control: without a
+    more; the eye pass's -1 s named beside the photon pass's 0 s, identical
+    code in both); negative control: without a
     precomputed row the bullet names no difference."""
     rows = [{"method": m, "photons_emitted": 9000, "photons_stored": 18000, "threads": 2, "trace_s": 1, "build_s": 1,
              "precompute_s": pre, "eye_s": eye, "total_s": 2 + pre + eye, "bytes_per_stored": 40}
@@ -782,7 +808,8 @@ def test_scale_both_methods():
             row["repeats"] = 3
         r = findings.record_scale({"scaling": write_csv(d, "scaling.csv", rows), "threads": tp})
         assert "(one process each, the minimum of its 3 repeats)" in findings.readme_scale(r)
-        assert "the difference is its precompute, 3 s, of which its eye pass wins back 1 s" in text
+        assert "of the difference, 2 s, its precompute is 3 s; the photon pass, the same code in both, differs " \
+            "by 0 s, and the eye pass by -1 s, more than that" in text
         r = findings.record_scale({"scaling": write_csv(d, "scaling.csv", rows[:1]), "threads": tp})
         assert r["both"] is None and "precomputed method took" not in findings.readme_scale(r)
 
@@ -947,13 +974,17 @@ def test_gather_finding():
         assert "in 1 of 2 grids (a at 8x6)" in text
         bullet = findings.readme_gather(rec)
         assert "0.70-2.00x" in bullet and "in 1 of 2 grids" in bullet and "1.50-3.00x" in bullet
-        # the gather phase's intervals: both above 1, neither reaches 5x
+        # the gather phase's intervals: both above 1, both wholly below 5x
         assert "its 95% interval lies above 1 in 2 of 2 grids, lies below 5x, Christensen's low end, in 2 of 2 " \
             "and lies below 12.7x, pbrt-v2's low end, in 2 of 2" in bullet
-        b["gather"] = (1.5, 0.9, 6.0)  # control: touching 1 is undetermined, reaching 5x counts
+        b["gather"] = (1.5, 0.9, 6.0)  # control: containing 1 or 5x is undetermined against it, not ranked
         assert findings.gather_phase_intervals(rec["grids"]) == (
-            "its 95% interval lies above 1 in 1 of 2 grids (the others contain 1: undetermined), reaches 5x, "
-            "Christensen's low end, in 1 of 2 and lies below 12.7x, pbrt-v2's low end, in 2 of 2")
+            "its 95% interval lies above 1 in 1 of 2 grids (the others contain 1: undetermined), lies below 5x, "
+            "Christensen's low end, in 1 of 2 and contains it in 1 (undetermined against it) and lies below "
+            "12.7x, pbrt-v2's low end, in 2 of 2")
+        a["gather"] = (6.0, 5.5, 7.0)  # control: an interval wholly above 5x is ranked above it
+        assert "contains 5x, Christensen's low end, in 1 of 2 (undetermined against it) and lies above it in 1" \
+            in findings.gather_phase_intervals(rec["grids"])
 
 
 def test_within_margin_text():
@@ -1019,3 +1050,25 @@ def test_max_bias_term():
     assert findings.max_bias_term((0.986, 1.03)) == max(findings.max_bias_term((0.986, 0.986)),
                                                         findings.max_bias_term((1.03, 1.03)))
     assert findings.max_bias_term((1.0, 1.0)) == 0.0
+
+
+def test_noise_bound_text():
+    """The scaling bullet's phase differences are read against the photon
+    pass's, identical code in both methods: within it they are not told from
+    noise; control: a phase beyond it is named, with its difference."""
+    ph = {"trace": -0.6, "build": 0.3, "precompute": 11.5, "eye": -0.33}
+    assert findings.noise_bound_text(ph) == "so the other phases' differences of at most 0.33 s are not told from noise"
+    ph["eye"] = -2.0
+    assert findings.noise_bound_text(ph) == "and the eye pass by -2 s, more than that"
+
+
+def test_beyond_unquoted_cases_said_once():
+    """Cases whose speed-ups sit at a target too few resamples reach are
+    named in one bullet, not one bullet each; control: a single such case
+    is said in the singular."""
+    rec = {"cases": [{"case": "a-8x6", "status": "undefined"}, {"case": "b-8x6", "status": "undefined"}],
+           "quoted": 0, "met": 0, "thin": 0}
+    lines = findings.md_beyond(rec)[1]
+    assert len(lines) == 1 and lines[0].startswith("- a-8x6 and b-8x6: their speed-ups are taken at a target")
+    rec["cases"] = rec["cases"][:1]
+    assert findings.md_beyond(rec)[1][0].startswith("- a-8x6: its speed-ups")

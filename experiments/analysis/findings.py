@@ -745,7 +745,8 @@ def record_references(d):
         agree = regions[regions["cls"].isin(["all", "pov_off"]) & regions["diffuse"]]
         scenes.append({"scene": scene, "size": size, "regions": len(regions), "by": by,
                        "agree_pm": span(agree["pm_ratio"]), "agree_pov": span(agree["pov_ratio"]),
-                       "agree_n": len(agree), "diffuse_n": int(regions["diffuse"].sum())})
+                       "agree_n": len(agree), "diffuse_n": int(regions["diffuse"].sum()),
+                       "agree_ci": float(agree["pm_ci"].astype(float).max()) if len(agree) else math.nan})
     path = os.path.abspath(d["agreement"])
     return {"settings": settings, "scenes": scenes, "rows": [row_dict(r) for _, r in a.iterrows()],
             "path": os.path.relpath(path, REPO) if path.startswith(REPO + os.sep) else d["agreement"]}
@@ -865,7 +866,8 @@ def record_cost(d):
                    "max": max(s["share"] for s in sh), "largest": max(sh, key=lambda s: s["excess"]),
                    "rows": sorted(sh, key=lambda s: (s["photons"], s["nn"]))}
                   for est, sh in shares.items()]
-    # the largest excess of the primary estimate where it ranks worse, with its bias share
+    # the largest excess of the primary estimate where it ranks worse, with its bias share and
+    # the other "higher" cells whose intervals overlap it (then no cell is ranked largest)
     worst = None
     x = sfx(PRIMARY_ESTIMATE)
     hi = p[p[f"relmse_diff_verdict{x}"] == "higher"] if f"relmse_diff_verdict{x}" in p.columns else p.iloc[:0]
@@ -884,7 +886,10 @@ def record_cost(d):
                     share_lo, share_hi = lo, up
         worst = {"photons": r["photons"], "nn": r["nn"], "mean": r[f"relmse_diff_mean{x}"],
                  "lo": r[f"relmse_diff_lo{x}"], "hi": r[f"relmse_diff_hi{x}"], "share": share,
-                 "share_lo": share_lo, "share_hi": share_hi}
+                 "share_lo": share_lo, "share_hi": share_hi,
+                 "overlaps": [(o["photons"], o["nn"]) for _, o in hi.iterrows()
+                              if (o["photons"], o["nn"]) != (r["photons"], r["nn"])
+                              and o[f"relmse_diff_hi{x}"] >= r[f"relmse_diff_lo{x}"]]}
     # the difference from the conventional image of the same seed: n against P_e
     conv = p[["photons", "nn", "relmse_conv_mean", "relmse_conv_ci95"]]
     phs = sorted(conv["photons"].unique())
@@ -906,8 +911,9 @@ def record_cost(d):
 
 def record_bias(d):
     """The estimator's bias in the analytic scene: the paper estimate at
-    n = 10 (else the smallest n) against the law n/(n-1), and the corrected
-    intervals' coverage of 1."""
+    n = 10 (else the smallest n) against the law n/(n-1), the precomputed
+    method's paper estimate there beside n/(n-2) (None when the file has
+    none), and the corrected intervals' coverage of 1."""
     b = load(d["bias"], ["n", "law_n_over_n_minus_1", "conventional_paper_mean", "conventional_paper_ci95",
                          "conventional_corrected_mean", "conventional_corrected_ci95", "precomputed_corrected_mean",
                          "precomputed_corrected_ci95", "conventional_paper_seeds"], "make estimator-bias")
@@ -922,9 +928,14 @@ def record_bias(d):
     def at(s):
         r = s.iloc[0]
         lo, hi, eq = on_law(r)
+        pre = None
+        if {"precomputed_paper_mean", "precomputed_paper_ci95", "law_n_over_n_minus_2"} <= set(r.index) \
+                and np.isfinite(r["precomputed_paper_mean"]):
+            pre = {"mean": r["precomputed_paper_mean"], "ci95": r["precomputed_paper_ci95"],
+                   "law": r["law_n_over_n_minus_2"]}
         return {"n": r["n"], "mean": r["conventional_paper_mean"], "ci95": r["conventional_paper_ci95"],
                 "seeds": r["conventional_paper_seeds"], "law": r["law_n_over_n_minus_1"],
-                "law_lo": lo, "law_hi": hi, "on_law": eq}
+                "law_lo": lo, "law_hi": hi, "on_law": eq, "precomputed": pre}
     k_in, k_all, vals = corrected_coverage(b)
     eq = equivalence_to_one(b, BIAS_MARGIN)
     # the n where the law can be told from no bias at all: its margin and
@@ -1125,7 +1136,24 @@ def record_rules(d):
     from rep-study-rules.csv."""
     r = load(d["rep"], ["rule", "label", "fitted", "chi2", "dof", "p_value", "p_holm", "verdict"], "make rep-study")
     rows = [row_dict(x) for _, x in r.iterrows()]
-    return {"rows": rows, "rejected": [x["label"] for x in rows if x["verdict"] == "incompatible"]}
+    from experiments.analysis import repstudy
+    sens = [{"factor": f, "rejected": [x["label"] for _, x in r.iterrows()
+                                       if x[repstudy.sensitivity_column(f)] == "incompatible"]}
+            for f in repstudy.SENSITIVITY if repstudy.sensitivity_column(f) in r.columns]
+    return {"rows": rows, "rejected": [x["label"] for x in rows if x["verdict"] == "incompatible"],
+            "sensitivity": sens}
+
+
+def sensitivity_text(rec):
+    """'; with the paper's noise taken as half that, they reject 4 (a, b, c
+    and d); at twice it, none' from REC's sensitivity list ('' when the
+    rules file has no such columns)."""
+    said = []
+    for a in rec.get("sensitivity", []):
+        f = {0.5: "half that", 2.0: "twice that"}.get(a["factor"], f"{fmt(a['factor'])} times that")
+        bad = a["rejected"]
+        said.append(f"at {f} noise {len(bad)} ({count_list(bad)})" if bad else f"at {f} noise none")
+    return ("; rejected " + count_list(said)) if said else ""
 
 
 def record_metric(d):
@@ -1284,10 +1312,17 @@ def headline_text(h):
         f"resamples reach on both fronts, the speed-up is {ci(h['speedup'], h['lo'], h['hi'])}x"
 
 
+# where an equal-error curve starts, said once before the lines that give it
+CURVE_START = ("A curve starts at the tightest error both fronts reach (the larger of the two fronts' smallest "
+               f"errors); a speed-up is quoted only at a target that at least {100 * ee.DEFINED_MIN:.0f}% of the "
+               "bootstrap resamples reach on both fronts.")
+
+
 def equal_error_lines(recs):
     """One line per estimate of an equal_error_record list: where the curve
-    starts, the speed-up at the headline target (equal_error.headline) and
-    the range of the curve where it is defined."""
+    starts (CURVE_START says what that is), the speed-up at the headline
+    target (equal_error.headline) and the range of the curve where it is
+    defined."""
     lines = []
     for r in recs:
         est, t, span = r["estimate"], r["tightest"], r["span"]
@@ -1295,10 +1330,9 @@ def equal_error_lines(recs):
             lines.append(f"- {est} estimate: the two fronts reach no common {metrics.PRIMARY}: no speed-up at equal "
                          "error is defined.")
             continue
-        s = f"- {est} estimate: the curve starts at {metrics.PRIMARY} {fmt(t['target'])}, the tightest both fronts " \
-            "reach (the larger of the two fronts' smallest errors" \
-            + ("; fewer than 95% of the bootstrap resamples reach it on both fronts, so no speed-up is quoted there"
-               if t["defined_fraction"] < ee.DEFINED_MIN else "") + f"); {headline_text(r['headline'])}"
+        s = f"- {est} estimate: the curve starts at {metrics.PRIMARY} {fmt(t['target'])}" \
+            + (" (too few resamples reach it for a speed-up there)" if t["defined_fraction"] < ee.DEFINED_MIN
+               else "") + f"; {headline_text(r['headline'])}"
         s += f". Over the {r['curve_targets']} targets of the curve ({fmt(r['curve_min'])} to " \
              f"{fmt(r['curve_max'])}), {trend_text(r)}"
         if span is not None:
@@ -1309,7 +1343,7 @@ def equal_error_lines(recs):
 
 def md_equal_error(rec):
     """Finding 2: equal error."""
-    return "The speed-up at equal error", equal_error_lines(rec["estimates"])
+    return "The speed-up at equal error", [CURVE_START, ""] + equal_error_lines(rec["estimates"])
 
 
 def md_cost(rec):
@@ -1370,7 +1404,19 @@ def md_bias(rec):
     if wide:
         lines.append("- Not shown equivalent (the interval reaches beyond the margin): " + "; ".join(
             f"{e['method']} n = {e['n']}: {fmt(e['mean'], 5)} ± {fmt(e['half'], 2)}" for e in wide) + ".")
+    if r is not None and r["precomputed"] is not None:
+        lines.append(f"- {precomputed_bias_text(r)}.")
     return "The paper's estimator is biased by a law", lines
+
+
+def precomputed_bias_text(at):
+    """'The precomputed method's paper estimate at n = 10 is 1.1696 +- 0.0037:
+    ... n/(n-2) (1.25) ...' of a bias record's quoted row AT."""
+    p = at["precomputed"]
+    return (f"The precomputed method's paper estimate follows another law: {fmt(p['mean'], 5)} ± {fmt(p['ci95'], 2)} "
+            f"at n = {int(at['n'])}. At a representative its n nearest photons include itself, so the estimate "
+            f"there follows n/(n-2) ({fmt(p['law'], 4)}); the eye pass's nearest-representative lookup weights "
+            "representatives by the area they serve, which pulls the image below that")
 
 
 def md_caustic(rec):
@@ -1416,7 +1462,7 @@ def md_resolution(rec):
     """Finding 7: the speed-up at equal error per output size."""
     if not rec["sizes"]:
         raise Missing(f"no `{rec['dir']}/equal-error-WxH.csv` (`make resolution`)")
-    lines = []
+    lines = [CURVE_START, ""]
     for s in rec["sizes"]:
         lines += [f"- {s['size']}:"] + ["  " + x for x in equal_error_lines(s["estimates"])]
     lines.append("- Each size is judged against its own reference (`resolution/resolution.md` gives each one's "
@@ -1536,7 +1582,7 @@ def readme_figure3(rec):
         raise Missing("`table1.csv` has none of Figure 3's cells (`make reproduce-table`)")
     return (f"- **The paper's Figure 3 claim, against the paired {primary_name()}** ({PRIMARY_ESTIMATE} estimate; "
             f"differ = ranked by the Holm-corrected test, its interval not inside a "
-            f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}% margin; alike = the interval inside that margin): " + "; ".join(parts) + " (`results/FINDINGS.md`).")
+            f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}% margin; alike = the interval inside that margin): " + "; ".join(parts) + " (`results/table1/table1.csv`).")
 
 
 def md_judges(rec):
@@ -1550,7 +1596,8 @@ def md_judges(rec):
     lines.append("")
     lines.append("pbrt-v3 judges no study: it checks the other two (finding A). The converged references beyond/ uses, with their own error in "
                  f"{primary_name()} (as beyond's runs files carry it from the JSON reference.py writes beside "
-                 "each, else that JSON, else a study's Markdown that quotes it):")
+                 "each, else that JSON, else a study's Markdown that quotes it), and each as a share of the tightest "
+                 "target on its equal-error curves (the largest shares: the targets finding B counts are no tighter):")
     lines.append("")
     if not rec["beyond"]:
         lines.append("- beyond/ names no reference (`make beyond`).")
@@ -1562,7 +1609,7 @@ def md_judges(rec):
                          "are not reported.")
             continue
         t = r["tightest"]
-        share = (f"; the tightest target it judges there is {fmt(t)}: noise {pct(100 * r['noise'] / t)}%, bias "
+        share = (f"; tightest target {fmt(t)}: noise {pct(100 * r['noise'] / t)}%, bias "
                  f"{pct(100 * r['bias'] / t)}% of it" if t else "")
         lines.append(f"- {count_list(r['cases'])}: noise {fmt(r['noise'])}, kernel bias {fmt(r['bias'])} "
                      f"(`{r['source']}`){share}.")
@@ -1622,9 +1669,12 @@ def md_references(rec):
     pov_off = [x for x in sc if x["by"].get("pov_off")]
     lines.append("Where each is trusted, and why:")
     lines.append("")
+    widest = max((x["agree_ci"] for x in sc if isnum(x["agree_ci"])), default=math.nan)
     lines.append(f"- **pbrt-v3 on directly seen diffuse surfaces**: it is unbiased there, and the converged photonmap "
-                 f"agrees with it (within photonmap's interval, or 0.5%) in {agree_n} of {diffuse_n} diffuse regions, "
-                 f"at {span_text(pm_all)} of pbrt (the widest intervals are those of the smallest regions).")
+                 f"is consistent with it (pbrt's value inside photonmap's 95% interval, or within 0.5% of it) in "
+                 f"{agree_n} of {diffuse_n} diffuse regions, at {span_text(pm_all)} of pbrt. This is a consistency "
+                 f"check, not an equivalence with a fixed margin: the intervals' half-widths reach "
+                 f"{pct(100 * widest)}% (the widest are those of the smallest regions).")
     if spec:
         lines.append(f"- **The converged photonmap on mirror and glass surfaces** ({spec_n} regions in "
                      f"{count_list([x['scene'] for x, _ in spec])}): what is seen there includes light that reached a "
@@ -1702,8 +1752,8 @@ def md_gather(rec):
     gp = span([x["gather"][0] for x in gs])
     bd = span([x["bound"] for x in gs])
     over = [f"{x['scene']} at {x['size']}" for x in gs if x["speedup"] and isnum(x["bound"]) and x["speedup"][1] > x["bound"]]
-    lines.append(f"- The gather phase alone runs {span_text(gp, '{:.2f}')}x faster (median over each grid's pairs), "
-                 f"under {published_gather_text()} (quoted below) at its point estimates: "
+    lines.append(f"- The gather phase alone runs {span_text(gp, '{:.2f}')}x faster (median over each grid's pairs); "
+                 f"against {published_gather_text()} (quoted below), "
                  f"{gather_phase_intervals(gs)}. The work counters bound the "
                  f"point estimates: with every lookup at y free, a render would run at most {span_text(bd, '{:.2f}')}x faster than "
                  "the conventional one of the same setting (the bound column: the ray casting, shading and caustic "
@@ -1726,19 +1776,26 @@ def published_gather_text():
 
 
 def gather_phase_intervals(gs):
-    """'its 95% interval lies above 1 in K of G grids (...), reaches 5x, the
-    low end of Christensen's 5-7x, in M of G, and lies below 12.7x,
-    pbrt-v2's low end, in P of G' of the grids GS' gather-phase speed-ups
-    (value, lo, hi), against gather.PUBLISHED_GATHER."""
+    """'its 95% interval lies above 1 in K of G grids (...); it contains 5x,
+    Christensen's low end, in M of G (undetermined against it) and lies
+    below 12.7x, pbrt-v2's low end, in P of G' of the grids GS' gather-phase
+    speed-ups (value, lo, hi), against gather.PUBLISHED_GATHER: an interval
+    is ranked against a published low end only when it excludes it."""
     from experiments.analysis import gather as study
     n = len(gs)
     above = sum(1 for x in gs if isnum(x["gather"][1]) and x["gather"][1] > 1)
     parts = [f"its 95% interval lies above 1 in {above} of {n} grids"
              + (" (the others contain 1: undetermined)" if above < n else "")]
-    for who, lo, hi in study.PUBLISHED_GATHER:
-        reach = sum(1 for x in gs if isnum(x["gather"][2]) and x["gather"][2] >= lo)
-        parts.append(f"reaches {fmt(lo)}x, {who} low end, in {reach} of {n}" if reach else
-                     f"lies below {fmt(lo)}x, {who} low end, in {n} of {n}")
+    for who, lo, _ in study.PUBLISHED_GATHER:
+        ok = [x["gather"] for x in gs if isnum(x["gather"][1]) and isnum(x["gather"][2])]
+        counts = [("lies below", sum(1 for g in ok if g[2] < lo), ""),
+                  ("contains", sum(1 for g in ok if g[1] <= lo <= g[2]), " (undetermined against it)"),
+                  ("lies above", sum(1 for g in ok if g[1] > lo), "")]
+        said = [(verb, k, tail) for verb, k, tail in counts if k]
+        if said:
+            (verb, k, tail), rest = said[0], said[1:]
+            parts.append(count_list([f"{verb} {fmt(lo)}x, {who} low end, in {k} of {n}{tail}"]
+                                    + [f"{v} it in {j}{t}" for v, j, t in rest]))
     return count_list(parts)
 
 
@@ -1751,7 +1808,7 @@ def readme_gather(rec):
     return (f"- **Final gathering** (Christensen's setting, `make gather`): the precomputed method's equal-error "
             f"speed-up is {span_text(sp, '{:.2f}')}x over the grids' counted targets, its interval above 1 at every "
             f"one of them in {len(every)} of {len(gs)} grids; the gather phase alone runs {span_text(gp, '{:.2f}')}x "
-            f"faster at its point estimates, under {published_gather_text()}: {gather_phase_intervals(gs)} "
+            f"faster at its point estimates; against {published_gather_text()}, {gather_phase_intervals(gs)} "
             "(`results/gather/gather.md`).")
 
 
@@ -1763,8 +1820,9 @@ def md_baseline(rec):
         f"{rec['off']} of {rec['cells']} cells"
         + (": there the machine drifted within a pair, and a ratio change there is not attributed to the code."
            if rec["off"] else "."),
-        "- The baseline's instruction counts and timings are in no results file and are not "
-        "repeated; `bench/bench.md` (`make bench`) holds what the benchmark measures."]
+        "- The baseline every time ratio divides by is the conventional method on today's kd-tree. The kd-tree "
+        "before the kNN work is compared only by its instructions per query (`bench/bench.md`, `make bench`, "
+        "column \"before\"); its timings are not repeated."]
 
 
 def md_scale(rec):
@@ -1807,6 +1865,12 @@ def md_beyond(rec):
     lines = []
     f3 = lambda x: report.fmt_fixed(x, 3)  # noqa: E731 (an end at 1.001 must not print as 1)
     margin = stats.EQUIVALENCE_MARGIN
+    undefined = [c["case"] for c in rec["cases"] if c["status"] == "undefined"]
+    if undefined:
+        lines.append(f"- {count_list(undefined)}: " + ("its" if len(undefined) == 1 else "their")
+                     + f" speed-ups are taken at a target that fewer than {100 * ee.DEFINED_MIN:.0f}% of the "
+                     "bootstrap resamples reach on both fronts: not quoted (`make beyond` again quotes each at the "
+                     "tightest target that enough resamples reach).")
     for c in rec["cases"]:
         case = c["case"]
         if c["status"] == "no best":
@@ -1817,9 +1881,6 @@ def md_beyond(rec):
             lines.append(few_seeds(case, c["seeds"], "make beyond", rec.get("coverage", {}).get(c["seeds"])))
             continue
         if c["status"] == "undefined":
-            lines.append(f"- {case}: its speed-ups are taken at a target that fewer than {100 * ee.DEFINED_MIN:.0f}% "
-                         "of the bootstrap resamples reach on both fronts: not quoted (`make beyond` again quotes "
-                         "each at the tightest target that enough resamples reach).")
             continue
         p, r = c["paper"], c["best"]
         if c["fragile"]:
@@ -1991,14 +2052,19 @@ def readme_table(rec):
     first = rec["over_n"][phs[0]]
     a, b = first["first"], first["last"]
     per = [f"{k} of {m} cells at P_e = {k_of(ph)}" for ph, (k, m) in rec["inside"].items()]
-    shape = "reproduces" if rec["falls"] == len(phs) else f"holds at {rec['falls']} of {len(phs)} photon counts"
-    level = "its level too" if rec["inside_all"] else ("its level in part" if rec["inside_any"] else "its level does not")
+    paper_falls = sum(1 for ph in phs if rec["over_n"][ph]["last"]["paper"] < rec["over_n"][ph]["first"]["paper"])
+    where = "every P_e" if rec["falls"] == len(phs) else f"{rec['falls']} of {len(phs)} photon counts"
+    shape = (f"falls over n at {where}"
+             + (", as the paper's does" if paper_falls == len(phs) else f" (the paper's at {paper_falls})"))
+    level = ("its level reproduces too" if rec["inside_all"] else
+             "its level reproduces in part" if rec["inside_any"] else "its level does not reproduce")
     verb = "falls" if first["rank"] == "lower" else "goes"
     if rec["reversed"]:
         rv = rec["reversed"]
         ns = count_list([f"n = {int(r['nn'])}" for r in rv])
-        shape += f" over n, except at P_e = {', '.join(sorted({k_of(r['photons']) for r in rv}))} with {ns}"
-    return (f"- **The shape of Table 1 {shape}; {level}.** The paired time ratio precomputed / conventional (the "
+        level += (f", and at P_e = {', '.join(sorted({k_of(r['photons']) for r in rv}))} with {ns}, where the "
+                  "paper's method was slower than its baseline, ours is faster")
+    return (f"- **Table 1: the time ratio {shape}; {level}.** The paired time ratio precomputed / conventional (the "
             f"renderer's own timer, {pairs_text(rec['pairs'])}, 95% t interval) at P_e = {k_of(phs[0])} {verb} from "
             f"{pct_ci(a['ratio'], a['lo'], a['hi'])} at "
             f"n = {int(a['nn'])} to {pct_ci(b['ratio'], b['lo'], b['hi'])} "
@@ -2065,7 +2131,8 @@ def readme_precompute(rec):
             f"of its time, {fmt(1e6 * rec['paper_per_rep_here'])} µs per representative on our machine (its times "
             f"divided by the ratio of the two conventional times, {fmt(rec['machine'])}x). The model assumes the "
             "paper's photon pass, build and eye pass stand to its conventional time as ours do; the paper's times "
-            "are single runs without an interval (`results/table1/table1.md`, `results/table1/runs.csv`).")
+            "are single runs without an interval (`results/table1/runs.csv` and `experiments/paper-table1.csv`; "
+            "the model is finding T of `results/FINDINGS.md`).")
 
 
 VS_ONE = {"higher": "faster", "lower": "slower"}
@@ -2135,8 +2202,13 @@ def readme_cost(rec):
             share = f", {pct(100 * w['share'])}% [{pct(100 * w['share_lo'])}, {pct(100 * w['share_hi'])}] of it bias"
         elif w["share"] is not None and w["share"] < 0:
             share = ", with a negative bias share (the split into bias and variance is not defined there)"
-        worst = (f"; the largest excess is at {cell(w['photons'], w['nn'])}: "
-                 f"{ci(w['mean'], w['lo'], w['hi'])}{share}")
+        if w["overlaps"]:
+            worst = (f"; the largest point estimate of the excess is at {cell(w['photons'], w['nn'])}: "
+                     f"{ci(w['mean'], w['lo'], w['hi'])}{share}, its interval overlapping those of "
+                     f"{count_list([cell(*c) for c in w['overlaps']])} (no cell is ranked largest)")
+        else:
+            worst = (f"; the largest excess is at {cell(w['photons'], w['nn'])}: "
+                     f"{ci(w['mean'], w['lo'], w['hi'])}{share}")
     return (f"- **What the speed costs**: per seed, paired ({pairs_text(rec['pairs'])} per cell), Holm over the "
             f"{rec['cells']} cells, the precomputed method's {primary_name()} ({PRIMARY_ESTIMATE} estimate) is "
             + "; ".join(parts) + worst + verdict_changes_text(rec["changed"], lambda v: words.get(v, v), rec["cells"])
@@ -2186,19 +2258,18 @@ def readme_resolution(rec):
     try:
         o = estimate_of(sizes[0]["estimates"], OTHER_ESTIMATE)
         if regions_head(o["regions"]) != regions_head(ra["regions"]):
-            beside = f" (the {OTHER_ESTIMATE} estimate: {regions_text(o['regions'])})"
+            beside = f". The {OTHER_ESTIMATE} estimate differs there: {regions_text(o['regions'])}"
     except Missing:
         pass
     counted = sum(x["count"] for x in ra["regions"])
     rest = ra["curve_targets"] - counted
-    rest = (f"; the curve's other {rest} targets, of {ra['curve_targets']}, are ones that fewer than "
-            f"{100 * ee.DEFINED_MIN:.0f}% of the resamples reach"
+    rest = (f"; the curve's other {rest} targets, of {ra['curve_targets']}, are reached by too few resamples"
             if rest > 0 else "")
-    return (f"- **{regions_head(ra['regions'])}**: at {s0}, {PRIMARY_ESTIMATE} estimate, where at least "
-            f"{100 * ee.DEFINED_MIN:.0f}% of the resamples reach both fronts, {regions_text(ra['regions'])}{rest}{beside}; "
-            f"at {s1}, at the tightest such target ({fmt(b['target'])}), the speed-up is "
+    return (f"- **{regions_head(ra['regions'])}**: at {s0} ({PRIMARY_ESTIMATE} estimate, at the targets that at least "
+            f"{100 * ee.DEFINED_MIN:.0f}% of the resamples reach on both fronts), {regions_text(ra['regions'])}{rest}"
+            f"{beside}. At {s1}, at the tightest such target ({fmt(b['target'])}), the speed-up is "
             f"{ci(b['speedup'], b['lo'], b['hi'])}x, {vs_one_word(rb['headline_vs_one'])} "
-            "(`results/resolution/resolution.md`).")
+            f"(`results/resolution/equal-error-{s0}.csv` and `equal-error-{s1}.csv`).")
 
 
 def bias_equivalence_text(rec):
@@ -2214,8 +2285,9 @@ def readme_bias(rec):
     at = rec["quoted"]
     return (f"- **The paper's estimator is biased{' by a law' if at['on_law'] else ''}**: "
             f"{fmt(at['mean'], 5)} ± {fmt(at['ci95'], 2)} at n = {int(at['n'])} "
-            f"in the analytic scene, where n/(n-1) gives {fmt(at['law'], 5)}{law_text(rec)}; with `--bias-correction` "
-            f"{bias_equivalence_text(rec)} (`results/estimator-bias/estimator-bias.md`).")
+            f"in the analytic scene (conventional method), where n/(n-1) gives {fmt(at['law'], 5)}{law_text(rec)}; "
+            f"with `--bias-correction` {bias_equivalence_text(rec)} (`results/estimator-bias/estimator-bias.md`)."
+            + (f" {precomputed_bias_text(at)}." if at["precomputed"] else ""))
 
 
 def law_text(rec):
@@ -2237,8 +2309,8 @@ def readme_rules(rec):
             f"of the {n} is rejected after Holm" if len(bad) == 0 else
             f"**The paper's times reject {len(bad)} of the {n} representative rules** after Holm "
             f"({count_list(bad)})")
-    return (f"- {head}, with the paper's times taken as one measurement each, as noisy as our own single runs "
-            "(`results/rep-study/rep-study.md`, which also gives the verdicts at half and twice that noise).")
+    return (f"- {head}, with the paper's times taken as one measurement each, as noisy as our own single runs"
+            f"{sensitivity_text(rec)} (`results/rep-study/rep-study-rules.csv`).")
 
 
 def readme_beyond(rec):
@@ -2304,6 +2376,20 @@ def peers_body(rec):
             + " (`results/bench/peers.md`).")
 
 
+def noise_bound_text(ph):
+    """'so the other phases' differences of at most X s are not told from
+    noise' of a phase-difference dict PH (precomputed minus conventional, s),
+    with the photon pass (trace), identical code in both methods, as the
+    noise; the phases beyond it are named instead."""
+    rest = {k: v for k, v in ph.items() if k not in ("precompute", "trace")}
+    big = [k for k, v in rest.items() if abs(v) > abs(ph["trace"])]
+    if not big:
+        return (f"so the other phases' differences of at most {fmt(max(abs(v) for v in rest.values()))} s are not "
+                "told from noise" if rest else "")
+    names = {"eye": "eye pass", "build": "kd-tree build"}
+    return "and the " + count_list([f"{names.get(k, k)} by {fmt(rest[k])} s" for k in big]) + ", more than that"
+
+
 def readme_scale(rec):
     r = rec["conventional"]
     if r is None:
@@ -2319,8 +2405,10 @@ def readme_scale(rec):
         ph = b["phases"]
         methods = (f"; in the scaling run at {int(b['photons_emitted']) // 1000000}M the precomputed method took "
                    f"{fmt(b['precomputed'])} s against the conventional {fmt(b['conventional'])} s ({timed_text(b['repeats'])}): "
-                   f"the difference is its precompute, {fmt(b['precompute_s'])} s, of which its eye pass wins back "
-                   f"{fmt(-ph['eye'])} s" if b["largest_phase"] == "precompute" else
+                   f"of the difference, {fmt(b['precomputed'] - b['conventional'])} s, its precompute is "
+                   f"{fmt(b['precompute_s'])} s; the photon pass, the same code in both, differs by "
+                   f"{fmt(ph['trace'])} s, " + noise_bound_text(ph)
+                   if b["largest_phase"] == "precompute" and "trace" in ph else
                    f"; in the scaling run at {int(b['photons_emitted']) // 1000000}M the precomputed method took "
                    f"{fmt(b['precomputed'])} s against the conventional {fmt(b['conventional'])} s ({timed_text(b['repeats'])}), "
                    f"the largest phase difference in its {b['largest_phase']} ({fmt(ph[b['largest_phase']])} s)")
@@ -2350,9 +2438,10 @@ def brief_table(rec):
 
 
 def brief_precompute(rec):
-    return (f"- **Why.** At P_e = {k_of(rec['top'])} our precompute is {pct(100 * rec['ours_share'][0])}-"
-            f"{pct(100 * rec['ours_share'][1])}% of the precomputed method's time; modelled from the paper's times, "
-            f"its precompute was {pct(100 * rec['paper_share'][0])}-{pct(100 * rec['paper_share'][1])}% of its time.")
+    return (f"- **A likely reason.** At P_e = {k_of(rec['top'])} our precompute is {pct(100 * rec['ours_share'][0])}-"
+            f"{pct(100 * rec['ours_share'][1])}% of the precomputed method's time; a model from the paper's single-run "
+            f"times, without intervals and not consistent across its cells, puts the paper's at "
+            f"{pct(100 * rec['paper_share'][0])}-{pct(100 * rec['paper_share'][1])}% of its time.")
 
 
 def brief_figure3(rec):
@@ -2360,9 +2449,11 @@ def brief_figure3(rec):
     if not rows:
         raise Missing("`table1.csv` has none of Figure 3's cells (`make reproduce-table`)")
     agree = sum(r[PRIMARY_ESTIMATE]["word"] == r["said"] for r in rows)
+    m = fmt(100 * stats.EQUIVALENCE_MARGIN)
     return (f"- **Figure 3.** The paired errors agree with the paper's reading of its images at {agree} of "
-            f"{len(rows)} cells: " + "; ".join(f"{cell(r['photons'], r['nn'])} {r[PRIMARY_ESTIMATE]['word']} "
-                                               f"(the paper: {r['said']})" for r in rows) + ".")
+            f"{len(rows)} cells: " + "; ".join(f"{cell(r['photons'], r['nn'])} {r[PRIMARY_ESTIMATE]['word']}"
+                                               + (f" within {m}%" if r[PRIMARY_ESTIMATE]["word"] == "alike" else "")
+                                               + f" (the paper: {r['said']})" for r in rows) + ".")
 
 
 def brief_equal_error(rec):
@@ -2408,19 +2499,23 @@ def brief_resolution(rec):
 
 def brief_bias(rec):
     at = rec["quoted"]
+    p = at["precomputed"]
     return (f"- **The paper's estimator is biased{' by n/(n-1)' if at['on_law'] else ''}.** In the analytic scene "
-            f"it gives {report.fmt_fixed(at['mean'], 3)} at n = {int(at['n'])} where the law gives "
-            f"{report.fmt_fixed(at['law'], 3)}; "
-            f"corrected, it is within {fmt(100 * rec['margin'])}% of the exact value in {rec['equivalent']} of "
-            f"{rec['intervals']} cases.")
+            f"the conventional method gives {report.fmt_fixed(at['mean'], 3)} at n = {int(at['n'])} where the law "
+            f"gives {report.fmt_fixed(at['law'], 3)}"
+            + (f", and the precomputed method {report.fmt_fixed(p['mean'], 3)} (its representatives follow n/(n-2), "
+               f"{report.fmt_fixed(p['law'], 3)})" if p else "") + "; "
+            f"corrected, both methods are within {fmt(100 * rec['margin'])}% of the exact value in "
+            f"{rec['equivalent']} of {rec['intervals']} cases.")
 
 
 def brief_rules(rec):
     bad, n = rec["rejected"], len(rec["rows"])
     return ("- **Representatives.** " + (f"The paper's times reject none of the {n} rules we tried for which "
-                                         "photons are representatives." if not bad else
+                                         "photons are representatives" if not bad else
                                          f"The paper's times reject {len(bad)} of the {n} rules we tried "
-                                         f"({count_list(bad)})."))
+                                         f"({count_list(bad)})")
+            + ", with their noise taken as that of our single runs" + sensitivity_text(rec) + ".")
 
 
 def brief_beyond(rec):
