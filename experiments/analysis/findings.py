@@ -1145,9 +1145,10 @@ def record_rules(d):
 
 
 def sensitivity_text(rec):
-    """'; with the paper's noise taken as half that, they reject 4 (a, b, c
-    and d); at twice it, none' from REC's sensitivity list ('' when the
-    rules file has no such columns)."""
+    """'; rejected at half that noise 2 (A and C) and at twice that noise
+    none' from REC's sensitivity list: the rules the paper's times reject
+    with their assumed noise scaled ('' when the rules file has no such
+    columns)."""
     said = []
     for a in rec.get("sensitivity", []):
         f = {0.5: "half that", 2.0: "twice that"}.get(a["factor"], f"{fmt(a['factor'])} times that")
@@ -1786,8 +1787,8 @@ def gather_phase_intervals(gs):
     above = sum(1 for x in gs if isnum(x["gather"][1]) and x["gather"][1] > 1)
     parts = [f"its 95% interval lies above 1 in {above} of {n} grids"
              + (" (the others contain 1: undetermined)" if above < n else "")]
+    ok = [x["gather"] for x in gs if isnum(x["gather"][1]) and isnum(x["gather"][2])]
     for who, lo, _ in study.PUBLISHED_GATHER:
-        ok = [x["gather"] for x in gs if isnum(x["gather"][1]) and isnum(x["gather"][2])]
         counts = [("lies below", sum(1 for g in ok if g[2] < lo), ""),
                   ("contains", sum(1 for g in ok if g[1] <= lo <= g[2]), " (undetermined against it)"),
                   ("lies above", sum(1 for g in ok if g[1] > lo), "")]
