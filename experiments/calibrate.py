@@ -37,6 +37,8 @@ import time
 import numpy as np
 from scipy.optimize import nnls
 
+from experiments.analysis import report
+
 PHASES = ("trace", "build", "precompute", "render")
 # the fitted parts of a render's total: its phases, and the rest of the total
 # (allocating and freeing the photon list and map, the image, threads)
@@ -319,51 +321,55 @@ def render(pm, scene, method, photons, nn, width, height, tmp):
 
 
 def write(out, model, fitted, held, median, largest):
-    os.makedirs(out, exist_ok=True)
-    with open(os.path.join(out, "coefficients.csv"), "w") as f:
-        f.write("phase,counter,seconds_per_unit\n")
-        for phase in PARTS:
-            for name, c in zip(("constant",) + FEATURES[phase], model[phase]):
-                f.write("%s,%s,%.6g\n" % (phase, name, c))
-    with open(os.path.join(out, "renders.csv"), "w") as f:
-        f.write("set,scene,method,photons,nn,width,height,repeats,measured_total,predicted_total,rel_error,"
-                + ",".join("measured_%s,predicted_%s" % (p, p) for p in PHASES) + "\n")
-        for name, rows in (("fit", fitted), ("held_out", held)):
-            for r in rows:
-                p = predict(model, r)
-                f.write("%s,%s,%s,%d,%d,%d,%d,%d,%.6f,%.6f,%.4f,%s\n" % (
-                    name, r["scene"], r["method"], r["photons"], r["nn"], r["width"], r["height"], r["repeats"],
-                    r["time"]["total"], p["total"], (p["total"] - r["time"]["total"]) / r["time"]["total"],
-                    ",".join("%.6f,%.6f" % (r["time"][ph], p[ph]) for ph in PHASES)))
+    """OUT's coefficients.csv, renders.csv, model.json and calibrate.md, each
+    through a temporary name and a rename; calibrate.md names the commit of
+    the analysis (report.commit) beside the renderer's binary."""
+    coef = ["phase,counter,seconds_per_unit"]
+    for phase in PARTS:
+        for name, c in zip(("constant",) + FEATURES[phase], model[phase]):
+            coef.append("%s,%s,%.6g" % (phase, name, c))
+    report.write_atomic(os.path.join(out, "coefficients.csv"), "\n".join(coef) + "\n")
+    rend = ["set,scene,method,photons,nn,width,height,repeats,measured_total,predicted_total,rel_error,"
+            + ",".join("measured_%s,predicted_%s" % (p, p) for p in PHASES)]
+    for name, rows in (("fit", fitted), ("held_out", held)):
+        for r in rows:
+            p = predict(model, r)
+            rend.append("%s,%s,%s,%d,%d,%d,%d,%d,%.6f,%.6f,%.4f,%s" % (
+                name, r["scene"], r["method"], r["photons"], r["nn"], r["width"], r["height"], r["repeats"],
+                r["time"]["total"], p["total"], (p["total"] - r["time"]["total"]) / r["time"]["total"],
+                ",".join("%.6f,%.6f" % (r["time"][ph], p[ph]) for ph in PHASES)))
+    report.write_atomic(os.path.join(out, "renders.csv"), "\n".join(rend) + "\n")
     write_model(os.path.join(out, MODEL_NAME), model, median, largest,
                 {p: part_error(model, held, p) for p in PHASES}, fitted[0]["provenance"], work_per_unit(fitted + held))
     prov = fitted[0]["provenance"]
-    with open(os.path.join(out, "calibrate.md"), "w") as f:
-        f.write("# Cost model of this machine\n\n")
-        f.write("Each phase's time (the minimum over `--repeats auto`, one thread) as a non-negative linear "
-                "function of its work counters (`other`: the total less the phases, on the stored photons and the eye "
-                "rays), fitted on %d renders, validated on %d renders of other "
-                "settings (`renders.csv`). Machine: %s; binary %s (%s), %s `%s`.\n\n" % (
-                    len(fitted), len(held), prov["cpu"], prov["commit"], prov["tree"], prov["compiler"],
-                    prov["flags"]))
-        f.write("**Held-out renders: median relative error of the total %.1f%%, largest %.1f%%** (goal: median "
-                "at most %.0f%%: %s).\n\n" % (100 * median, 100 * largest, 100 * GOAL_MEDIAN,
-                                               "met" if median <= GOAL_MEDIAN else "not met"))
-        loads = [r["provenance"]["loadavg"][0] for r in fitted + held if r["provenance"]["loadavg"][0] is not None]
-        if loads:
-            f.write("The 1-minute load average when the renders started: %.1f to %.1f on %s; the times are minima "
-                    "of repeats, and a machine shared more than its cores moves them nonetheless.\n\n" % (
-                        min(loads), max(loads), prov["cpu"]))
-        f.write("| held-out median relative error | %s |\n|---|%s\n| | %s |\n\n" % (
-            " | ".join(PHASES), "---:|" * len(PHASES),
-            " | ".join("%.1f%%" % (100 * part_error(model, held, p)) for p in PHASES)))
-        f.write("| phase | counter | ns per unit |\n|---|---|---:|\n")
-        for phase in PARTS:
-            for name, c in zip(("constant",) + FEATURES[phase], model[phase]):
-                if c > 0:
-                    f.write("| %s | %s | %.4g |\n" % (phase, name, c * 1e9))
-        f.write("\nCounters with a zero coefficient explain nothing the others do not (`coefficients.csv` "
-                "lists them all).\n")
+    md = ["# Cost model of this machine\n",
+          "Generated by `make calibrate` (experiments/calibrate.py) on %s, commit %s. Each phase's time (the minimum "
+          "over `--repeats auto`, one thread) as a non-negative linear "
+          "function of its work counters (`other`: the total less the phases, on the stored photons and the eye "
+          "rays), fitted on %d renders, validated on %d renders of other "
+          "settings (`renders.csv`). Machine: %s; binary %s (%s), %s `%s`.\n" % (
+              report.today(), report.commit(), len(fitted), len(held), prov["cpu"], prov["commit"], prov["tree"],
+              prov["compiler"], prov["flags"]),
+          "**Held-out renders: median relative error of the total %.1f%%, largest %.1f%%** (goal: median "
+          "at most %.0f%%: %s).\n" % (100 * median, 100 * largest, 100 * GOAL_MEDIAN,
+                                       "met" if median <= GOAL_MEDIAN else "not met")]
+    loads = [r["provenance"]["loadavg"][0] for r in fitted + held if r["provenance"]["loadavg"][0] is not None]
+    if loads:
+        md.append("The 1-minute load average when the renders started: %.1f to %.1f on %s; the times are minima "
+                  "of repeats, and a machine shared more than its cores moves them nonetheless.\n" % (
+                      min(loads), max(loads), prov["cpu"]))
+    md.append("| held-out median relative error | %s |\n|---|%s\n| | %s |\n" % (
+        " | ".join(PHASES), "---:|" * len(PHASES),
+        " | ".join("%.1f%%" % (100 * part_error(model, held, p)) for p in PHASES)))
+    table = ["| phase | counter | ns per unit |", "|---|---|---:|"]
+    for phase in PARTS:
+        for name, c in zip(("constant",) + FEATURES[phase], model[phase]):
+            if c > 0:
+                table.append("| %s | %s | %.4g |" % (phase, name, c * 1e9))
+    md.append("\n".join(table) + "\n")
+    md.append("Counters with a zero coefficient explain nothing the others do not (`coefficients.csv` "
+              "lists them all).\n")
+    report.write_atomic(os.path.join(out, "calibrate.md"), "\n".join(md))
 
 
 def main(argv=None):

@@ -218,9 +218,11 @@ def test_findings_beyond():
     than MIN_SEEDS_QUOTED seeds is named without its intervals (negative
     control), and a table without the seeds column names the target."""
     def row(case, variant, sp, lo, hi, best, above, vs, met, seeds):
+        ratio = {"higher": 1.2, "lower": 0.8}.get(vs, 1.0)
         return {"case": case, "variant": variant, "estimate": "paper", "target": 0.02, "speedup": sp, "lo": lo,
                 "hi": hi, "defined_fraction": 1.0, "fallback_rate": 0.125, "evaluated_share": 0.5, "seeds": seeds, "best": best,
-                "above_one": above, "vs_paper": vs, "goal_met": met}
+                "above_one": above, "vs_paper": vs, "goal_met": met, "image_group": variant, "vs_paper_ratio": ratio,
+                "vs_paper_ratio_lo": ratio - 0.05, "vs_paper_ratio_hi": ratio + 0.05}
     rows = [row("a-64x48", "paper", 0.9, 0.8, 1.0, False, False, "", False, 5),
             row("a-64x48", "lazy", 1.3, 1.2, 1.4, True, True, "higher", True, 5),
             row("b-64x48", "paper", 1.1, 1.05, 1.2, False, True, "", False, 5),
@@ -242,6 +244,7 @@ def test_findings_beyond():
         assert "1.200 [1.004, 1.500]x, its interval above 1.0 only by less than the 2% margin" in text
         assert "holds as worded, by a margin too thin to rely on" in text
         assert "holds in 2 of 3 cases, 1 of them with the interval's lower end within the margin" in text
+        assert "a variant is faster than the paper's rule in 2 of 4 scene and size cases (a-64x48: lazy; c-64x48: lazy)" in text
         pd.DataFrame(rows).drop(columns=["seeds"]).to_csv(path, index=False)
         try:
             md("beyond", {"beyond": path})
@@ -492,8 +495,8 @@ def test_record_scale_stability_repro_rules():
                                                       ("c", "incompatible"))])
         r = findings.record_rules({"rep": ru})
         assert r["sensitivity"] == [{"factor": 0.5, "rejected": ["A", "C"]}, {"factor": 2.0, "rejected": []}]
-        assert findings.sensitivity_text(r) == "; rejected at half that noise 2 (A and C) and at twice that noise none"
-        assert "reject none of the 3 rules" in findings.brief_rules(r) and "half that noise 2 (A and C)" in \
+        assert findings.sensitivity_text(r) == "; at half that noise they reject 2 (A and C), and at twice that noise none"
+        assert "reject none of the 3 rules" in findings.brief_rules(r) and "half that noise they reject 2 (A and C)" in \
             findings.brief_rules(r)
 
 
@@ -1067,8 +1070,41 @@ def test_beyond_unquoted_cases_said_once():
     named in one bullet, not one bullet each; control: a single such case
     is said in the singular."""
     rec = {"cases": [{"case": "a-8x6", "status": "undefined"}, {"case": "b-8x6", "status": "undefined"}],
-           "quoted": 0, "met": 0, "thin": 0}
+           "quoted": 0, "met": 0, "thin": 0, "decided": 0, "no_best": 0}
     lines = findings.md_beyond(rec)[1]
     assert len(lines) == 1 and lines[0].startswith("- a-8x6 and b-8x6: their speed-ups are taken at a target")
     rec["cases"] = rec["cases"][:1]
     assert findings.md_beyond(rec)[1][0].startswith("- a-8x6: its speed-ups")
+
+
+def test_beyond_without_a_best_variant():
+    """Cases without a best variant count in finding B's denominators (the
+    goal holds in 1 of 3, not 1 of 1), each says what its variants do
+    against the paper's rule, with the paper rule's time over theirs; a
+    variant with another's images is said once; control: with every case's
+    variants slower, README's headline says that no variant beats the rule."""
+    def row(case, variant, vs, ratio, best=False, group=None, lo=0.9):
+        return {"case": case, "variant": variant, "estimate": "paper", "target": 0.02, "speedup": 1.1, "lo": lo,
+                "hi": 1.3, "defined_fraction": 1.0, "fallback_rate": 0.0, "evaluated_share": 0.5, "seeds": 5,
+                "best": best, "above_one": lo > 1.0, "vs_paper": vs, "goal_met": best and lo > 1.0,
+                "image_group": group or variant, "vs_paper_ratio": ratio, "vs_paper_ratio_lo": ratio - 0.05,
+                "vs_paper_ratio_hi": ratio + 0.05}
+    rows = [row("a-64x48", "paper", "", float("nan")), row("a-64x48", "lazy", "higher", 1.14, True, lo=1.05),
+            row("b-64x48", "paper", "", float("nan")), row("b-64x48", "gated0.1", "lower", 0.8),
+            row("b-64x48", "gated0.2", "lower", 0.8, group="gated0.1"),
+            row("c-64x48", "paper", "", float("nan")), row("c-64x48", "lazy", "undetermined", 0.97),
+            row("c-64x48", "gated0.1", "lower", 0.7)]
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "beyond.csv")
+        pd.DataFrame(rows).to_csv(path, index=False)
+        text = "\n".join(md("beyond", {"beyond": path})[1])
+        assert "holds in 1 of 3 cases (2 without a best variant)" in text, text
+        assert "- b-64x48: no best variant" in text and "slower: gated0.1 (and 1 with the same images) 0.800" in text
+        assert "gated0.2" not in text
+        assert "not ranked: lazy 0.970 [0.920, 1.020]" in text
+        bullet = readme("beyond", {"beyond": path})
+        assert "a variant beats the paper's rule in 1 of 3 cases" in bullet
+        assert "in 1 every variant is slower (the paper rule's time over theirs 0.800 to 0.800)" in bullet
+        assert "in 1 (c-64x48) none is faster and some are not ranked" in bullet
+        pd.DataFrame([r for r in rows if r["case"] == "b-64x48"]).to_csv(path, index=False)
+        assert "no variant beats the paper's rule" in readme("beyond", {"beyond": path})

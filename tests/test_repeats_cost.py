@@ -105,6 +105,9 @@ def test_outputs_and_no_model(results):
     assert "## The cost model, per unit of work" in md
     assert "Not measured: run make calibrate" in md
     assert "x1.84" in md  # 20.25 / 11
+    # it names the commit that wrote it, as every results file must (make results-check)
+    from experiments import regenerate
+    assert regenerate.COMMIT_RE.search(md), md[:300]
 
 
 def test_model_section(results):

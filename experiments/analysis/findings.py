@@ -1062,9 +1062,10 @@ def record_stability(d):
 def record_beyond(d):
     """Beyond the paper's rule, the primary estimate (PRIMARY_ESTIMATE): per case the paper rule's
     and the best variant's speed-ups and what the goal's tests say, the
-    count of cases that meet it, and for README the best variants quoted."""
+    count of cases that meet it, and each case's variants against the paper's rule (beyond_vs_paper)."""
     b = load(d["beyond"], ["case", "variant", "estimate", "target", "speedup", "lo", "hi", "defined_fraction",
-                           "fallback_rate", "evaluated_share", "seeds", "best", "above_one", "vs_paper", "goal_met"],
+                           "fallback_rate", "evaluated_share", "seeds", "best", "above_one", "vs_paper", "goal_met",
+                           "image_group", "vs_paper_ratio", "vs_paper_ratio_lo", "vs_paper_ratio_hi"],
              "make beyond")
     b = b[b["estimate"] == PRIMARY_ESTIMATE]
     margin = stats.EQUIVALENCE_MARGIN
@@ -1073,7 +1074,7 @@ def record_beyond(d):
         seeds = int(g["seeds"].min())
         paper = g[g["variant"] == "paper"]
         best = g[g["best"].astype(bool)]
-        c = {"case": case, "seeds": seeds, "variants": len(g) - 1}
+        c = {"case": case, "seeds": seeds, "variants": len(g) - 1, "vs": beyond_vs_paper(g)}
         if paper.empty or best.empty:
             c["status"] = "no best"
         elif seeds < MIN_SEEDS_QUOTED:
@@ -1086,17 +1087,67 @@ def record_beyond(d):
                      fragile=bool(r["above_one"]) and float(r["lo"]) < 1.0 + margin, met=bool(r["goal_met"]))
         cases.append(c)
     quoted = [c for c in cases if c["status"] == "quoted"]
-    best = b[b["best"].astype(bool)]
-    q = best[best["defined_fraction"].astype(float) >= ee.DEFINED_MIN]
-    met = q[q["goal_met"].astype(bool)]
-    readme = None
-    if len(q):
-        readme = {"cases": len(q), "met": len(met), "thin": len(met[met["lo"] < 1.0 + margin]),
-                  "seeds": int(q["seeds"].min()), "largest": row_dict(q.loc[q["speedup"].idxmax()]),
-                  "smallest": row_dict(q.loc[q["speedup"].idxmin()])}
     return {"cases": cases, "quoted": len(quoted), "met": sum(c["met"] for c in quoted),
+            "decided": sum(c["status"] in ("quoted", "no best") for c in cases),
+            "no_best": sum(c["status"] == "no best" for c in cases),
             "coverage": few_seed_coverage([c["seeds"] for c in cases]),
-            "thin": sum(c["met"] and c["fragile"] for c in quoted), "best_rows": len(best), "readme": readme}
+            "thin": sum(c["met"] and c["fragile"] for c in quoted)}
+
+
+def beyond_vs_paper(g):
+    """One case's variants against the paper's rule, paired per seed (Holm
+    over the case's variants), from beyond.csv's rows G: {"faster",
+    "slower", "unranked"}, each a list of (variant, others with the same
+    images, ratio, lo, hi), the ratio the paper rule's time over the
+    variant's (above 1: the variant is faster); a variant whose images are
+    bit-identical to another's is reported in that one's row."""
+    out = {"faster": [], "slower": [], "unranked": []}
+    word = {"higher": "faster", "lower": "slower", "undetermined": "unranked"}
+    for _, r in g.iterrows():
+        v = str(r["variant"])
+        if v == "paper" or str(r["image_group"]) != v or str(r["vs_paper"]) not in word:
+            continue
+        same = int((g["image_group"].astype(str) == v).sum()) - 1
+        out[word[str(r["vs_paper"])]].append((v, same, float(r["vs_paper_ratio"]), float(r["vs_paper_ratio_lo"]),
+                                              float(r["vs_paper_ratio_hi"])))
+    return out
+
+
+def beyond_vs_classes(cases):
+    """The cases of record_beyond by their variants against the paper's
+    rule: (faster: some variant faster; slower: every variant slower;
+    neither: none faster, some not ranked), each a list of cases; cases
+    without a paired test are in none."""
+    faster = [c for c in cases if c["vs"]["faster"]]
+    slower = [c for c in cases if not c["vs"]["faster"] and not c["vs"]["unranked"] and c["vs"]["slower"]]
+    neither = [c for c in cases if not c["vs"]["faster"] and c["vs"]["unranked"]]
+    return faster, slower, neither
+
+
+def beyond_vs_text(rec, detail):
+    """What the paired tests against the paper's rule say over the cases of
+    REC: the count of cases where a variant is faster (named), where every
+    variant is slower and where none is faster; with DETAIL, the paper
+    rule's time over each named variant's, with its interval, and the range
+    over the slower cases."""
+    faster, slower, neither = beyond_vs_classes(rec["cases"])
+    n = len(faster) + len(slower) + len(neither)
+    f3 = lambda x: report.fmt_fixed(x, 3)  # noqa: E731
+
+    def named(c, kind):
+        return "; ".join(v + (f" (and {k} setting{'s' if k > 1 else ''} with the same images)" if k else "")
+                         + (f" {ci(r, lo, hi, f3)}" if detail else "") for v, k, r, lo, hi in c["vs"][kind])
+    parts = [f"a variant is faster than the paper's rule in {len(faster)} of {n} scene and size cases"
+             + (" (" + "; ".join(f"{c['case']}: {named(c, 'faster')}" for c in faster) + ")" if faster else "")]
+    if slower:
+        ratios = [r for c in slower for _, _, r, _, _ in c["vs"]["slower"]]
+        parts.append(f"in {len(slower)} every variant is slower"
+                     + (f" (the paper rule's time over theirs {f3(min(ratios))} to {f3(max(ratios))})" if detail
+                        else ""))
+    if neither:
+        parts.append(f"in {len(neither)} ({count_list(c['case'] for c in neither)}) none is faster and some are "
+                     "not ranked")
+    return "; ".join(parts[:-1]) + (", and " if len(parts) > 1 else "") + parts[-1]
 
 
 def record_repro(d):
@@ -1145,16 +1196,17 @@ def record_rules(d):
 
 
 def sensitivity_text(rec):
-    """'; rejected at half that noise 2 (A and C) and at twice that noise
-    none' from REC's sensitivity list: the rules the paper's times reject
-    with their assumed noise scaled ('' when the rules file has no such
-    columns)."""
+    """'; at half that noise they reject 2 (A and C), and at twice that
+    noise none' from REC's sensitivity list: the rules the paper's times
+    reject with their assumed noise scaled ('' when the rules file has no
+    such columns)."""
     said = []
     for a in rec.get("sensitivity", []):
         f = {0.5: "half that", 2.0: "twice that"}.get(a["factor"], f"{fmt(a['factor'])} times that")
         bad = a["rejected"]
-        said.append(f"at {f} noise {len(bad)} ({count_list(bad)})" if bad else f"at {f} noise none")
-    return ("; rejected " + count_list(said)) if said else ""
+        verb = "" if said else "they reject "
+        said.append(f"at {f} noise {verb}" + (f"{len(bad)} ({count_list(bad)})" if bad else "none"))
+    return ("; " + ", and ".join(said)) if said else ""
 
 
 def record_metric(d):
@@ -1834,7 +1886,8 @@ def md_scale(rec):
                      f"photons ({int(r['photons_stored']):,} stored): {fmt(r['total_s'])} s in total (trace "
                      f"{fmt(r['trace_s'])}, build {fmt(r['build_s'])}, precompute {fmt(r['precompute_s'])}, eye pass "
                      f"{fmt(r['eye_s'])} s; {timed_text(scaling_repeats(r), each=False)}, `bench/scaling.csv`), peak memory "
-                     f"{fmt(r['bytes_per_stored'])} bytes per stored photon.")
+                     f"{fmt(r['bytes_per_stored'])} bytes per stored photon (a process of the same render with "
+                     "`--repeats 1`: repeats keep the memory they free for the next).")
     b = rec.get("both")
     if b is not None:
         lines.append(f"- At {int(b['photons_emitted']):,} emitted photons the precomputed method's total minus the "
@@ -1875,8 +1928,13 @@ def md_beyond(rec):
     for c in rec["cases"]:
         case = c["case"]
         if c["status"] == "no best":
+            vs = "; ".join(f"{kind}: " + ", ".join(
+                v + (f" (and {k} with the same images)" if k else "") + f" {ci(r, lo, hi, f3)}"
+                for v, k, r, lo, hi in c["vs"][kind]) for kind in ("faster", "slower", "unranked") if c["vs"][kind])
             lines.append(f"- {case}: no best variant: none is ranked faster than every other by the paired tests "
-                         "(per seed against the paper's rule and each other, Holm).")
+                         "(per seed against the paper's rule and each other, Holm)"
+                         + (f"; against the paper's rule (its time over the variant's): "
+                            + vs.replace("unranked: ", "not ranked: ") if vs else "") + ".")
             continue
         if c["status"] == "few seeds":
             lines.append(few_seeds(case, c["seeds"], "make beyond", rec.get("coverage", {}).get(c["seeds"])))
@@ -1898,12 +1956,15 @@ def md_beyond(rec):
                      f"{pct(100 * r['evaluated_share'])}% of the representatives were evaluated: the goal "
                      + (("holds as worded, by a margin too thin to rely on." if c["fragile"] else "holds.")
                         if c["met"] else "does not hold."))
-    if rec["quoted"]:
-        lines.append(f"- The goal (the best variant's interval above 1.0 and the paired test not ranking it slower "
+    if rec["decided"]:
+        lines.append(f"- Against the paper's rule, paired per seed (Holm over each case's variants): "
+                     + beyond_vs_text(rec, False) + ".")
+        lines.append(f"- The goal (a best variant, its interval above 1.0 and the paired test not ranking it slower "
                      "than the paper's rule) holds in "
-                     f"{rec['met']} of {rec['quoted']} cases"
+                     f"{rec['met']} of {rec['decided']} cases"
                      + (f", {rec['thin']} of them with the interval's lower end within the margin of 1.0"
                         if rec["thin"] else "")
+                     + (f" ({rec['no_best']} without a best variant)" if rec["no_best"] else "")
                      + "; `beyond/beyond.md` says for each case that misses it where the time goes "
                      "and where the error lies.")
     return "Beyond the paper's rule", lines
@@ -2315,22 +2376,26 @@ def readme_rules(rec):
 
 
 def readme_beyond(rec):
-    if rec["best_rows"] == 0:
-        raise Missing("`beyond.csv` has no best variant (`make beyond`)")
-    r = rec["readme"]
-    if r is None:
-        raise Missing(f"`beyond.csv` quotes every best variant at a target that fewer than {100 * ee.DEFINED_MIN:.0f}% "
-                      "of the resamples reach on both fronts (`make beyond` again)")
+    if not rec["decided"]:
+        raise Missing(f"`beyond.csv` quotes no case: each at a target that fewer than {100 * ee.DEFINED_MIN:.0f}% "
+                      "of the resamples reach on both fronts, or with too few seeds (`make beyond` again)")
+    faster, slower, _ = beyond_vs_classes(rec["cases"])
+    n = len(rec["cases"])
+    head = ("a variant beats the paper's rule in every case" if len(faster) == n else
+            "no variant beats the paper's rule" if not faster else
+            f"a variant beats the paper's rule in {len(faster)} of {n} cases")
     f3 = lambda x: report.fmt_fixed(x, 3)  # noqa: E731
-    hi, lo = r["largest"], r["smallest"]
-    return (f"- **Beyond the paper's rule the variants {'hold everywhere' if r['met'] == r['cases'] else 'do not yet hold everywhere'}**: "
-            f"of lazy evaluation, the plane-gated lookup and both together (`make beyond`, {r['seeds']} "
-            f"seeds per case, each against the conventional renders of the same seeds), the best variant's interval "
-            f"lies above 1.0 in {r['met']} of {r['cases']} cases"
-            + (f", {r['thin']} of them with its lower end within the {fmt(100 * stats.EQUIVALENCE_MARGIN)}% margin of 1.0"
-               if r["thin"] else "")
-            + f"; the largest is {hi['case']}'s {ci(hi['speedup'], hi['lo'], hi['hi'], f3)}x, the smallest "
-            f"{lo['case']}'s {ci(lo['speedup'], lo['lo'], lo['hi'], f3)}x (`results/beyond/beyond.md`).")
+    seeds = min(c["seeds"] for c in rec["cases"])
+    met = [c for c in rec["cases"] if c["status"] == "quoted" and c["met"]]
+    goal = (f"; the goal (a best variant whose equal-error interval lies above 1.0) holds in {rec['met']} of "
+            f"{rec['decided']} cases" + (" (" + "; ".join(
+                f"{c['case']}'s {c['best']['variant']} {ci(c['best']['speedup'], c['best']['lo'], c['best']['hi'], f3)}x "
+                f"at equal error, the paper's rule {ci(c['paper']['speedup'], c['paper']['lo'], c['paper']['hi'], f3)}x"
+                for c in met) + ")" if met else ""))
+    return (f"- **Beyond the paper's rule, {head}**: of lazy evaluation, the plane-gated lookup and both together "
+            f"(`make beyond`, {seeds} seeds per case, each render time paired per seed with the paper's rule's, "
+            f"Holm over each case's variants; the ratio is the paper rule's time over the variant's), "
+            + beyond_vs_text(rec, True) + goal + " (`results/beyond/beyond.csv`).")
 
 
 def readme_repro(rec):
@@ -2415,7 +2480,7 @@ def readme_scale(rec):
                    f"the largest phase difference in its {b['largest_phase']} ({fmt(ph[b['largest_phase']])} s)")
     return (f"- **At scale**: {int(r['photons_emitted']) // 1000000}M emitted photons ({int(r['photons_stored']):,} "
             f"stored), conventional, n = 100, 512x384, {int(r['threads'])} threads: {pairs}, peak memory "
-            f"{fmt(r['bytes_per_stored'])} bytes per stored photon{speed}{methods} (`results/bench/threads.md`, "
+            f"{fmt(r['bytes_per_stored'])} bytes per stored photon (one render, `--repeats 1`){speed}{methods} (`results/bench/threads.md`, "
             "`results/bench/scaling.md`).")
 
 
@@ -2520,11 +2585,10 @@ def brief_rules(rec):
 
 
 def brief_beyond(rec):
-    r = rec["readme"]
-    if rec["best_rows"] == 0 or r is None:
-        raise Missing("`beyond.csv` quotes no best variant (`make beyond`)")
-    return (f"- **Beyond the paper's rule.** The best of lazy evaluation and the plane-gated lookup is faster at "
-            f"equal error in {r['met']} of {r['cases']} scene and size cases.")
+    if not rec["decided"]:
+        raise Missing("`beyond.csv` quotes no case (`make beyond`)")
+    return ("- **Beyond the paper's rule.** Of lazy evaluation, the plane-gated lookup and both together, paired "
+            "per seed, " + beyond_vs_text(rec, False) + ".")
 
 
 def brief_gather(rec):

@@ -42,6 +42,7 @@ import sys
 import numpy as np
 
 from experiments import calibrate
+from experiments.analysis import report
 
 PHASES = ("trace", "build", "precompute", "render", "total")
 ALL = "all studies"
@@ -225,7 +226,8 @@ def write(rows, model_path, out):
             f.write(",".join("" if isinstance(r[c], float) and math.isnan(r[c]) else
                              (f"{r[c]:.6g}" if isinstance(r[c], float) else str(r[c])) for c in CSV_COLUMNS) + "\n")
     md = ["# Repeats and the cost model", "",
-          "Written by `make bench-repeats` (experiments/analysis/repeats_cost.py) from the stats files of the "
+          f"Written by `make bench-repeats` (experiments/analysis/repeats_cost.py) on {report.today()}, commit "
+          f"{report.commit()}, from the stats files of the "
           "renders under runs/ and the cost model of `make calibrate`; the numbers per study are in "
           f"`{os.path.basename(out)}.csv`.", ""]
     md += repeats_section(rows) + model_section(model_path)

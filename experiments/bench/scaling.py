@@ -95,7 +95,9 @@ def markdown(rows, load, commit, threads):
     out.append("Written by `make bench-scaling` (experiments/bench/scaling.sh, scaling.py) from "
                "`results/bench/scaling.csv`: scenes/cornell.scene, n = 100, 512x384, %s threads, %s; "
                "times are the renderer's own phases (`time_s` in `--stats`), memory is "
-               "the peak resident set (`/usr/bin/time -f %%M`) over the stored photons. Load average %s "
+               "the peak resident set (`/usr/bin/time -f %%M`) over the stored photons, of a second process of "
+               "the same render with `--repeats 1` (repeats keep the memory they free for the next, so the timed "
+               "process's peak is not what one render needs). Load average %s "
                "when it finished; commit `%s`." % (threads, repeats_text(rows), load, commit))
     out.append("")
     for method in METHODS:

@@ -7,7 +7,10 @@
 # experiments/config.mk), and records the renderer's own
 # phase times (time_s from --stats: trace, build, precompute, eye pass, each
 # the minimum over SCALING_REPEATS repeats in the render's process) and
-# the peak resident set (/usr/bin/time -f %M) per stored photon. Writes
+# the peak resident set (/usr/bin/time -f %M) per stored photon of a second
+# process of the same render with --repeats 1: repeats keep the memory they
+# free for the next (mem_keep), so the timed process's peak is not what one
+# render needs. Writes
 # results/bench/scaling.csv, then experiments/bench/scaling.py fits each
 # phase's slope of log(cost) against log(emitted photons) and writes
 # results/bench/scaling.md and results/figures/bench-scaling.png.
@@ -43,8 +46,10 @@ echo "method,photons_emitted,photons_stored,representatives,threads,repeats,trac
 for method in conventional precomputed; do
   for p in ${PHOTONS//,/ }; do
     echo "scaling: $method, $p photons" >&2
-    "$TIME" -f %M -o "$tmp/rss" "$BIN" render scenes/cornell.scene --method "$method" --nn 100 --photons "$p" \
+    "$BIN" render scenes/cornell.scene --method "$method" --nn 100 --photons "$p" \
       --width 512 --height 384 --threads "$THREADS" --repeats "$REPEATS" --quiet --stats "$tmp/stats.json"
+    "$TIME" -f %M -o "$tmp/rss" "$BIN" render scenes/cornell.scene --method "$method" --nn 100 --photons "$p" \
+      --width 512 --height 384 --threads "$THREADS" --repeats 1 --quiet --no-output
     "$PYTHON" - "$tmp/stats.json" "$tmp/rss" "$method" "$THREADS" >> "$tmp/scaling.csv" <<'EOF'
 import json, sys
 st = json.load(open(sys.argv[1]))
