@@ -236,12 +236,13 @@ def test_findings_beyond():
         pd.DataFrame(rows).to_csv(path, index=False)
         _, lines = md("beyond", {"beyond": path})
         text = "\n".join(lines)
-        assert "a-64x48 (relMSE 0.02, 5 seeds): the paper's rule 0.900 [0.800, 1.000]x; the best variant, lazy, 1.300 [1.200, 1.400]x" in text
+        assert ("a-64x48 (5 seeds, each at its own tightest target): the paper's rule 0.900 [0.800, 1.000]x at relMSE "
+                "0.02; the best variant, lazy, 1.300 [1.200, 1.400]x at relMSE 0.02") in text
         assert "12.5% of its eye samples fell back, 50.0% of the representatives" in text
         assert "against the paper's rule, paired per seed (Holm): faster" in text
         assert "b-64x48" in text and "(Holm): slower" in text and "the goal does not hold" in text
         assert "c-64x48: 3 seeds" in text and "[2.4, 2.6]" not in text
-        assert "1.200 [1.004, 1.500]x, its interval above 1.0 only by less than the 2% margin" in text
+        assert "1.200 [1.004, 1.500]x at relMSE 0.02, its interval above 1.0 only by less than the 2% margin" in text
         assert "holds as worded, by a margin too thin to rely on" in text
         assert "holds in 2 of 3 cases, 1 of them with the interval's lower end within the margin" in text
         assert "a variant is faster than the paper's rule in 2 of 4 scene and size cases (a-64x48: lazy; c-64x48: lazy)" in text
@@ -522,7 +523,12 @@ def test_record_metric_and_peers():
         peers.append({**peers[0], "rep": "build", "seconds": 99.0})
         r = findings.record_peers({"peers": write_csv(d, "peers.csv", peers)})
         assert r["rows"] == [{"k": 50, "pe": 50000, "strongest": "ckdtree", "strongest_ratio": 2.0,
-                              "nanoflann_ratio": 4.0}]
+                              "nanoflann_ratio": 4.0, "strongest_range": (2.0, 2.0)}]
+        # the per-run range pairs the answers of one run (control: a run where ours is slower widens it)
+        peers += [{**peers[0], "who": "ours", "rep": 2, "seconds": 2.0}, {**peers[0], "who": "ckdtree", "rep": 2,
+                                                                          "seconds": 2.0}]
+        r = findings.record_peers({"peers": write_csv(d, "peers.csv", peers)})
+        assert r["rows"][0]["strongest_range"] == (1.0, 2.0)
 
 
 def test_writers_read_only_the_record():
@@ -884,7 +890,7 @@ def test_record_repro_runs_a_b_busy():
         text = "\n".join(findings.md_repro(r)[1])
         assert "moves by a median 7.6% between two processes" in text and "(90th percentile 30.0%)" in text
         assert "in 8 (run a) and 7 (run b) of 12 cells" in text
-        assert "would lie inside in 10 timed over 2 runs' processes and in 11 timed over 3 runs' processes" in text
+        assert "would lie inside in 10 timed over runs a's and b's processes and in 11 adding the run beside a busy loop" in text
         assert "moves by a median 7.6% between two processes" in findings.readme_repro(r)
 
 
@@ -1104,7 +1110,57 @@ def test_beyond_without_a_best_variant():
         assert "not ranked: lazy 0.970 [0.920, 1.020]" in text
         bullet = readme("beyond", {"beyond": path})
         assert "a variant beats the paper's rule in 1 of 3 cases" in bullet
-        assert "in 1 every variant is slower (the paper rule's time over theirs 0.800 to 0.800)" in bullet
+        assert "in 1 every variant is slower (the paper rule's time over theirs 0.800 to 0.800; each group" in bullet
+        # overlapping equal-error intervals are not ranked: the paired ratio ranks the two (control: disjoint ones)
+        assert "overlaps it: the paired time ratio above, not these, ranks the two" in bullet
+        rows[0].update(lo=0.5, hi=0.9)
+        pd.DataFrame(rows).to_csv(path, index=False)
+        assert "is disjoint from it" in readme("beyond", {"beyond": path})
+        pd.DataFrame(rows).to_csv(path, index=False)
         assert "in 1 (c-64x48) none is faster and some are not ranked" in bullet
         pd.DataFrame([r for r in rows if r["case"] == "b-64x48"]).to_csv(path, index=False)
         assert "no variant beats the paper's rule" in readme("beyond", {"beyond": path})
+
+
+def test_bias_rest_text():
+    """The corrected intervals not shown equivalent are told apart: reaching
+    past the margin (undetermined) or wholly outside it; control: all
+    equivalent says nothing."""
+    e = lambda mean, half, eq: {"mean": mean, "half": half, "equivalent": eq}  # noqa: E731
+    rec = {"margin": 0.01, "equivalence": [e(1.0, 0.005, True), e(1.002, 0.03, False), e(0.995, 0.02, False)]}
+    assert findings.bias_rest_text(rec) == "; the other 2 are undetermined (their intervals reach past the margin)"
+    rec["equivalence"].append(e(1.05, 0.01, False))
+    assert findings.bias_rest_text(rec) == ("; of the other 3, 2 are undetermined (their intervals reach past the "
+                                            "margin) and 1 lies wholly outside it")
+    rec["equivalence"] = [e(1.0, 0.005, True)]
+    assert findings.bias_rest_text(rec) == ""
+
+
+def test_trend_text_names_the_loosest_target():
+    """The curve's largest speed-up is not called its end: where the loosest
+    counted target is neither extreme, its value is given beside them;
+    control: when the largest is at the loosest target, nothing is added."""
+    a = {"speedup": 0.9, "lo": 0.7, "hi": 1.1, "target": 0.008}
+    b = {"speedup": 1.6, "lo": 1.3, "hi": 1.9, "target": 0.012}
+    z = {"speedup": 1.5, "lo": 1.4, "hi": 1.8, "target": 0.017}
+    r = {"span": (a, b), "span_rank": "lower", "loosest": z}
+    text = findings.trend_text(r)
+    assert "from its smallest, 0.9 [0.7, 1.1]x at 0.008, to its largest, 1.6 [1.3, 1.9]x at 0.012" in text, text
+    assert "(at the loosest such target, 0.017, 1.5 [1.4, 1.8]x)" in text
+    r["loosest"] = b
+    assert "loosest" not in findings.trend_text(r)
+
+
+def test_rerun_text():
+    """Table 1's counts in its rerun are given where they differ from the
+    first run's, and said to be unstable; control: equal counts say so in
+    a few words, and no rerun says nothing."""
+    rec = {"rerun": {"cells": 12, "ours_faster": 11, "inside": 4, "inside_other": 2}, "ours_faster": 12,
+           "inside": {50000: (3, 4), 100000: (0, 4)}, "inside_other": (0, 12)}
+    text = findings.rerun_text(rec)
+    assert "11 of 12 intervals lie below 100% and 4 hold the paper's value" in text, text
+    assert "not stable between runs" in text
+    rec["rerun"] = {"cells": 12, "ours_faster": 12, "inside": 3, "inside_other": 0}
+    assert findings.rerun_text(rec) == "; its rerun (`make reproducibility`, run b) gives the same counts"
+    rec["rerun"] = None
+    assert findings.rerun_text(rec) == ""
