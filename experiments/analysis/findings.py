@@ -1170,6 +1170,20 @@ def beyond_vs_classes(cases):
     return faster, slower, neither
 
 
+def vs_variants_text(c, kind, detail, sep, noun=True):
+    """The variants of case C in class KIND of beyond_vs_paper, joined by
+    SEP: 'lazy', 'gated0.05 (and 2 settings with the same images)' ('and 2
+    with' without NOUN), with DETAIL the paper rule's time over each one's
+    and its interval."""
+    f3 = lambda x: report.fmt_fixed(x, 3)  # noqa: E731
+    return sep.join(v + (f" (and {k}{(' setting' + ('s' if k > 1 else '')) if noun else ''} with the same images)"
+                         if k else "")
+                    + (f" {ci(r, lo, hi, f3)}" if detail else "") for v, k, r, lo, hi in c["vs"][kind])
+
+
+VS_LABEL = {"faster": "faster", "slower": "slower", "unranked": "not ranked"}
+
+
 def beyond_vs_text(rec, detail):
     """What the paired tests against the paper's rule say over the cases of
     REC: the count of cases where a variant is faster (named), where every
@@ -1180,11 +1194,9 @@ def beyond_vs_text(rec, detail):
     n = len(faster) + len(slower) + len(neither)
     f3 = lambda x: report.fmt_fixed(x, 3)  # noqa: E731
 
-    def named(c, kind):
-        return "; ".join(v + (f" (and {k} setting{'s' if k > 1 else ''} with the same images)" if k else "")
-                         + (f" {ci(r, lo, hi, f3)}" if detail else "") for v, k, r, lo, hi in c["vs"][kind])
     parts = [f"a variant is faster than the paper's rule in {len(faster)} of {n} scene and size cases"
-             + (" (" + "; ".join(f"{c['case']}: {named(c, 'faster')}" for c in faster) + ")" if faster else "")]
+             + (" (" + "; ".join(f"{c['case']}: {vs_variants_text(c, 'faster', detail, '; ')}" for c in faster)
+                + ")" if faster else "")]
     if slower:
         ratios = [r for c in slower for _, _, r, _, _ in c["vs"]["slower"]]
         parts.append(f"in {len(slower)} every variant is slower ("
@@ -1989,13 +2001,11 @@ def md_beyond(rec):
     for c in rec["cases"]:
         case = c["case"]
         if c["status"] == "no best":
-            vs = "; ".join(f"{kind}: " + ", ".join(
-                v + (f" (and {k} with the same images)" if k else "") + f" {ci(r, lo, hi, f3)}"
-                for v, k, r, lo, hi in c["vs"][kind]) for kind in ("faster", "slower", "unranked") if c["vs"][kind])
+            vs = "; ".join(f"{VS_LABEL[kind]}: " + vs_variants_text(c, kind, True, ", ", noun=False)
+                           for kind in VS_LABEL if c["vs"][kind])
             lines.append(f"- {case}: no best variant: none is ranked faster than every other by the paired tests "
                          "(per seed against the paper's rule and each other, Holm)"
-                         + (f"; against the paper's rule (its time over the variant's): "
-                            + vs.replace("unranked: ", "not ranked: ") if vs else "") + ".")
+                         + (f"; against the paper's rule (its time over the variant's): {vs}" if vs else "") + ".")
             continue
         if c["status"] == "few seeds":
             lines.append(few_seeds(case, c["seeds"], "make beyond", rec.get("coverage", {}).get(c["seeds"])))
@@ -2460,8 +2470,8 @@ def readme_beyond(rec):
                 f"{ci(c['paper']['speedup'], c['paper']['lo'], c['paper']['hi'], f3)}x at "
                 f"{fmt(c['paper']['target'])}, "
                 + ("overlaps it: the paired time ratio above, not these, ranks the two"
-                   if c["paper"]["hi"] >= c["best"]["lo"] and c["best"]["hi"] >= c["paper"]["lo"] else
-                   "is disjoint from it")
+                   if stats.intervals_overlap((c["paper"]["lo"], c["paper"]["hi"]), (c["best"]["lo"], c["best"]["hi"]))
+                   else "is disjoint from it")
                 for c in met) + ")" if met else ""))
     return (f"- **Beyond the paper's rule, {head}**: of lazy evaluation, the plane-gated lookup and both together "
             f"(`make beyond`, {seeds} seeds per case, each render time paired per seed with the paper's rule's, "
