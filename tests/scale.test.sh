@@ -5,7 +5,9 @@
 # control: a constant cost does not read as linear); scaling.sh at two tiny
 # counts must write the CSV (columns by name, one row per method and count,
 # bytes per stored photon = peak RSS / stored), the Markdown and the PNG;
-# and a renderer that fails leaves no result behind. The peak-memory
+# the peak is the --repeats 1 process's (memory held by the timed process
+# must not show, memory held by that one must); and a renderer that fails
+# leaves no result behind. The peak-memory
 # estimate against the measured peak is the unit test photons_peak_memory.
 cd "$(dirname "$0")/.." || exit 1
 . tests/lib.sh
@@ -60,6 +62,29 @@ for r in rows:
 EOF
     test -s '$W/results/bench/scaling.md' && test -s '$W/results/figures/bench-scaling.png' &&
     grep -q '^## precomputed' '$W/results/bench/scaling.md'"
+  # the peak memory is the --repeats 1 process's: a wrapper that holds 300 MiB
+  # in the timed process (--repeats 2) leaves the column below that; the
+  # control holds them in the --repeats 1 process, and the column must show it
+  hold="b = bytearray(300 << 20); b[::4096] = b'x' * len(b[::4096])"
+  {
+    echo '#!/bin/sh'
+    echo 'case " $* " in'
+    echo "  *' --repeats 1 '*) [ -z \"\${HOLD_ONE:-}\" ] || '$PY' -c \"$hold\" ;;"
+    echo "  *) [ -z \"\${HOLD_TIMED:-}\" ] || '$PY' -c \"$hold\" ;;"
+    echo 'esac'
+    echo "exec '$W/build/photonmap' \"\$@\""
+  } > "$W/build/holder"
+  chmod +x "$W/build/holder"
+  peak_of() {
+    env "$1=1" SCALING_PHOTONS=2000 SCALING_THREADS=1 SCALING_REPEATS=2 PYTHON="$PY" \
+      bash "$W/experiments/bench/scaling.sh" build/holder 2> /dev/null || return 1
+    "$PY" -c "import csv, sys; print(max(int(r['peak_rss_bytes']) for r in csv.DictReader(open(sys.argv[1]))))" \
+      "$W/results/bench/scaling.csv"
+  }
+  check "the peak memory is the --repeats 1 process's, not the timed one's" bash -c "
+    $(declare -f peak_of); PY='$PY'; W='$W'; p=\$(peak_of HOLD_TIMED) && test \"\$p\" -lt \$((300 << 20))"
+  check "negative control: memory held in the --repeats 1 process shows in the column" bash -c "
+    $(declare -f peak_of); PY='$PY'; W='$W'; p=\$(peak_of HOLD_ONE) && test \"\$p\" -ge \$((300 << 20))"
   # negative control: a renderer that fails leaves no result
   rm -rf "$W/results"
   printf '#!/bin/sh\nexit 1\n' > "$W/build/fail"
