@@ -7,7 +7,7 @@ command line (command) and makes one render's files in the run layout
     python3 -m experiments.launch --pm PM --scene SCENE --width W --height H \\
         --subpixels S --threads T --repeats R --of N --stem ESTIMATE-pP-nN/seedK \\
         --member ROOT METHOD "EXTRA ARGS" K [--member ...] [--member-repeats ROOT METHOD R ...] [--dump-reps] \\
-        [--busy-loop]
+        [--busy-loop] [--cpu first|N|none]
 
 renders every member (the render ROOT/METHOD-ESTIMATE-pP-nN/seedK with the
 extra renderer options EXTRA ARGS, run K of the study's N) back to back,
@@ -39,6 +39,15 @@ With --busy-loop a process spinning in a loop (busy_loop) runs from before
 the group's first render until after its last, the load of a neighbour on
 another core (make reproducibility's third run); each record says so
 ("busy_loop": 1).
+
+With --cpu first (or a CPU number) every render runs pinned to that CPU
+(first: the lowest CPU this process may run on; the study knob TIME_CPU,
+for timed one-thread renders) and the busy loop to another one where there
+is one; each record names the CPU ("cpu": N, or null unpinned). On a
+shared machine the CPUs need not be equally fast: on this project's
+two-core machines one ran the same render about 30% slower than the other
+for minutes at a time, so an unpinned render's time depended on where the
+scheduler put it.
 """
 
 import argparse
@@ -81,6 +90,28 @@ def command(pm, scene, method, estimate, photons, nn, seed, width, height, subpi
             + (["--dump-reps", out_base + ".reps.csv"] if dump_reps else []))
 
 
+def resolve_cpu(spec):
+    """The CPU of --cpu SPEC: None for "none", the lowest CPU this process
+    may run on for "first", else the number, which must be one of them."""
+    if spec == "none":
+        return None
+    allowed = sorted(os.sched_getaffinity(0))
+    if spec == "first":
+        return allowed[0]
+    if not re.fullmatch(r"[0-9]+", str(spec)):
+        raise LaunchError(f"--cpu {spec}: first, none, or a CPU number")
+    if int(spec) not in allowed:
+        raise LaunchError(f"--cpu {spec}: not a CPU this process may run on ({', '.join(map(str, allowed))})")
+    return int(spec)
+
+
+def pinned(cpu):
+    """A preexec_fn that pins the child to CPU (None: leaves it as it is)."""
+    if cpu is None:
+        return None
+    return lambda: os.sched_setaffinity(0, {cpu})
+
+
 def json_str(text):
     """TEXT as a JSON string (backslash and quote escaped; control
     characters were removed before)."""
@@ -94,10 +125,11 @@ def one_line(text):
     return re.sub(r"[\x00-\x08\x0b-\x1f]", "", text).rstrip(" ")
 
 
-def write_record(base, exit_code, user, sys_s, cpu, load, pair_pos, message, cmd, busy=False):
+def write_record(base, exit_code, user, sys_s, cpu, load, pair_pos, message, cmd, busy=False, pin=None):
     """The run record, written last (temporary name, then renamed)."""
     text = (f'{{\n  "exit": {exit_code},\n  "user_s": {user},\n  "sys_s": {sys_s},\n  "cpu_s": {cpu},\n'
             f'  "loadavg_1min": {load},\n  "pair_pos": {pair_pos},\n  "busy_loop": {int(busy)},\n'
+            f'  "cpu": {"null" if pin is None else pin},\n'
             f'  "message": {json_str(message)},\n'
             f'  "command": {json_str(" ".join(cmd))}\n}}\n')
     with open(base + ".tmp.run", "w", encoding="utf-8") as f:
@@ -112,10 +144,10 @@ def remove_tmp(base):
             os.remove(os.path.join(d, name))
 
 
-def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k, repeats):
+def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k, repeats, pin=None):
     """One render of the settings S (argparse namespace: pm, scene, width,
-    height, subpixels, threads, of) into ROOT, timed with --repeats REPEATS;
-    prints its progress line.
+    height, subpixels, threads, of) into ROOT, timed with --repeats REPEATS,
+    pinned to CPU PIN (None: not pinned); prints its progress line.
     Returns 0 (rendered) or 2 (refused, recorded); raises LaunchError on
     any other failure (nothing recorded)."""
     label = f"run {k}/{s.of} {method} {estimate} P_e={photons} n={nn} seed {seed}"
@@ -130,7 +162,8 @@ def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k, rep
     with open("/proc/loadavg", encoding="ascii") as f:
         load = f.read().split()[0]
     with open(base + ".tmp.err", "wb") as err:
-        rc = subprocess.call(["/usr/bin/time", "-f", "%U %S", "-o", base + ".tmp.time"] + cmd, stderr=err)
+        rc = subprocess.call(["/usr/bin/time", "-f", "%U %S", "-o", base + ".tmp.time"] + cmd, stderr=err,
+                             preexec_fn=pinned(pin))
     with open(base + ".tmp.err", encoding="utf-8", errors="replace") as f:
         msg = one_line(f.read())
     if rc == 0:
@@ -143,23 +176,26 @@ def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k, rep
             os.replace(base + ".tmp.reps.csv", base + ".reps.csv")
         os.remove(base + ".tmp.time")
         cpu = "%.2f" % (float(user) + float(sys_s))
-        write_record(base, 0, user, sys_s, cpu, load, pair_pos, "", cmd, s.busy_loop)
+        write_record(base, 0, user, sys_s, cpu, load, pair_pos, "", cmd, s.busy_loop, pin)
         total = "%.2f" % layout.load_json(base + ".stats.json")["time_s"]["total"]
         print(f"{label}: total {total} s, cpu {cpu} s", flush=True)
         return 0
     if rc == 2:  # refused: the combination does not apply; recorded so that it is not retried
         os.replace(base + ".tmp.err", base + ".err")
         remove_tmp(base)
-        write_record(base, 2, "null", "null", "null", load, pair_pos, msg, cmd, s.busy_loop)
+        write_record(base, 2, "null", "null", "null", load, pair_pos, msg, cmd, s.busy_loop, pin)
         print(f"{label}: not applicable (the renderer refused it, exit 2): {msg}", flush=True)
         return 2
     remove_tmp(base)
     raise LaunchError(f"{label} failed (exit {rc}): {' '.join(cmd)}\nlaunch.py: {msg}")
 
 
-def busy_loop():
-    """A process spinning in a loop until killed (the caller's to end)."""
-    return subprocess.Popen([sys.executable, "-c", "while True:\n    pass"])
+def busy_loop(avoid=None):
+    """A process spinning in a loop until killed (the caller's to end), on
+    a CPU other than AVOID where this process may run on another."""
+    others = sorted(os.sched_getaffinity(0) - {avoid}) if avoid is not None else []
+    return subprocess.Popen([sys.executable, "-c", "while True:\n    pass"],
+                            preexec_fn=pinned(others[0] if others else None))
 
 
 def run_group(s, members, repeats=None):
@@ -178,12 +214,13 @@ def run_group(s, members, repeats=None):
         if os.path.exists(r):
             os.remove(r)
     done = False
-    busy = busy_loop() if s.busy_loop else None
+    pin = resolve_cpu(s.cpu)
+    busy = busy_loop(pin) if s.busy_loop else None
     try:
         for pos, i in enumerate(order, 1):
             root, method, extra, k = members[i]
             render(s, root, method, estimate, photons, nn, seed, extra, pos if len(members) > 1 else 0, k,
-                   (repeats or {}).get((root, method), s.repeats))
+                   (repeats or {}).get((root, method), s.repeats), pin)
         done = True
     finally:
         if busy:
@@ -209,6 +246,8 @@ def main(argv=None):
     ap.add_argument("--stem", required=True, help="ESTIMATE-pPHOTONS-nNN/seedK")
     ap.add_argument("--dump-reps", action="store_true", help="each render's representatives to seedK.reps.csv")
     ap.add_argument("--busy-loop", action="store_true", help="a busy loop runs beside the group's renders")
+    ap.add_argument("--cpu", default="none",
+                    help="pin every render to this CPU: first (the lowest this process may use), a number, or none")
     ap.add_argument("--member", nargs=4, action="append", required=True, metavar=("ROOT", "METHOD", "ARGS", "K"))
     ap.add_argument("--member-repeats", nargs=3, action="append", default=[], metavar=("ROOT", "METHOD", "R"),
                     help="the member ROOT METHOD's --repeats instead of --repeats (e.g. 1 for a long render)")
@@ -216,6 +255,7 @@ def main(argv=None):
     members = [(root, method, extra, int(k)) for root, method, extra, k in s.member]
     try:
         check_repeats(s.repeats)
+        resolve_cpu(s.cpu)
         own = {(root, method): check_repeats(r) for root, method, r in s.member_repeats}
         for key in own:
             if key not in {(root, method) for root, method, _, _ in members}:

@@ -73,6 +73,14 @@ def parse_time_repeats(text):
     raise StudyError(f"TIME_REPEATS={text}: auto or a positive number of timed runs per render (1: a single timed run)")
 
 
+def parse_time_cpu(text):
+    """TIME_CPU checked: first, none, or a CPU number (launch.py --cpu; the
+    launcher checks that the CPU is one it may run on)."""
+    if text in ("first", "none") or re.fullmatch(r"[0-9]+", text):
+        return text
+    raise StudyError(f"TIME_CPU={text}: first (the lowest CPU the launcher may run on), none, or a CPU number")
+
+
 def scene_key(scene):
     """The first 12 hex digits of the SHA-256 of SCENE's content: a scene's
     name in the paths of a study of that one scene (evaluate)."""
@@ -145,6 +153,8 @@ class Grid:
                      layout.run_root(self.results, self.scene, self.size, self.subpixels, self.threads, self.tag))
         # a study whose times are not compared renders once
         self.time_repeats = parse_time_repeats(k["TIME_REPEATS"]) if decl.get("timed", True) else "1"
+        # TIME_CPU: the CPU its timed one-thread renders are pinned to (launch.py --cpu)
+        self.time_cpu = parse_time_cpu(k["TIME_CPU"]) if decl.get("timed", True) and self.threads == "1" else "none"
         # studies.yaml one_repeat: the renders whose work reaches a knob's value run once
         self.one_repeat = (block or {}).get("one_repeat") or decl.get("one_repeat")
         # the conventional renders compared with: CONV_RUNROOT, the grid CONV's, or its own
@@ -197,7 +207,7 @@ class Grid:
         return [self.python, "-m", "experiments.launch", "--pm", self.pm, "--scene", self.scene,
                 "--width", self.width, "--height", self.height, "--subpixels", self.subpixels,
                 "--threads", self.threads_arg, "--repeats", self.time_repeats, "--of", len(self.run_names),
-                "--stem", stem] + (["--busy-loop"] if self.busy_loop else [])
+                "--stem", stem, "--cpu", self.time_cpu] + (["--busy-loop"] if self.busy_loop else [])
 
     def member_words(self, root, method, nn, k):
         """The launcher's words of one member: the render of METHOD at n = NN

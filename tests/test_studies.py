@@ -206,3 +206,19 @@ def test_gather_direct_runs_are_the_scenes_studys_files():
         [(g.scene, g.size, g.files["runs_csv"]) for g in scenes.grids] == \
         [("scenes/cornell.scene", "64x48", "/r/scenes/runs-cornell.csv"),
          ("scenes/caustic.scene", "64x48", "/r/scenes/runs-caustic.csv")]
+
+
+def test_time_cpu_pins_timed_one_thread_renders():
+    """TIME_CPU (default first) reaches the launcher of a timed study's
+    one-thread renders as --cpu; an untimed study, or renders on several
+    threads, are not pinned (--cpu none); a number passes through; a word
+    that is no CPU is refused before any render."""
+    def cpu(target, **knobs):
+        words = studies.load(target, dict(TINY, REF="x.exr", **knobs)).grids[0].launch_words("paper-p2000-n10/seed1")
+        return words[words.index("--cpu") + 1]
+    assert cpu("table1") == "first" and cpu("table1", TIME_CPU="1") == "1"
+    assert cpu("table1", THREADS="") == "none" and cpu("table1", THREADS="2") == "none"
+    assert cpu("table1", TIME_CPU="none") == "none"
+    assert cpu("bias") == "none"  # untimed (timed: false)
+    with pytest.raises(studies.StudyError, match="TIME_CPU=fast: first"):
+        cpu("table1", TIME_CPU="fast")
