@@ -9,10 +9,16 @@
 #   bash experiments/accel.sh [OUT.md]     (default: stdout; a file is
 #                                           written under a temporary name and renamed)
 # Knobs (environment): REPEATS (auto), PM (build/photonmap), SIZE (1024x768),
-# PHOTONS (500000), NN (100), METHOD (precomputed).
+# PHOTONS (500000), NN (100), METHOD (precomputed), ACCEL_CPU (first: the
+# lowest CPU this script may run on; a number; none): the CPU every render
+# is pinned to (taskset), as the studies pin their timed renders (TIME_CPU).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PM=${PM:-build/photonmap}
+CPU=${ACCEL_CPU:-first}
+[ "$CPU" = first ] && CPU=$(${PYTHON:-/usr/bin/python3} -c 'import os; print(min(os.sched_getaffinity(0)))')
+pin=()
+[ "$CPU" = none ] || pin=(taskset -c "$CPU")
 REPEATS=${REPEATS:-auto} SIZE=${SIZE:-1024x768} PHOTONS=${PHOTONS:-500000} NN=${NN:-100} METHOD=${METHOD:-precomputed}
 W=${SIZE%x*} H=${SIZE#*x}
 TMP=$(mktemp -d /tmp/accel.XXXXXX)
@@ -41,7 +47,7 @@ boxes_scene() {
 # one process (the stats' time_s); the image in $TMP/ACCEL.exr
 run() {
   local scene=$1 accel=$2 f
-  "$PM" render "$scene" --accel "$accel" --method "$METHOD" --photons "$PHOTONS" --nn "$NN" \
+  "${pin[@]}" "$PM" render "$scene" --accel "$accel" --method "$METHOD" --photons "$PHOTONS" --nn "$NN" \
     --width "$W" --height "$H" --threads 1 --repeats "$REPEATS" --quiet -o "$TMP/$accel.exr" --stats "$TMP/$accel.json"
   for f in trace render; do
     sed -n "s/.*\"time_s\": {.*\"$f\": *\([0-9.e+-]*\).*/\1/p" "$TMP/$accel.json"
@@ -61,7 +67,7 @@ row() { # label, scene
 {
   echo "Ray casting: linear loop vs BVH (\`make accel\`, experiments/accel.sh), $METHOD, P_e = $PHOTONS, n = $NN,"
   echo "${W}x$H with 2x2 subpixels, 1 thread; seconds from --stats (wall clock), each phase's minimum over the"
-  echo "repeats of one process (\`--repeats $REPEATS\`)."
+  echo "repeats of one process (\`--repeats $REPEATS\`); $([ "$CPU" = none ] && echo "unpinned" || echo "every render pinned to CPU $CPU")."
   echo "Machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg) at the start; commit \`$(git rev-parse --short HEAD 2>/dev/null || echo '?')\`; renderer \`$PM\`."
   echo
   echo "| scene | shapes | photon pass, linear | photon pass, BVH | eye pass, linear | eye pass, BVH | eye pass linear/BVH | images identical |"

@@ -32,12 +32,16 @@ SEEDS = (1, 2, 3)
 NOISE, BIAS = 0.0003, 0.0001
 
 
-def write_render(root, method, seed, img):
-    """One ok render's files (run.json, stats.json, EXR) under ROOT."""
+def write_render(root, method, seed, img, cpu=None):
+    """One ok render's files (run.json, stats.json, EXR) under ROOT; CPU:
+    the record's pinned CPU (None: a record without one, as before pinning)."""
     base = layout.run_base(str(root), method, "paper", 1000, 10, seed)
     os.makedirs(os.path.dirname(base), exist_ok=True)
+    rec = {"exit": 0, "loadavg_1min": 0.5, "cpu_s": 1.0, "user_s": 0.9, "sys_s": 0.1}
+    if cpu is not None:
+        rec["cpu"] = cpu
     with open(base + ".run.json", "w") as f:
-        json.dump({"exit": 0, "loadavg_1min": 0.5, "cpu_s": 1.0, "user_s": 0.9, "sys_s": 0.1}, f)
+        json.dump(rec, f)
     st = {"time_s": {"trace": 0.1, "build": 0.1, "precompute": 0.2 if method == "precomputed" else 0.0,
                      "render": 0.5, "total": 0.9},
           "repeats": 1, "photons_stored": 900, "representatives": 100 if method == "precomputed" else 0,
@@ -85,7 +89,7 @@ def test_runs_carry_the_references_error(tmp_path):
         mine = ok[ok["method"] == c["method"]]
         close(c["relmse_ref_less_noise_mean"], mine["relmse_ref_less_noise"].mean(), 1e-9, "mean over seeds")
     # the interface: every existing column is still there, the new ones after them
-    assert list(runs.columns[-3:]) == ["ref_noise", "ref_bias", "relmse_ref_less_noise"]
+    assert list(runs.columns[-4:]) == ["ref_noise", "ref_bias", "relmse_ref_less_noise", "cpu"]
     assert list(cells.columns).index("relmse_ref_less_noise_mean") == list(cells.columns).index("relmse_ref_mean") + 1
 
 
@@ -149,3 +153,13 @@ def test_malformed_json_names_the_file(tmp_path, capsys):
         collect.collect(args)
     assert e.value.code == 1
     assert reference.sidecar(args.ref) in capsys.readouterr().err
+
+
+def test_runs_carry_the_pinned_cpu(tmp_path):
+    """runs.csv's cpu column is the record's "cpu" (TIME_CPU); a record
+    without one (before pinning, or --cpu none) leaves it empty."""
+    args = grid(tmp_path)
+    write_render(tmp_path / "runs", "conventional", 1, np.full((H, W, 3), 0.5, dtype=np.float32), cpu=1)
+    runs, _ = collect.collect(args)
+    got = runs.set_index(["method", "seed"])["cpu"]
+    assert got[("conventional", 1)] == 1 and got[("precomputed", 1)] != got[("precomputed", 1)]

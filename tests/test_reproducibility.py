@@ -145,3 +145,14 @@ def test_reproducibility_process_change():
     assert abs(med - np.median(d)) < 1e-12 and abs(p90 - np.percentile(d, 90)) < 1e-12
     med, _ = reproducibility.process_change(a, b.iloc[:1])  # one render in common: |1.1 - 1|
     assert abs(med - 0.1) < 1e-12
+
+
+def test_pinning_text():
+    """The runs' CPU column worded: one CPU for every render; none (records
+    before pinning, or --cpu none); a mixture says some were not pinned."""
+    import pandas as pd
+    from experiments.analysis import reproducibility as rp
+    assert rp.pinning_text(pd.DataFrame({"cpu": [0, 0, 0]})).startswith("every render pinned to CPU 0")
+    assert rp.pinning_text(pd.DataFrame({"cpu": [float("nan")] * 2})) == "not pinned"
+    assert rp.pinning_text(pd.DataFrame({"x": [1]})) == "not pinned"
+    assert rp.pinning_text(pd.DataFrame({"cpu": [0, float("nan")]})) == "pinned to CPUs 0 (some renders not pinned)"

@@ -66,7 +66,7 @@ RUN_COLUMNS = [
     "trace_s", "build_s", "precompute_s", "render_s", "total_s", "repeats", "trace_build_s", "precompute_render_s",
     "cpu_s", "user_s", "sys_s", "photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "loadavg_1min", "pair_pos",
     "relmse_ref", "nmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "role", "run",
-    "ref_noise", "ref_bias", "relmse_ref_less_noise",
+    "ref_noise", "ref_bias", "relmse_ref_less_noise", "cpu",
 ]
 CELL_COLUMNS = [
     "scene", "size", "subpixels", "tag", "method", "estimate", "photons", "nn",
@@ -109,6 +109,8 @@ def read_run(root, method, estimate, photons, nn, seed):
         row[key] = math.nan if rec[key] is None else rec[key]
     row["message"] = rec.get("message", "")
     row["pair_pos"] = rec.get("pair_pos", 0)  # records of unpaired renders have none: not paired
+    cpu = rec.get("cpu")  # the CPU the render was pinned to (TIME_CPU); none, or a record before pinning: NaN
+    row["cpu"] = math.nan if cpu is None else cpu
     if status == layout.REFUSED:
         row["status"] = status
         return row

@@ -262,6 +262,17 @@ def load_text(runs):
     return f"median {fmt(float(np.nanmedian(load)))}, range {fmt(float(np.nanmin(load)))}-{fmt(float(np.nanmax(load)))}"
 
 
+def pinning_text(runs):
+    """How the renders of RUNS ran: 'every render pinned to CPU N (...)',
+    'pinned to CPUs ...' or 'not pinned' (records without a CPU)."""
+    cpus = runs["cpu"].dropna().astype(int).unique() if "cpu" in runs else []
+    if len(cpus) == 0:
+        return "not pinned"
+    if len(cpus) == 1 and runs["cpu"].notna().all():
+        return f"every render pinned to CPU {cpus[0]}, as every study's timed renders are (TIME_CPU)"
+    return "pinned to CPUs " + ", ".join(str(c) for c in sorted(cpus)) + " (some renders not pinned)"
+
+
 def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, ref_text="", busy=None):
     """The text of reproducibility.md; BUSY: (frame, summary, phase rows,
     runs) of the busy run against A, or None. The drift window is SUMM's."""
@@ -270,7 +281,8 @@ def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, ref_text="", busy=Non
              f"Run A is Table 1's own renders; run B is the same grid ({first['scene']} at "
              f"{first['width']}x{first['height']}, {first['subpixels']}x{first['subpixels']} subpixels, "
              f"{int(runs_a['seed'].nunique())} seeds, {first['threads']} thread(s), the same `--repeats`) rendered "
-             "again after every render of A, as a second user would: not interleaved, not pinned. "
+             f"again after every render of A, as a second user would: not interleaved; "
+             f"{pinning_text(pd.concat([runs_a, runs_b]))}. "
              f"Machine: {report.machine()}; 1-minute load average at the renders' starts: A {load_text(runs_a)}, "
              f"B {load_text(runs_b)}; commit {report.commit()}; {report.today()}.", "",
              "Ratios are table.py's paired ratios (per-seed log ratio of precomputed to conventional render "

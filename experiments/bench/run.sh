@@ -48,11 +48,20 @@ trap 'rm -rf "$tmp"' EXIT
 mkdir -p results/bench
 
 PYTHON=${PYTHON:-/usr/bin/python3}
+# BENCH_CPU (default first: the lowest CPU this script may run on; a number;
+# none): the CPU every one-thread measurement runs pinned to (taskset), as
+# the studies pin their timed renders (TIME_CPU) and grid.sh its renders;
+# the scaling and two-thread sections run on every CPU
+CPU=${BENCH_CPU:-first}
+[ "$CPU" = first ] && CPU=$("$PYTHON" -c 'import os; print(min(os.sched_getaffinity(0)))')
+pin=()
+[ "$CPU" = none ] || pin=(taskset -c "$CPU")
+where=$([ "$CPU" = none ] && echo "unpinned" || echo "pinned to CPU $CPU")
 
 peers() { # reps ks: the peers table (Markdown) on stdout
   mkdir -p "$tmp/peers"
   # shellcheck disable=SC2086
-  "$BIN" --peers "$tmp/peers" --python "$PYTHON" --sizes "$PEER_PHOTONS" --ks "$2" --reps "$1" $PEER_ARGS > "$tmp/peers.csv"
+  "${pin[@]}" "$BIN" --peers "$tmp/peers" --python "$PYTHON" --sizes "$PEER_PHOTONS" --ks "$2" --reps "$1" $PEER_ARGS > "$tmp/peers.csv"
   "$PYTHON" experiments/bench/report.py peers "$tmp/peers.csv"
 }
 peers_section() { # the Markdown section of the kNN against the peers ($tmp/peers.md, $load_peers)
@@ -70,7 +79,7 @@ peers_section() { # the Markdown section of the kNN against the peers ($tmp/peer
   echo "driven run by run. nanoflann: \`findNeighbors\` with a capped result set (nano.cpp). Ties: an answer that"
   echo "differs from ours only in points at the other's boundary distance (its k-th, or the cap), within 1e-6"
   echo "relative in double, counts as \"by ties\"; any other difference as wrong, and the bench fails."
-  echo "Load average $load_peers before it ran."
+  echo "Load average $load_peers before it ran; every process $where."
   echo
   cat "$tmp/peers.md"
 }
@@ -112,11 +121,11 @@ fi
 cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')
 echo "bench: the paper's grid, 24 renders at 1024x768, one thread" >&2
 load_grid=$(cut -d' ' -f1-3 /proc/loadavg)
-bash experiments/bench/grid.sh build/photonmap > "$tmp/grid.txt"
+GRID_CPU=$CPU bash experiments/bench/grid.sh build/photonmap > "$tmp/grid.txt"
 grid_line=$(tail -n 1 "$tmp/grid.txt")
 echo "bench: $grid_line" >&2
 echo "bench: throughput tables ($REPS runs per cell)" >&2
-"$BIN" --reps "$REPS" > "$tmp/main.md"
+"${pin[@]}" "$BIN" --reps "$REPS" > "$tmp/main.md"
 
 echo "bench: the kNN against FLANN, cKDTree and nanoflann ($REPS runs per cell)" >&2
 load_peers=$(cut -d' ' -f1-3 /proc/loadavg)
@@ -143,7 +152,7 @@ profile precomputed 10 > "$tmp/prof_pre10.txt"
 echo "bench: heavy cells ($HREPS runs each)" >&2
 heavy() { # method: one line per run, "method render precompute total rss"
   for r in $(seq "$HREPS"); do
-    /usr/bin/time -v build/photonmap render scenes/cornell.scene --method "$1" --photons 500000 --nn 100 \
+    "${pin[@]}" /usr/bin/time -v build/photonmap render scenes/cornell.scene --method "$1" --photons 500000 --nn 100 \
       --threads 1 --quiet --stats "$tmp/h.json" -o "$tmp/h.exr" 2> "$tmp/h.time" > /dev/null
     rss=$(sed -n 's/.*Maximum resident set size (kbytes): //p' "$tmp/h.time")
     "$PYTHON" -c 'import json, sys; t = json.load(open(sys.argv[1]))["time_s"]; print(sys.argv[2], t["render"], t["precompute"], t["total"], sys.argv[3])' \
@@ -155,7 +164,7 @@ heavy() { # method: one line per run, "method render precompute total rss"
 
 echo "bench: final gathering at 1024x768, --gather 32, precomputed ($GREPS repeats)" >&2
 load_gather=$(cut -d' ' -f1-3 /proc/loadavg)
-/usr/bin/time -f "%U %S" -o "$tmp/g.time" build/photonmap render scenes/cornell.scene --width 1024 --height 768 \
+"${pin[@]}" /usr/bin/time -f "%U %S" -o "$tmp/g.time" build/photonmap render scenes/cornell.scene --width 1024 --height 768 \
   --gather 32 --photons 100000 --nn 50 --method precomputed --threads 1 --repeats "$GREPS" --quiet \
   --stats "$tmp/g.json" -o "$tmp/g.exr" > /dev/null
 "$PYTHON" - "$tmp/g.json" "$tmp/g.time" "$GREPS" "$load_gather" > "$tmp/gather.md" <<'PY'
