@@ -15,10 +15,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PM=${PM:-build/photonmap}
-CPU=${ACCEL_CPU:-first}
-[ "$CPU" = first ] && CPU=$(${PYTHON:-/usr/bin/python3} -c 'import os; print(min(os.sched_getaffinity(0)))')
-pin=()
-[ "$CPU" = none ] || pin=(taskset -c "$CPU")
+. "experiments/pin.sh"
+pin_to "${ACCEL_CPU:-first}"
 REPEATS=${REPEATS:-auto} SIZE=${SIZE:-1024x768} PHOTONS=${PHOTONS:-500000} NN=${NN:-100} METHOD=${METHOD:-precomputed}
 W=${SIZE%x*} H=${SIZE#*x}
 TMP=$(mktemp -d /tmp/accel.XXXXXX)

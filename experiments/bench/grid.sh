@@ -22,10 +22,8 @@ REPEATS=${GRID_REPEATS:-3}
 PHOTONS=${GRID_PHOTONS:-50000 100000 500000}
 WIDTH=${GRID_WIDTH:-1024}
 HEIGHT=${GRID_HEIGHT:-768}
-CPU=${GRID_CPU:-first}
-[ "$CPU" = first ] && CPU=$("$PYTHON" -c 'import os; print(min(os.sched_getaffinity(0)))')
-pin=()
-[ "$CPU" = none ] || pin=(taskset -c "$CPU")
+. "$(dirname "$0")/../pin.sh"
+pin_to "${GRID_CPU:-first}"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for p in $PHOTONS; do

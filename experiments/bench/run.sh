@@ -52,10 +52,8 @@ PYTHON=${PYTHON:-/usr/bin/python3}
 # none): the CPU every one-thread measurement runs pinned to (taskset), as
 # the studies pin their timed renders (TIME_CPU) and grid.sh its renders;
 # the scaling and two-thread sections run on every CPU
-CPU=${BENCH_CPU:-first}
-[ "$CPU" = first ] && CPU=$("$PYTHON" -c 'import os; print(min(os.sched_getaffinity(0)))')
-pin=()
-[ "$CPU" = none ] || pin=(taskset -c "$CPU")
+. "experiments/pin.sh"
+pin_to "${BENCH_CPU:-first}"
 where=$([ "$CPU" = none ] && echo "unpinned" || echo "pinned to CPU $CPU")
 
 peers() { # reps ks: the peers table (Markdown) on stdout
@@ -86,7 +84,7 @@ peers_section() { # the Markdown section of the kNN against the peers ($tmp/peer
 
 if [ "$QUICK" = 1 ]; then
   echo "bench: quick: the kNN against the peers, 500k map, tile order and subpixel stream, k = 10 and 100, 3 runs a cell" >&2
-  echo "Load average $(cut -d' ' -f1-3 /proc/loadavg) before it ran; commit $(git rev-parse --short HEAD 2> /dev/null || echo '?')."
+  echo "Load average $(cut -d' ' -f1-3 /proc/loadavg) before it ran; commit $(git rev-parse --short HEAD 2> /dev/null || echo '?'); every process $where."
   echo
   peers 3 10,100
   exit 0
