@@ -204,10 +204,10 @@ class Grid:
         """The launcher's words common to every job of the grid rendering the
         renders STEM (ESTIMATE-pP-nN/seedK) of one (cell, seed): the members
         (member_words) follow (experiments/launch.py)."""
-        return [self.python, "-m", "experiments.launch", "--pm", self.pm, "--scene", self.scene,
+        return [self.python, "-m", "experiments.launch", "--cpu", self.time_cpu, "--pm", self.pm, "--scene", self.scene,
                 "--width", self.width, "--height", self.height, "--subpixels", self.subpixels,
                 "--threads", self.threads_arg, "--repeats", self.time_repeats, "--of", len(self.run_names),
-                "--stem", stem, "--cpu", self.time_cpu] + (["--busy-loop"] if self.busy_loop else [])
+                "--stem", stem] + (["--busy-loop"] if self.busy_loop else [])
 
     def member_words(self, root, method, nn, k):
         """The launcher's words of one member: the render of METHOD at n = NN
