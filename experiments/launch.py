@@ -45,8 +45,8 @@ With --cpu first (or a CPU number) every render runs pinned to that CPU
 for timed one-thread renders) and the busy loop to another one where there
 is one; each record names the CPU ("cpu": N, or null unpinned). On a
 shared machine the CPUs need not be equally fast: on this project's
-two-core machines one ran the same render about 30% slower than the other
-for minutes at a time, so an unpinned render's time depended on where the
+two-core machines one ran the same render slower than the other for
+minutes at a time, so an unpinned render's time depended on where the
 scheduler put it.
 """
 
