@@ -7,7 +7,7 @@ command line (command) and makes one render's files in the run layout
     python3 -m experiments.launch --pm PM --scene SCENE --width W --height H \\
         --subpixels S --threads T --repeats R --of N --stem ESTIMATE-pP-nN/seedK \\
         --member ROOT METHOD "EXTRA ARGS" K [--member ...] [--member-repeats ROOT METHOD R ...] [--dump-reps] \\
-        [--busy-loop] [--cpu first|N|none]
+        [--busy-loop] [--cpu first|N|none] [--processes P]
 
 renders every member (the render ROOT/METHOD-ESTIMATE-pP-nN/seedK with the
 extra renderer options EXTRA ARGS, run K of the study's N) back to back,
@@ -48,12 +48,33 @@ shared machine the CPUs need not be equally fast: on this project's
 two-core machines one ran the same render slower than the other for
 minutes at a time, so an unpinned render's time depended on where the
 scheduler put it.
+
+With --processes P (the study knob TIME_PROCESSES) every member is rendered
+in P processes, in rounds: each round runs every member once, the first
+in the order above, each next one in the reverse of the one before (two
+members, P = 2: A B B A), so that the methods compared alternate in time
+and a drift of the machine over the group falls on each equally. The
+renderer's repeats take the minimum within a process; the processes take
+it across the machine's slower changes (a CPU's speed moving over
+seconds and minutes), which repeats within one process cannot see. The
+member's files are then those of one render: the first process's image
+(every process's image must be the same bytes, and its work counters the
+same, else the group fails: the renderer would not be deterministic), its
+stats merged (merge_stats: time_s the minimum over every repeat of every
+process, time_s_repeats all of them, time_s_processes each process's
+minima), and a record whose cpu_s is the least process's, with
+"processes", "cpu_s_processes" and "pair_pos_processes" (each process's
+place in its round). A member of --member-repeats (a render long enough
+to be timed once) runs in one process. With P = 1 the files are exactly
+those of a single process.
 """
 
 import argparse
+import json
 import os
 import re
 import signal
+import statistics
 import subprocess
 import sys
 
@@ -125,11 +146,13 @@ def one_line(text):
     return re.sub(r"[\x00-\x08\x0b-\x1f]", "", text).rstrip(" ")
 
 
-def write_record(base, exit_code, user, sys_s, cpu, load, pair_pos, message, cmd, busy=False, pin=None):
-    """The run record, written last (temporary name, then renamed)."""
+def write_record(base, exit_code, user, sys_s, cpu, load, pair_pos, message, cmd, busy=False, pin=None, extra=None):
+    """The run record, written last (temporary name, then renamed); EXTRA:
+    more keys and their values (JSON), after "cpu"."""
     text = (f'{{\n  "exit": {exit_code},\n  "user_s": {user},\n  "sys_s": {sys_s},\n  "cpu_s": {cpu},\n'
             f'  "loadavg_1min": {load},\n  "pair_pos": {pair_pos},\n  "busy_loop": {int(busy)},\n'
             f'  "cpu": {"null" if pin is None else pin},\n'
+            + "".join(f'  "{k}": {json.dumps(v)},\n' for k, v in (extra or {}).items()) +
             f'  "message": {json_str(message)},\n'
             f'  "command": {json_str(" ".join(cmd))}\n}}\n')
     with open(base + ".tmp.run", "w", encoding="utf-8") as f:
@@ -138,56 +161,166 @@ def write_record(base, exit_code, user, sys_s, cpu, load, pair_pos, message, cmd
 
 
 def remove_tmp(base):
+    """Removes the temporary files of the render at BASE (BASE.tmp.* and
+    each process's BASE.tmpI.*)."""
     d, stem = os.path.split(base)
     for name in os.listdir(d) if os.path.isdir(d) else []:
-        if name.startswith(stem + ".tmp."):
+        if re.match(re.escape(stem) + r"\.tmp[0-9]*\.", name):
             os.remove(os.path.join(d, name))
 
 
-def render(s, root, method, estimate, photons, nn, seed, extra, pair_pos, k, repeats, pin=None):
-    """One render of the settings S (argparse namespace: pm, scene, width,
-    height, subpixels, threads, of) into ROOT, timed with --repeats REPEATS,
-    pinned to CPU PIN (None: not pinned); prints its progress line.
-    Returns 0 (rendered) or 2 (refused, recorded); raises LaunchError on
-    any other failure (nothing recorded)."""
-    label = f"run {k}/{s.of} {method} {estimate} P_e={photons} n={nn} seed {seed}"
-    base = layout.run_base(root, method, estimate, photons, nn, seed)
-    os.makedirs(os.path.dirname(base), exist_ok=True)
-    remove_tmp(base)
-    for ext in (".exr", ".stats.json", ".err", ".reps.csv"):
-        if os.path.exists(base + ext):
-            os.remove(base + ext)
-    cmd = command(s.pm, s.scene, method, estimate, photons, nn, seed, s.width, s.height, s.subpixels, s.threads,
-                  extra, base + ".tmp", repeats, s.dump_reps)
+def run_process(out_base, cmd, pin):
+    """One renderer process of CMD, writing OUT_BASE.exr, .json (and
+    .reps.csv), its stderr to OUT_BASE.err and /usr/bin/time's CPU seconds
+    to OUT_BASE.time, pinned to CPU PIN. Returns a dict: rc, user, sys
+    (strings; None unless rc is 0), msg (its stderr as one line), load (the
+    1-minute load average at its start), out (OUT_BASE)."""
     with open("/proc/loadavg", encoding="ascii") as f:
         load = f.read().split()[0]
-    with open(base + ".tmp.err", "wb") as err:
-        rc = subprocess.call(["/usr/bin/time", "-f", "%U %S", "-o", base + ".tmp.time"] + cmd, stderr=err,
+    with open(out_base + ".err", "wb") as err:
+        rc = subprocess.call(["/usr/bin/time", "-f", "%U %S", "-o", out_base + ".time"] + cmd, stderr=err,
                              preexec_fn=pinned(pin))
-    with open(base + ".tmp.err", encoding="utf-8", errors="replace") as f:
+    with open(out_base + ".err", encoding="utf-8", errors="replace") as f:
         msg = one_line(f.read())
+    user = sys_s = None
     if rc == 0:
-        with open(base + ".tmp.time", encoding="ascii") as f:
+        with open(out_base + ".time", encoding="ascii") as f:
             user, sys_s = f.read().splitlines()[-1].split()
-        os.replace(base + ".tmp.exr", base + ".exr")
-        os.replace(base + ".tmp.json", base + ".stats.json")
-        os.replace(base + ".tmp.err", base + ".err")
+    return {"rc": rc, "user": user, "sys": sys_s, "msg": msg, "load": load, "out": out_base}
+
+
+def merge_stats(paths, label):
+    """The stats of one render timed in several processes (PATHS, the
+    processes' stats files in the order they ran) as one: the first
+    process's, with time_s the minimum over every repeat of every process
+    (per phase, and the total the least repeat total), time_s_repeats every
+    repeat in the order run, repeats their number, time_s_median their
+    median, time_s_cold the first process's first repeat, and processes and
+    time_s_processes (each process's minima). Raises LaunchError when a
+    process's work counters or mean radiance differ from the first's (the
+    renderer would not be deterministic)."""
+    docs = [layout.load_json(p) for p in paths]
+    first = docs[0]
+    for i, d in enumerate(docs[1:], 2):
+        for key in ("work", "mean_radiance", "gather_work"):
+            if d.get(key) != first.get(key):
+                raise LaunchError(f"{label}: process {i} of {len(docs)} reports another {key} than process 1: "
+                                  "the same render is not deterministic")
+    phases = list(first["time_s"])
+    reps = {p: [v for d in docs for v in (d.get("time_s_repeats") or {}).get(p, [d["time_s"][p]])] for p in phases}
+    out = dict(first)
+    out["time_s"] = {p: min(reps[p]) for p in phases}
+    out["repeats"] = len(reps["total"])
+    out["time_s_cold"] = first.get("time_s_cold", first["time_s"])
+    out["time_s_median"] = {p: float(statistics.median(reps[p])) for p in phases}
+    out["time_s_repeats"] = reps
+    out["processes"] = len(docs)
+    out["time_s_processes"] = {p: [d["time_s"][p] for d in docs] for p in phases}
+    return out
+
+
+def same_image(a, b):
+    """Whether the files A and B hold the same bytes."""
+    with open(a, "rb") as fa, open(b, "rb") as fb:
+        while True:
+            x, y = fa.read(1 << 20), fb.read(1 << 20)
+            if x != y:
+                return False
+            if not x:
+                return True
+
+
+class Render:
+    """One member's render: its command, output base and the processes run
+    so far (run_process's dicts), made by start(), run by run(), written
+    by finish()."""
+
+    def __init__(self, s, root, method, estimate, photons, nn, seed, extra, k, repeats, processes):
+        self.s, self.method, self.k, self.processes = s, method, k, processes
+        self.label = f"run {k}/{s.of} {method} {estimate} P_e={photons} n={nn} seed {seed}"
+        self.base = layout.run_base(root, method, estimate, photons, nn, seed)
+        self.extra, self.repeats, self.estimate, self.photons, self.nn, self.seed = \
+            extra, repeats, estimate, photons, nn, seed
+        self.done, self.pos = [], []
+
+    def out_base(self, i):
+        """The temporary base of process I (0-based): BASE.tmp with one
+        process (the command a record names), BASE.tmpI+1 with several."""
+        return self.base + (".tmp" if self.processes == 1 else f".tmp{i + 1}")
+
+    def start(self):
+        """Removes the member's files of an earlier run."""
+        os.makedirs(os.path.dirname(self.base), exist_ok=True)
+        remove_tmp(self.base)
+        for ext in (".exr", ".stats.json", ".err", ".reps.csv"):
+            if os.path.exists(self.base + ext):
+                os.remove(self.base + ext)
+
+    def command(self, i):
+        s = self.s
+        return command(s.pm, s.scene, self.method, self.estimate, self.photons, self.nn, self.seed, s.width, s.height,
+                       s.subpixels, s.threads, self.extra, self.out_base(i), self.repeats, s.dump_reps)
+
+    def wants(self):
+        """Whether another process is to run: fewer than PROCESSES so far,
+        and none refused."""
+        return len(self.done) < self.processes and not any(p["rc"] == 2 for p in self.done)
+
+    def run(self, pos, pin):
+        """Runs the next process at place POS of its round, pinned to PIN;
+        prints its progress line. Raises LaunchError on a failure other than
+        a refusal (exit 2) or a refusal after a rendered process."""
+        i = len(self.done)
+        p = run_process(self.out_base(i), self.command(i), pin)
+        of = f" (process {i + 1}/{self.processes})" if self.processes > 1 else ""
+        if p["rc"] not in (0, 2) or (p["rc"] == 2 and i > 0):
+            raise LaunchError(f"{self.label}{of} failed (exit {p['rc']}): {' '.join(self.command(i))}\n"
+                              f"launch.py: {p['msg']}")
+        self.done.append(p)
+        self.pos.append(pos)
+        if p["rc"] == 0:
+            total = "%.2f" % layout.load_json(p["out"] + ".json")["time_s"]["total"]
+            cpu = "%.2f" % (float(p["user"]) + float(p["sys"]))
+            print(f"{self.label}{of}: total {total} s, cpu {cpu} s", flush=True)
+        else:
+            print(f"{self.label}: not applicable (the renderer refused it, exit 2): {p['msg']}", flush=True)
+
+    def finish(self, pin):
+        """Writes the member's files from its processes (one: renamed; several:
+        the first's image and stderr, the stats merged, merge_stats, after
+        checking that every process made the same image) and, last, its
+        record. Returns 0 (rendered) or 2 (refused)."""
+        s, base, first = self.s, self.base, self.done[0]
+        cmd = self.command(0)
+        if first["rc"] == 2:  # refused: the combination does not apply; recorded so that it is not retried
+            os.replace(first["out"] + ".err", base + ".err")
+            remove_tmp(base)
+            write_record(base, 2, "null", "null", "null", first["load"], self.pos[0], first["msg"], cmd,
+                         s.busy_loop, pin)
+            return 2
+        for i, p in enumerate(self.done[1:], 2):
+            if not same_image(first["out"] + ".exr", p["out"] + ".exr"):
+                raise LaunchError(f"{self.label}: process {i} of {len(self.done)} made another image than process 1: "
+                                  "the same render is not deterministic")
+        if len(self.done) > 1:
+            merged = merge_stats([p["out"] + ".json" for p in self.done], self.label)
+            with open(base + ".tmp.merged", "w", encoding="utf-8") as f:  # a key a line, as the renderer writes
+                f.write("{\n" + ",\n".join(f"  {json.dumps(k)}: {json.dumps(v)}" for k, v in merged.items()) + "\n}\n")
+            os.replace(base + ".tmp.merged", base + ".stats.json")
+        else:
+            os.replace(first["out"] + ".json", base + ".stats.json")
+        os.replace(first["out"] + ".exr", base + ".exr")
+        os.replace(first["out"] + ".err", base + ".err")
         if s.dump_reps:
-            os.replace(base + ".tmp.reps.csv", base + ".reps.csv")
-        os.remove(base + ".tmp.time")
-        cpu = "%.2f" % (float(user) + float(sys_s))
-        write_record(base, 0, user, sys_s, cpu, load, pair_pos, "", cmd, s.busy_loop, pin)
-        total = "%.2f" % layout.load_json(base + ".stats.json")["time_s"]["total"]
-        print(f"{label}: total {total} s, cpu {cpu} s", flush=True)
-        return 0
-    if rc == 2:  # refused: the combination does not apply; recorded so that it is not retried
-        os.replace(base + ".tmp.err", base + ".err")
+            os.replace(first["out"] + ".reps.csv", base + ".reps.csv")
+        cpus = [round(float(p["user"]) + float(p["sys"]), 2) for p in self.done]
+        best = self.done[cpus.index(min(cpus))]
         remove_tmp(base)
-        write_record(base, 2, "null", "null", "null", load, pair_pos, msg, cmd, s.busy_loop, pin)
-        print(f"{label}: not applicable (the renderer refused it, exit 2): {msg}", flush=True)
-        return 2
-    remove_tmp(base)
-    raise LaunchError(f"{label} failed (exit {rc}): {' '.join(cmd)}\nlaunch.py: {msg}")
+        extra = {} if len(self.done) == 1 else {"processes": len(self.done), "cpu_s_processes": cpus,
+                                                  "pair_pos_processes": self.pos}
+        write_record(base, 0, best["user"], best["sys"], "%.2f" % min(cpus), first["load"], self.pos[0], "", cmd,
+                     s.busy_loop, pin, extra)
+        return 0
 
 
 def busy_loop(avoid=None):
@@ -199,14 +332,21 @@ def busy_loop(avoid=None):
 
 
 def run_group(s, members, repeats=None):
-    """Every member (root, method, extra, k) of the stem s.stem, back to back,
-    in the order alternating with the seed, each timed with s.repeats or its
-    own of REPEATS ({(root, method): repeats}); all records or none."""
+    """Every member (root, method, extra, k) of the stem s.stem, each in
+    s.processes processes (a member with its own of REPEATS ({(root,
+    method): repeats}): one), in rounds: every member once per round, the
+    first round in the order alternating with the seed, each next round in
+    the reverse of the one before; each timed with s.repeats or its own
+    repeats. All records or none."""
     m = STEM.fullmatch(s.stem)
     if not m:
         raise LaunchError(f"'{s.stem}': not ESTIMATE-pPHOTONS-nNN/seedK")
     estimate, photons, nn, seed = m["estimate"], int(m["photons"]), int(m["nn"]), int(m["seed"])
-    records = [layout.run_base(root, method, estimate, photons, nn, seed) + ".run.json" for root, method, _, _ in members]
+    own = repeats or {}
+    renders = [Render(s, root, method, estimate, photons, nn, seed, extra, k, own.get((root, method), s.repeats),
+                      1 if (root, method) in own else s.processes)
+               for root, method, extra, k in members]
+    records = [r.base + ".run.json" for r in renders]
     order = list(range(len(members)))
     if len(members) > 1 and seed % 2 == 0:
         order.reverse()
@@ -217,16 +357,23 @@ def run_group(s, members, repeats=None):
     pin = resolve_cpu(s.cpu)
     busy = busy_loop(pin) if s.busy_loop else None
     try:
-        for pos, i in enumerate(order, 1):
-            root, method, extra, k = members[i]
-            render(s, root, method, estimate, photons, nn, seed, extra, pos if len(members) > 1 else 0, k,
-                   (repeats or {}).get((root, method), s.repeats), pin)
+        for r in renders:
+            r.start()
+        while any(r.wants() for r in renders):
+            for pos, i in enumerate(order, 1):
+                if renders[i].wants():
+                    renders[i].run(pos if len(members) > 1 else 0, pin)
+            order.reverse()
+        for r in renders:
+            r.finish(pin)
         done = True
     finally:
         if busy:
             busy.kill()
             busy.wait()
-        if not done:  # the group unfinished: none of its records stays
+        if not done:  # the group unfinished: none of its records stays, nor a temporary file
+            for r in renders:
+                remove_tmp(r.base)
             for r in records:
                 if os.path.exists(r):
                     os.remove(r)
@@ -242,6 +389,8 @@ def main(argv=None):
     ap.add_argument("--threads", default="1", help="--threads of the renderer (0: all cores)")
     ap.add_argument("--repeats", required=True,
                     help="--repeats of the renderer: auto, or a count (1: a single timed run); a study's TIME_REPEATS")
+    ap.add_argument("--processes", type=int, default=1,
+                    help="each member rendered in this many processes, in alternating rounds (a study's TIME_PROCESSES)")
     ap.add_argument("--of", type=int, required=True, help="the number of renders of the study (progress lines)")
     ap.add_argument("--stem", required=True, help="ESTIMATE-pPHOTONS-nNN/seedK")
     ap.add_argument("--dump-reps", action="store_true", help="each render's representatives to seedK.reps.csv")
@@ -256,6 +405,8 @@ def main(argv=None):
     try:
         check_repeats(s.repeats)
         resolve_cpu(s.cpu)
+        if s.processes < 1:
+            raise LaunchError(f"--processes {s.processes}: a positive number of processes per render")
         own = {(root, method): check_repeats(r) for root, method, r in s.member_repeats}
         for key in own:
             if key not in {(root, method) for root, method, _, _ in members}:

@@ -2,7 +2,7 @@
 cost model of this machine (`make calibrate`: RESULTS/calibrate/model.json,
 experiments/calibrate.py) predicts for the study's renders that are missing
 (no record yet), each at its --repeats (TIME_REPEATS, or 1 where the study
-renders it once):
+renders it once) in its processes (TIME_PROCESSES, or 1 there):
 
     predicted: 12 renders missing, about 0 h 7 min on this machine (cost model results/calibrate/model.json of 2026-12-05)
 
@@ -74,7 +74,7 @@ def line(study, path=None):
             continue
         config = {"scene": g.scene, "method": method, "photons": photons, "nn": nn, "width": g.width,
                   "height": g.height, "subpixels": g.subpixels}
-        t = calibrate.predict_seconds(model, per_unit, [config], g.repeats(method, nn))[0]
+        t = calibrate.predict_seconds(model, per_unit, [config], g.repeats(method, nn))[0] * g.processes(method, nn)
         if t != t:  # nan: a method the calibration did not render
             unknown += 1
         else:

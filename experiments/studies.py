@@ -9,7 +9,8 @@ its rules from one Study.
 
 A knob given (SIZE, SEEDS, SCENE, PHOTONS, NNS, ...) overrides the study's
 own value; a retired knob name is refused with the name that replaced it;
-SIZE, SEEDS and TIME_REPEATS are checked before anything renders.
+SIZE, SEEDS, TIME_REPEATS, TIME_PROCESSES and TIME_CPU are checked before
+anything renders.
 """
 
 import glob
@@ -79,6 +80,14 @@ def parse_time_cpu(text):
     if text in ("first", "none") or re.fullmatch(r"[0-9]+", text):
         return text
     raise StudyError(f"TIME_CPU={text}: first (the lowest CPU the launcher may run on), none, or a CPU number")
+
+
+def parse_time_processes(text):
+    """TIME_PROCESSES checked: a positive number of processes per timed
+    render (launch.py --processes; 1: one process)."""
+    if re.fullmatch(r"[1-9][0-9]*", text):
+        return text
+    raise StudyError(f"TIME_PROCESSES={text}: a positive number of processes per timed render (1: one process)")
 
 
 def scene_key(scene):
@@ -153,6 +162,8 @@ class Grid:
                      layout.run_root(self.results, self.scene, self.size, self.subpixels, self.threads, self.tag))
         # a study whose times are not compared renders once
         self.time_repeats = parse_time_repeats(k["TIME_REPEATS"]) if decl.get("timed", True) else "1"
+        # TIME_PROCESSES: the processes each timed render runs in (launch.py --processes)
+        self.time_processes = parse_time_processes(k["TIME_PROCESSES"]) if decl.get("timed", True) else "1"
         # TIME_CPU: the CPU its timed one-thread renders are pinned to (launch.py --cpu)
         self.time_cpu = parse_time_cpu(k["TIME_CPU"]) if decl.get("timed", True) and self.threads == "1" else "none"
         # studies.yaml one_repeat: the renders whose work reaches a knob's value run once
@@ -188,23 +199,33 @@ class Grid:
         """The place (1..N) of the render NAME in the grid's run list."""
         return self.run_names.index(name) + 1
 
-    def repeats(self, method, nn):
-        """The --repeats of the grid's render of METHOD at n = NN: TIME_REPEATS,
-        or 1 where the block's one_repeat (studies.yaml: {methods, factor,
-        at}) says the render's work, eye samples (width x height x
-        subpixels^2) x n x the knob FACTOR's value, reaches the knob AT's
-        value for one of its METHODS."""
+    def once(self, method, nn):
+        """Whether the grid's render of METHOD at n = NN is timed once: the
+        block's one_repeat (studies.yaml: {methods, factor, at}) says its
+        work, eye samples (width x height x subpixels^2) x n x the knob
+        FACTOR's value, reaches the knob AT's value for one of its METHODS."""
         once = self.one_repeat
         if not once or method not in once["methods"]:
-            return self.time_repeats
+            return False
         work = self.width * self.height * self.subpixels ** 2 * int(nn) * float(self.knobs[once["factor"]])
-        return "1" if work >= float(self.knobs[once["at"]]) else self.time_repeats
+        return work >= float(self.knobs[once["at"]])
+
+    def repeats(self, method, nn):
+        """The --repeats of the grid's render of METHOD at n = NN: 1 where it
+        is timed once (once), else TIME_REPEATS."""
+        return "1" if self.once(method, nn) else self.time_repeats
+
+    def processes(self, method, nn):
+        """The processes the grid's render of METHOD at n = NN runs in: 1
+        where it is timed once (once), else TIME_PROCESSES."""
+        return 1 if self.once(method, nn) else int(self.time_processes)
 
     def launch_words(self, stem):
         """The launcher's words common to every job of the grid rendering the
         renders STEM (ESTIMATE-pP-nN/seedK) of one (cell, seed): the members
         (member_words) follow (experiments/launch.py)."""
-        return [self.python, "-m", "experiments.launch", "--cpu", self.time_cpu, "--pm", self.pm, "--scene", self.scene,
+        return [self.python, "-m", "experiments.launch", "--cpu", self.time_cpu, "--processes", self.time_processes,
+                "--pm", self.pm, "--scene", self.scene,
                 "--width", self.width, "--height", self.height, "--subpixels", self.subpixels,
                 "--threads", self.threads_arg, "--repeats", self.time_repeats, "--of", len(self.run_names),
                 "--stem", stem] + (["--busy-loop"] if self.busy_loop else [])
@@ -212,10 +233,10 @@ class Grid:
     def member_words(self, root, method, nn, k):
         """The launcher's words of one member: the render of METHOD at n = NN
         into ROOT with the grid's renderer options, run K of the study's, and
-        its own --repeats where it is not the job's (repeats)."""
+        --member-repeats ROOT METHOD 1 where it is timed once (once: one
+        repeat, in one process)."""
         words = ["--member", root, method, self.pm_args, k]
-        repeats = self.repeats(method, nn)
-        return words + (["--member-repeats", root, method, repeats] if repeats != self.time_repeats else [])
+        return words + (["--member-repeats", root, method, "1"] if self.once(method, nn) else [])
 
     def launch_command(self, root, methods, estimate, photons, nn, seed):
         """The shell command rendering METHODS of one (cell, seed) back to back

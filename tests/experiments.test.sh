@@ -24,8 +24,10 @@ case " \$* " in *" --nn \${FAIL_NN:-none} "*) echo "photonmap: test failure" >&2
 exec "$REAL_PM" "\$@"
 EOF
 chmod +x "$TMP/pm"
+# one process per render (TIME_PROCESSES=1): the progress lines and the
+# command log count renders; two processes are checked after the grid
 ARGS=(SIZE=32x24 "PHOTONS=2000 4000" "NNS=10 20" SEEDS=3 ESTIMATES=paper RESULTS="$R" PM="$TMP/pm"
-      REF="$TMP/ref.exr" REF_FAST="$TMP/fast.exr" BOOTSTRAP=200 "EE_TARGETS=0.1 0.05")
+      REF="$TMP/ref.exr" REF_FAST="$TMP/fast.exr" BOOTSTRAP=200 "EE_TARGETS=0.1 0.05" TIME_PROCESSES=1)
 # pycheck 'CODE': python with pandas as pd, numpy as np, R = the results dir
 pycheck() { R="$R" "$PY" -c "import os, math, numpy as np, pandas as pd; R = os.environ['R']; $1"; }
 
@@ -191,6 +193,21 @@ make -s list-runs "${ARGS[@]}" > "$TMP/list.txt" 2>&1
 check "reproduce-table: list-runs names every render's target" \
   bash -c "[ \$(wc -l < $TMP/list.txt) -eq 24 ] &&
            head -n 1 $TMP/list.txt | grep -q 'runs/cornell-32x24-s2-t1/conventional-paper-p2000-n10/seed1.run.json$'"
+# two processes per render (TIME_PROCESSES' default): one cell, two seeds,
+# the pm log's new lines in the order the renders ran
+: > "$TMP/pm.log"
+make -s reproduce-table "${ARGS[@]}" PHOTONS=2000 NNS=10 SEEDS=2 RESULTS="$TMP/two" TIME_PROCESSES=2 > "$TMP/two.log" 2>&1
+check "TIME_PROCESSES=2: each render in two processes, the methods alternating (A B B A), times the minima over both" pycheck '
+log = [l.split("--method ")[1].split()[0][0] + l.split("--seed ")[1].split()[0] for l in open(os.path.join(os.path.dirname(R), "pm.log")) if "--width 32" in l]
+assert log == ["c1", "p1", "p1", "c1", "p2", "c2", "c2", "p2"], log
+r = pd.read_csv(os.path.join(os.path.dirname(R), "two", "table1", "runs.csv"))
+assert (r["processes"] == 2).all() and (r["repeats"] >= 6).all(), r[["processes", "repeats"]]
+import json
+for _, row in r.iterrows():
+    st = json.load(open(row["run"] + ".stats.json"))
+    assert st["time_s"]["total"] == min(st["time_s_repeats"]["total"]) == min(st["time_s_processes"]["total"])
+    assert abs(row["total_s"] - st["time_s"]["total"]) < 1e-9
+'
 check "reproduce-table: REPEATS is refused with the new name" \
   expect_exit 2 "REPEATS is gone: every study target reads SEEDS" make -s reproduce-table "${ARGS[@]}" REPEATS=2
 check "reproduce-table: a missing reference named by REF is an error" \

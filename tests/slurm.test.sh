@@ -154,7 +154,8 @@ if [ "$MODE" = slurm ] && [ $CLUSTER_UP -eq 1 ]; then
   grouped_ok() {
     local f
     for f in "$JOB"/logs/*.out; do
-      [ "$(grep -c '^run ' "$f")" -eq 4 ] && return 0
+      # each render once, whatever its processes (TIME_PROCESSES: "(process I/P)")
+      [ "$(grep '^run ' "$f" | sed 's/ (process [0-9]*\/[0-9]*)//; s/:.*//' | sort -u | wc -l)" -eq 4 ] && return 0
     done
     grep -H '^run ' "$JOB"/logs/*.out
     return 1

@@ -32,9 +32,10 @@ SEEDS = (1, 2, 3)
 NOISE, BIAS = 0.0003, 0.0001
 
 
-def write_render(root, method, seed, img, cpu=None):
+def write_render(root, method, seed, img, cpu=None, processes=None):
     """One ok render's files (run.json, stats.json, EXR) under ROOT; CPU:
-    the record's pinned CPU (None: a record without one, as before pinning)."""
+    the record's pinned CPU (None: a record without one, as before pinning);
+    PROCESSES: the stats' processes (None: none, as one process writes)."""
     base = layout.run_base(str(root), method, "paper", 1000, 10, seed)
     os.makedirs(os.path.dirname(base), exist_ok=True)
     rec = {"exit": 0, "loadavg_1min": 0.5, "cpu_s": 1.0, "user_s": 0.9, "sys_s": 0.1}
@@ -47,6 +48,8 @@ def write_render(root, method, seed, img, cpu=None):
           "repeats": 1, "photons_stored": 900, "representatives": 100 if method == "precomputed" else 0,
           "empty_estimates": 0, "nonfinite_pixels": 0, "rep_every": 4, "threads": 1, "width": W, "height": H,
           "rep_count": 0}
+    if processes is not None:
+        st["processes"] = processes
     with open(base + ".stats.json", "w") as f:
         json.dump(st, f)
     reference.write_exr(img, base + ".exr")
@@ -89,7 +92,7 @@ def test_runs_carry_the_references_error(tmp_path):
         mine = ok[ok["method"] == c["method"]]
         close(c["relmse_ref_less_noise_mean"], mine["relmse_ref_less_noise"].mean(), 1e-9, "mean over seeds")
     # the interface: every existing column is still there, the new ones after them
-    assert list(runs.columns[-4:]) == ["ref_noise", "ref_bias", "relmse_ref_less_noise", "cpu"]
+    assert list(runs.columns[-5:]) == ["ref_noise", "ref_bias", "relmse_ref_less_noise", "cpu", "processes"]
     assert list(cells.columns).index("relmse_ref_less_noise_mean") == list(cells.columns).index("relmse_ref_mean") + 1
 
 
@@ -163,3 +166,13 @@ def test_runs_carry_the_pinned_cpu(tmp_path):
     runs, _ = collect.collect(args)
     got = runs.set_index(["method", "seed"])["cpu"]
     assert got[("conventional", 1)] == 1 and got[("precomputed", 1)] != got[("precomputed", 1)]
+
+
+def test_runs_carry_the_processes(tmp_path):
+    """runs.csv's processes column is the stats' "processes" (TIME_PROCESSES,
+    launch.py's merged stats); stats without it (one process) say 1."""
+    args = grid(tmp_path)
+    write_render(tmp_path / "runs", "conventional", 1, np.full((H, W, 3), 0.5, dtype=np.float32), processes=2)
+    runs, _ = collect.collect(args)
+    got = runs.set_index(["method", "seed"])["processes"]
+    assert got[("conventional", 1)] == 2 and got[("precomputed", 1)] == 1 and got[("conventional", 2)] == 1

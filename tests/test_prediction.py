@@ -44,25 +44,29 @@ def fake_model(results, constant=0.0, per_photon=0.0, written="2026-01-02"):
 
 def test_constant_time_times_repeats(tmp_path):
     """40 s a render: --repeats auto runs it 3 times (at least 3; 2 s budget
-    spent by the first), 32 renders x 120 s = 64 min; TIME_REPEATS=2: 80 s
-    each, 42.7 min; with 8 records written, 24 x 120 s = 48 min."""
+    spent by the first), in 2 processes (TIME_PROCESSES' default): 32
+    renders x 240 s = 2 h 8 min; TIME_PROCESSES=1: 1 h 4 min;
+    TIME_REPEATS=2: 160 s each, 1 h 25 min; with 8 records written, 24 x
+    240 s = 1 h 36 min."""
     path = fake_model(str(tmp_path), constant=40.0)
     s = studies.load("table1", dict(TINY, RESULTS=str(tmp_path)))
-    assert prediction.line(s) == (f"predicted: 32 renders missing, about 1 h 4 min on this machine "
+    assert prediction.line(s) == (f"predicted: 32 renders missing, about 2 h 8 min on this machine "
                                   f"(cost model {path} of 2026-01-02)")
+    s1 = studies.load("table1", dict(TINY, RESULTS=str(tmp_path), TIME_PROCESSES="1"))
+    assert "32 renders missing, about 1 h 4 min" in prediction.line(s1)
     s2 = studies.load("table1", dict(TINY, RESULTS=str(tmp_path), TIME_REPEATS="2"))
-    assert "32 renders missing, about 0 h 43 min" in prediction.line(s2)
+    assert "32 renders missing, about 1 h 25 min" in prediction.line(s2)
     for record in s.run_files[:8]:
         os.makedirs(os.path.dirname(record), exist_ok=True)
         open(record, "w").close()
-    assert "24 renders missing, about 0 h 48 min" in prediction.line(s)
+    assert "24 renders missing, about 1 h 36 min" in prediction.line(s)
 
 
 def test_counters_scale_with_the_photons(tmp_path):
     """0.01 s per traced photon, one repeat: 16 renders at 2000 photons (20 s)
     and 16 at 4000 (40 s): 960 s = 16 min."""
     fake_model(str(tmp_path), per_photon=0.01)
-    s = studies.load("table1", dict(TINY, RESULTS=str(tmp_path), TIME_REPEATS="1"))
+    s = studies.load("table1", dict(TINY, RESULTS=str(tmp_path), TIME_REPEATS="1", TIME_PROCESSES="1"))
     assert "32 renders missing, about 0 h 16 min" in prediction.line(s)
 
 
@@ -100,7 +104,7 @@ def test_snakefile_prints_it_once_on_a_dry_run(tmp_path):
     fake_model(str(tmp_path), constant=40.0)
     r = dry_run(str(tmp_path), "PREDICT=1")
     assert r.returncode == 0, r.stderr
-    assert (r.stdout + r.stderr).count("predicted: 4 renders missing, about 0 h 8 min") == 1
+    assert (r.stdout + r.stderr).count("predicted: 4 renders missing, about 0 h 16 min") == 1  # 4 x 40 s x 3 repeats x 2 processes
     r = dry_run(str(tmp_path))
     assert r.returncode == 0, r.stderr
     assert "predicted:" not in r.stdout + r.stderr

@@ -156,3 +156,14 @@ def test_pinning_text():
     assert rp.pinning_text(pd.DataFrame({"cpu": [float("nan")] * 2})) == "not pinned"
     assert rp.pinning_text(pd.DataFrame({"x": [1]})) == "not pinned"
     assert rp.pinning_text(pd.DataFrame({"cpu": [0, float("nan")]})) == "pinned to CPUs 0 (some renders not pinned)"
+
+
+def test_processes_text():
+    """The runs' processes column worded: two processes said; one, or no
+    column (records before TIME_PROCESSES), says nothing."""
+    import pandas as pd
+    from experiments.analysis import reproducibility as rp
+    assert rp.processes_text(pd.DataFrame({"processes": [2, 2]})).startswith("; each render timed in 2 processes")
+    assert "1-2 processes" in rp.processes_text(pd.DataFrame({"processes": [1, 2]}))
+    assert rp.processes_text(pd.DataFrame({"processes": [1, 1]})) == ""
+    assert rp.processes_text(pd.DataFrame({"x": [1]})) == ""

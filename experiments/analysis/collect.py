@@ -17,7 +17,10 @@ analysis compares as the minimum over repeats of each repeat's sum
 precompute + eye pass; never a sum of per-phase minima), the CPU
 seconds of the process, its place in a back-to-back pair (pair_pos: 1 or 2,
 rendered first or second by rule pair of experiments/rules/render.smk;
-0: not paired), photon
+0: not paired; timed in several processes: the first round's, and the
+times and CPU seconds the minima over the processes), the CPU it was
+pinned to (cpu) and the processes it was timed in (processes,
+TIME_PROCESSES: experiments/launch.py), photon
 counts, and the image's relMSE/NMSE/RMSE/PSNR
 against the reference and its relMSE against the conventional image of the
 same seed and estimate (0 for the conventional image itself), and its role:
@@ -66,7 +69,7 @@ RUN_COLUMNS = [
     "trace_s", "build_s", "precompute_s", "render_s", "total_s", "repeats", "trace_build_s", "precompute_render_s",
     "cpu_s", "user_s", "sys_s", "photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "loadavg_1min", "pair_pos",
     "relmse_ref", "nmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "role", "run",
-    "ref_noise", "ref_bias", "relmse_ref_less_noise", "cpu",
+    "ref_noise", "ref_bias", "relmse_ref_less_noise", "cpu", "processes",
 ]
 CELL_COLUMNS = [
     "scene", "size", "subpixels", "tag", "method", "estimate", "photons", "nn",
@@ -119,6 +122,7 @@ def read_run(root, method, estimate, photons, nn, seed):
         for phase in ("trace", "build", "precompute", "render", "total"):
             row[f"{phase}_s"] = float(st["time_s"][phase])
         row["repeats"] = st.get("repeats", 1)
+        row["processes"] = st.get("processes", 1)  # the processes it was timed in (TIME_PROCESSES; launch.py)
         row["trace_build_s"] = repeat_min(st, ("trace", "build"))
         row["precompute_render_s"] = repeat_min(st, ("precompute", "render"))
         for key in ("photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "rep_every", "threads"):

@@ -273,6 +273,17 @@ def pinning_text(runs):
     return "pinned to CPUs " + ", ".join(str(c) for c in sorted(cpus)) + " (some renders not pinned)"
 
 
+def processes_text(runs):
+    """How many processes each render of RUNS was timed in: 'each render
+    timed in N processes, ...' or '' (one, or records before processes)."""
+    n = runs["processes"].dropna().astype(int).unique() if "processes" in runs else []
+    if len(n) == 0 or (len(n) == 1 and n[0] == 1):
+        return ""
+    many = "-".join(str(x) for x in sorted({int(min(n)), int(max(n))}))
+    return (f"; each render timed in {many} processes, the methods alternating (A B B A), its time the minimum "
+            "over every repeat of every process (TIME_PROCESSES)")
+
+
 def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, ref_text="", busy=None):
     """The text of reproducibility.md; BUSY: (frame, summary, phase rows,
     runs) of the busy run against A, or None. The drift window is SUMM's."""
@@ -282,7 +293,7 @@ def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, ref_text="", busy=Non
              f"{first['width']}x{first['height']}, {first['subpixels']}x{first['subpixels']} subpixels, "
              f"{int(runs_a['seed'].nunique())} seeds, {first['threads']} thread(s), the same `--repeats`) rendered "
              f"again after every render of A, as a second user would: not interleaved; "
-             f"{pinning_text(pd.concat([runs_a, runs_b]))}. "
+             f"{pinning_text(pd.concat([runs_a, runs_b]))}{processes_text(pd.concat([runs_a, runs_b]))}. "
              f"Machine: {report.machine()}; 1-minute load average at the renders' starts: A {load_text(runs_a)}, "
              f"B {load_text(runs_b)}; commit {report.commit()}; {report.today()}.", "",
              "Ratios are table.py's paired ratios (per-seed log ratio of precomputed to conventional render "
