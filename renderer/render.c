@@ -55,8 +55,9 @@ static double seconds_since(int64_t t0)
     return (double)(clock_now_ns() - t0) * 1e-9;
 }
 
-/* Step 1: emit and trace the photons, and choose the representatives among
- * them. Returns PM_OK, or PM_ERR_NOMEM. */
+/* Step 1: emit and trace the photons: the same code in both methods, so
+ * that this phase's time ratio measures the machine's drift (the studies'
+ * drift control). Returns PM_OK, or PM_ERR_NOMEM. */
 static pm_status step_trace(render_state *rs)
 {
     const config_render *cfg = rs->cfg;
@@ -67,7 +68,6 @@ static pm_status step_trace(render_state *rs)
     pm_status rc;
     if ((rc = photons_trace(rs->sc, &pp, rs->threads, &prog, &rs->list)) != PM_OK)
         return rc;
-    reps_choose(&rs->rp, &rs->list);
     progress_end(&prog);
     rs->st->trace = seconds_since(t0);
     rs->st->photons_emitted = cfg->photons;
@@ -102,7 +102,8 @@ static pm_status build_caustic(render_state *rs)
     return PM_OK;
 }
 
-/* Step 2: build the photon map (kd-tree), with --gather the caustic map
+/* Step 2: choose the representatives among the stored photons (precomputed
+ * method), build the photon map (kd-tree), with --gather the caustic map
  * too, and find the representatives' sites in it. Returns PM_OK, or
  * PM_ERR_NOMEM. */
 static pm_status step_build(render_state *rs)
@@ -110,6 +111,7 @@ static pm_status step_build(render_state *rs)
     int64_t t0 = clock_now_ns();
     photons_list left;
     pm_status rc;
+    rs->st->work.build.rep_chosen = reps_choose(&rs->rp, &rs->list);
     if (rs->cfg->gather > 0 && (rc = build_caustic(rs)) != PM_OK)
         return rc;
     if ((rc = photons_build_map(&rs->list, reps_leave_out_mask(&rs->rp), rs->threads, &rs->map, &left)) != PM_OK)

@@ -41,7 +41,7 @@ pm_status reps_check_stored(const config_render *cfg, uint64_t stored, char *err
     return PM_ERR_INPUT;
 }
 
-void reps_choose(const reps_params *p, photons_list *l)
+uint64_t reps_choose(const reps_params *p, photons_list *l)
 {
     uint64_t total = l->count;
     if (p->rep_count > 0 && total > 0) {
@@ -52,10 +52,14 @@ void reps_choose(const reps_params *p, photons_list *l)
         uint64_t q = total / count, r = total % count;
         for (uint64_t j = 0; j < count; j++)
             l->ph[j * q + j * r / count].flags |= PHOTONS_FLAG_REP;
-    } else if (p->rep_count == 0 && p->rep_every > 0) {
+        return count;
+    }
+    if (p->rep_count == 0 && p->rep_every > 0) {
         for (uint64_t i = 0; i < total; i += p->rep_every)
             l->ph[i].flags |= PHOTONS_FLAG_REP;
+        return (total + p->rep_every - 1) / p->rep_every;
     }
+    return 0;
 }
 
 uint8_t reps_leave_out_mask(const reps_params *p)

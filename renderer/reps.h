@@ -57,8 +57,9 @@ reps_params reps_params_of(const config_render *cfg);
 pm_status reps_check_stored(const config_render *cfg, uint64_t stored, char *err, size_t errlen);
 
 /* Flags the representatives of list l by p's rule (PHOTONS_FLAG_REP).
- * Never fails. */
-void reps_choose(const reps_params *p, photons_list *l);
+ * Returns how many it flagged (0 for the conventional method). Never
+ * fails. */
+uint64_t reps_choose(const reps_params *p, photons_list *l);
 /* The flags photons_build_map keeps out of the tree: PHOTONS_FLAG_REP
  * with p->bias_correction, else 0. */
 uint8_t reps_leave_out_mask(const reps_params *p);

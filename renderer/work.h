@@ -16,12 +16,13 @@ typedef struct {
     uint64_t knn_queries, map_nodes, map_points;
     uint64_t rep_lookups, rep_nodes, rep_points;
     uint64_t rep_evaluations;
+    uint64_t rep_chosen;
 } work_counts;
 
 /* X(name) for every counter of work_counts, in its order. */
 #define WORK_FIELDS(X)                                                                                       \
     X(traced_photons) X(stored_photons) X(rays) X(shape_tests) X(tree_points) X(knn_queries) X(map_nodes)   \
-        X(map_points) X(rep_lookups) X(rep_nodes) X(rep_points) X(rep_evaluations)
+        X(map_points) X(rep_lookups) X(rep_nodes) X(rep_points) X(rep_evaluations) X(rep_chosen)
 
 /* The phases of a render, as in its times. */
 typedef struct {

@@ -155,7 +155,7 @@ void test_precomputed_rep_count(void)
                           .bias_correction = 0, .normal_cos = CONFIG_DEFAULT_NORMAL_COS};
         photons_list l;
         CHECK(photons_trace(sc, &pp, 2, NULL, &l) == 0);
-        reps_choose(&rp, &l);
+        uint64_t chosen = reps_choose(&rp, &l);
         uint64_t want = counts[c] < l.count ? counts[c] : l.count, got = 0, last = 0, gap_lo = UINT64_MAX, gap_hi = 0;
         for (uint64_t i = 0; i < l.count; i++) {
             if (!(l.ph[i].flags & PHOTONS_FLAG_REP))
@@ -169,6 +169,7 @@ void test_precomputed_rep_count(void)
         }
         CHECK_MSG(got == want, "rep_count %llu: %llu representatives of %llu stored", (unsigned long long)counts[c],
                   (unsigned long long)got, (unsigned long long)l.count);
+        CHECK(chosen == got); /* what it returns is what it flagged */
         CHECK(l.count > 5000 && (l.ph[0].flags & PHOTONS_FLAG_REP));
         if (got > 1)
             CHECK_MSG(gap_lo >= l.count / want && gap_hi <= (l.count + want - 1) / want,

@@ -114,7 +114,7 @@ void test_work_one_photon_by_hand(void)
     const work_phases *w = &st.work;
     CHECK(w->trace.traced_photons == 1 && w->trace.stored_photons == 1);
     CHECK(w->trace.rays == 1 && w->trace.shape_tests == 1);
-    CHECK(w->build.tree_points == 1);
+    CHECK(w->build.tree_points == 1 && w->build.rep_chosen == 0);
     CHECK(w->precompute.knn_queries == 0 && w->precompute.rep_evaluations == 0);
     CHECK(w->render.rays == 4 && w->render.shape_tests == 4);
     CHECK(w->render.knn_queries == 4 && w->render.map_nodes == 4 && w->render.map_points == 4);
@@ -127,6 +127,7 @@ void test_work_one_photon_by_hand(void)
      * the hint (1 point) and its leaf (1 node, 1 point) */
     cfg = tiny_config(CONFIG_METHOD_PRECOMPUTED);
     CHECK(helper_render(sc, &cfg, 1, &im, &st) == PM_OK);
+    CHECK(w->build.rep_chosen == 1 && w->trace.rep_chosen == 0); /* chosen in the build, not the photon pass */
     CHECK(w->precompute.tree_points == 1 && w->precompute.knn_queries == 1);
     CHECK(w->precompute.map_nodes == 1 && w->precompute.map_points == 1);
     CHECK(w->precompute.rep_evaluations == 1);
@@ -145,7 +146,8 @@ void test_work_one_photon_by_hand(void)
 }
 
 /* Every counter of every phase, for the Cornell box at a small size, is
- * the same on 1 and 2 threads, for each method and variant. */
+ * the same on 1 and 2 threads, for each method and variant; the photon
+ * pass's are the same for both methods. */
 void test_work_same_for_any_thread_count(void)
 {
     scene *sc = NULL;
@@ -153,6 +155,8 @@ void test_work_same_for_any_thread_count(void)
     CHECK_MSG(scene_load("scenes/cornell.scene", &sc, err, sizeof err) == PM_OK, "%s", err);
     if (!sc)
         return;
+    work_counts conv_trace;
+    memset(&conv_trace, 0, sizeof conv_trace);
     for (int variant = 0; variant < 5; variant++) {
         config_render cfg = config_defaults();
         cfg.photons = 20000;
@@ -167,6 +171,15 @@ void test_work_same_for_any_thread_count(void)
         CHECK(helper_render(sc, &cfg, 1, &a, &sa) == PM_OK);
         CHECK(helper_render(sc, &cfg, 2, &b, &sb) == PM_OK);
         CHECK_MSG(work_equal(&sa.work, &sb.work), "variant %d", variant);
+        /* the photon pass does the same in both methods (the drift control):
+         * every trace counter equals the conventional render's (variants 1-3
+         * light as it does); the representatives are chosen in the build
+         * (every 4th of the stored) */
+        if (variant == 0)
+            conv_trace = sa.work.trace;
+        else if (variant < 4)
+            CHECK_MSG(!memcmp(&sa.work.trace, &conv_trace, sizeof conv_trace), "variant %d: trace work differs", variant);
+        CHECK(sa.work.build.rep_chosen == (variant ? (sa.work.trace.stored_photons + 3) / 4 : 0));
         CHECK(sa.work.render.rays > 0 && sa.work.trace.shape_tests > 0);
         CHECK(variant == 0 ? sa.work.render.map_points > 0 : sa.work.render.rep_points > 0);
         image_free(&a);
