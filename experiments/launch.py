@@ -70,6 +70,7 @@ those of a single process.
 """
 
 import argparse
+import filecmp
 import json
 import os
 import re
@@ -219,17 +220,6 @@ def merge_stats(paths, label):
     return out
 
 
-def same_image(a, b):
-    """Whether the files A and B hold the same bytes."""
-    with open(a, "rb") as fa, open(b, "rb") as fb:
-        while True:
-            x, y = fa.read(1 << 20), fb.read(1 << 20)
-            if x != y:
-                return False
-            if not x:
-                return True
-
-
 class Render:
     """One member's render: its command, output base and the processes run
     so far (run_process's dicts), made by start(), run by run(), written
@@ -299,7 +289,7 @@ class Render:
                          s.busy_loop, pin)
             return 2
         for i, p in enumerate(self.done[1:], 2):
-            if not same_image(first["out"] + ".exr", p["out"] + ".exr"):
+            if not filecmp.cmp(first["out"] + ".exr", p["out"] + ".exr", shallow=False):
                 raise LaunchError(f"{self.label}: process {i} of {len(self.done)} made another image than process 1: "
                                   "the same render is not deterministic")
         if len(self.done) > 1:
