@@ -8,19 +8,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mem.h"
 #include "outfile.h"
 
 pm_status image_init(image *im, uint32_t width, uint32_t height)
 {
     im->width = width;
     im->height = height;
-    im->rgb = calloc((size_t)width * height * 3 + 1, sizeof(float));
+    /* mem: a repeat's image reuses the last one's pages (mem_keep) */
+    im->rgb = mem_zalloc(((size_t)width * height * 3 + 1) * sizeof(float));
     return im->rgb ? PM_OK : PM_ERR_NOMEM;
 }
 
 void image_free(image *im)
 {
-    free(im->rgb);
+    mem_free(im->rgb);
     im->rgb = NULL;
     im->width = im->height = 0;
 }

@@ -18,8 +18,6 @@
 #define MEM_HEAD 64u                /* the header's room: keeps the buffer 64-byte aligned */
 #define MEM_MAGIC 0x6d656d62u
 
-#define MEM_CACHE_SLOTS 64 /* freed mappings kept for reuse; more are unmapped */
-
 typedef struct {
     size_t map;   /* bytes of the mapping (header included), 0: from malloc */
     size_t bytes; /* bytes asked for */

@@ -8,6 +8,10 @@
 
 /* Buffers at least this large (header included) are huge-page mappings. */
 #define MEM_HUGE_MIN ((size_t)2 << 20)
+/* The most freed mappings mem_free keeps at once: with each mapping at
+ * least MEM_HUGE_MIN, enough that mem_keep's bytes, not this count, bound
+ * what is kept for any keep up to MEM_CACHE_SLOTS * MEM_HUGE_MIN bytes. */
+#define MEM_CACHE_SLOTS 512
 
 /* Returns the bytes a buffer asked for `bytes` can hold at no extra page
  * cost: whole huge pages from MEM_HUGE_MIN / 2 up. Never fails. */

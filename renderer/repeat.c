@@ -8,6 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* every freed mapping a repeat may keep has a slot, so that only the first
+ * repeat pays for fresh pages (a full cache unmaps) */
+_Static_assert(CONFIG_REPEAT_KEEP_BYTES <= (size_t)MEM_CACHE_SLOTS * MEM_HUGE_MIN,
+               "mem's cache has fewer slots than CONFIG_REPEAT_KEEP_BYTES can fill");
+
 pm_status repeat_parse(const char *text, uint32_t *out, char *err, size_t errlen)
 {
     if (!strcmp(text, "auto")) {

@@ -160,3 +160,54 @@ void test_mem_reuse(void)
     CHECK(mem_trim() == 0);
     mem_keep(0);
 }
+
+/* The cache's count does not bind before mem_keep's bytes: more freed
+ * mappings than a photon pass's chunks leave (two per chunk, 64 chunks and
+ * more) are all kept, and each serves a later buffer with its pages (a
+ * marker written before the free survives: a fresh mapping reads zero). */
+void test_mem_reuse_many(void)
+{
+    enum { N = 300 };
+    CHECK(N <= MEM_CACHE_SLOTS);
+    unsigned char *b[N];
+    size_t bytes = MEM_HUGE_MIN; /* a mapping of two huge pages */
+    mem_keep((size_t)N * 2 * MEM_HUGE_MIN);
+    size_t made = 0;
+    for (size_t i = 0; i < N; i++)
+        made += (b[i] = mem_alloc(bytes)) != NULL;
+    CHECK(made == N);
+    if (made != N) {
+        mem_keep(0);
+        mem_trim();
+        return;
+    }
+    for (size_t i = 0; i < N; i++) {
+        b[i][0] = 0x5a;
+        b[i][bytes - 1] = 0xa5;
+        mem_free(b[i]);
+    }
+    size_t reused = 0;
+    for (size_t i = 0; i < N; i++) {
+        b[i] = mem_alloc(bytes);
+        reused += b[i] && b[i][0] == 0x5a && b[i][bytes - 1] == 0xa5;
+    }
+    CHECK_MSG(reused == N, "%zu of %d freed mappings served again", reused, N);
+    for (size_t i = 0; i < N; i++)
+        mem_free(b[i]);
+    CHECK(mem_trim() >= (size_t)N * bytes);
+    /* control: without mem_keep nothing is kept, and the markers are gone */
+    mem_keep(0);
+    for (size_t i = 0; i < N; i++)
+        if ((b[i] = mem_alloc(bytes)) != NULL)
+            b[i][0] = 0x5a;
+    for (size_t i = 0; i < N; i++)
+        mem_free(b[i]);
+    reused = 0;
+    for (size_t i = 0; i < N; i++) {
+        b[i] = mem_alloc(bytes);
+        reused += b[i] && b[i][0] == 0x5a;
+    }
+    CHECK_MSG(reused == 0, "%zu mappings kept without mem_keep", reused);
+    for (size_t i = 0; i < N; i++)
+        mem_free(b[i]);
+}
