@@ -7,7 +7,7 @@ command line (command) and makes one render's files in the run layout
     python3 -m experiments.launch --pm PM --scene SCENE --width W --height H \\
         --subpixels S --threads T --repeats R --of N --stem ESTIMATE-pP-nN/seedK \\
         --member ROOT METHOD "EXTRA ARGS" K [--member ...] [--member-repeats ROOT METHOD R ...] [--dump-reps] \\
-        [--busy-loop] [--cpu first|N|none] [--processes P]
+        [--busy-loop] [--cpu first|N|none] [--processes P] [--gauge PCT --max-processes M]
 
 renders every member (the render ROOT/METHOD-ESTIMATE-pP-nN/seedK with the
 extra renderer options EXTRA ARGS, run K of the study's N) back to back,
@@ -67,6 +67,20 @@ minima), and a record whose cpu_s is the least process's, with
 place in its round). A member of --member-repeats (a render long enough
 to be timed once) runs in one process. With P = 1 the files are exactly
 those of a single process.
+
+With --gauge PCT (the study knob TIME_GAUGE) the photon pass is the
+group's speed gauge: it is the same code doing the same work in every
+member (their trace work counters must be equal, else there is no gauge),
+so its least time over all of a member's processes says whether that
+member ever ran at the machine's best speed. After the P rounds, a member
+whose least photon pass is more than PCT % above the least of the whole
+group gets one more process, in further rounds (the order still
+reversing), until none is or it has run in M processes (--max-processes,
+the knob TIME_PROCESSES_MAX). On this project's machines a slow spell
+(every phase 10-20% slower) lasts about three processes; rounds A B B A
+then put both of B's processes inside it, and B's minimum is a slow one.
+Each record says how many processes the gauge added ("gauge_added"; the
+stats' "processes" counts them all).
 """
 
 import argparse
@@ -232,6 +246,7 @@ class Render:
         self.extra, self.repeats, self.estimate, self.photons, self.nn, self.seed = \
             extra, repeats, estimate, photons, nn, seed
         self.done, self.pos = [], []
+        self.planned = processes  # the processes the rounds run; the gauge may add to self.processes
 
     def out_base(self, i):
         """The temporary base of process I (0-based): BASE.tmp with one
@@ -263,6 +278,8 @@ class Render:
         i = len(self.done)
         p = run_process(self.out_base(i), self.command(i), pin)
         of = f" (process {i + 1}/{self.processes})" if self.processes > 1 else ""
+        if i >= self.planned:
+            of = f" (process {i + 1}, added by the gauge)"
         if p["rc"] not in (0, 2) or (p["rc"] == 2 and i > 0):
             raise LaunchError(f"{self.label}{of} failed (exit {p['rc']}): {' '.join(self.command(i))}\n"
                               f"launch.py: {p['msg']}")
@@ -308,9 +325,28 @@ class Render:
         remove_tmp(base)
         extra = {} if len(self.done) == 1 else {"processes": len(self.done), "cpu_s_processes": cpus,
                                                   "pair_pos_processes": self.pos}
+        if s.gauge:
+            extra["gauge_added"] = len(self.done) - self.planned
         write_record(base, 0, best["user"], best["sys"], "%.2f" % min(cpus), first["load"], self.pos[0], "", cmd,
                      s.busy_loop, pin, extra)
         return 0
+
+
+def gauge_slow(renders, pct):
+    """The members of RENDERS (the group) whose least photon pass over all
+    their processes is more than PCT % above the group's least: among the
+    members rendered in several processes, all rendered (exit 0), at least
+    two, with equal trace work counters; [] where there is no such gauge."""
+    gauged = [r for r in renders if r.planned > 1]
+    if len(gauged) < 2 or any(p["rc"] != 0 for r in gauged for p in r.done):
+        return []
+    docs = {r: [layout.load_json(p["out"] + ".json") for p in r.done] for r in gauged}
+    works = [d.get("work", {}).get("trace") for r in gauged for d in docs[r]]
+    if works[0] is None or any(w != works[0] for w in works):
+        return []
+    least = {r: min(d["time_s"]["trace"] for d in docs[r]) for r in gauged}
+    best = min(least.values())
+    return [r for r in gauged if least[r] > best * (1 + pct / 100)]
 
 
 def busy_loop(avoid=None):
@@ -354,6 +390,15 @@ def run_group(s, members, repeats=None):
                 if renders[i].wants():
                     renders[i].run(pos if len(members) > 1 else 0, pin)
             order.reverse()
+        while s.gauge:  # the gauge: another round for the members that never ran at the group's best speed
+            slow = [r for r in gauge_slow(renders, s.gauge) if len(r.done) < s.max_processes]
+            if not slow:
+                break
+            for pos, i in enumerate(order, 1):
+                if renders[i] in slow:
+                    renders[i].processes += 1
+                    renders[i].run(pos, pin)
+            order.reverse()
         for r in renders:
             r.finish(pin)
         done = True
@@ -381,6 +426,12 @@ def main(argv=None):
                     help="--repeats of the renderer: auto, or a count (1: a single timed run); a study's TIME_REPEATS")
     ap.add_argument("--processes", type=int, default=1,
                     help="each member rendered in this many processes, in alternating rounds (a study's TIME_PROCESSES)")
+    ap.add_argument("--gauge", type=float, default=0,
+                    help="another process for a member whose least photon pass is more than this %% above the group's"
+                         " least (a study's TIME_GAUGE; 0: none)")
+    ap.add_argument("--max-processes", type=int, default=None,
+                    help="the most processes the gauge may bring a member to (a study's TIME_PROCESSES_MAX;"
+                         " default: --processes)")
     ap.add_argument("--of", type=int, required=True, help="the number of renders of the study (progress lines)")
     ap.add_argument("--stem", required=True, help="ESTIMATE-pPHOTONS-nNN/seedK")
     ap.add_argument("--dump-reps", action="store_true", help="each render's representatives to seedK.reps.csv")
@@ -397,6 +448,12 @@ def main(argv=None):
         resolve_cpu(s.cpu)
         if s.processes < 1:
             raise LaunchError(f"--processes {s.processes}: a positive number of processes per render")
+        if s.max_processes is None:
+            s.max_processes = s.processes
+        if s.max_processes < s.processes:
+            raise LaunchError(f"--max-processes {s.max_processes}: at least --processes ({s.processes})")
+        if not 0 <= s.gauge < 1000:
+            raise LaunchError(f"--gauge {s.gauge:g}: a percentage in [0, 1000) (0: no gauge)")
         own = {(root, method): check_repeats(r) for root, method, r in s.member_repeats}
         for key in own:
             if key not in {(root, method) for root, method, _, _ in members}:

@@ -9,8 +9,8 @@ its rules from one Study.
 
 A knob given (SIZE, SEEDS, SCENE, PHOTONS, NNS, ...) overrides the study's
 own value; a retired knob name is refused with the name that replaced it;
-SIZE, SEEDS, TIME_REPEATS, TIME_PROCESSES and TIME_CPU are checked before
-anything renders.
+SIZE, SEEDS, TIME_REPEATS, TIME_PROCESSES, TIME_PROCESSES_MAX, TIME_GAUGE and
+TIME_CPU are checked before anything renders.
 """
 
 import glob
@@ -90,6 +90,18 @@ def parse_time_processes(text):
     raise StudyError(f"TIME_PROCESSES={text}: a positive number of processes per timed render (1: one process)")
 
 
+def parse_time_gauge(text, processes, most):
+    """TIME_GAUGE and TIME_PROCESSES_MAX checked: a percentage in [0,
+    1000) (launch.py --gauge; 0: no gauge) and a positive number of
+    processes. Returns both as text, the maximum at least PROCESSES
+    (TIME_PROCESSES: a maximum below it leaves the gauge no room)."""
+    if not re.fullmatch(r"[0-9]+(\.[0-9]+)?", text) or float(text) >= 1000:
+        raise StudyError(f"TIME_GAUGE={text}: a percentage in [0, 1000) (0: no gauge)")
+    if not re.fullmatch(r"[1-9][0-9]*", most):
+        raise StudyError(f"TIME_PROCESSES_MAX={most}: a positive number of processes per timed render")
+    return text, str(max(int(most), int(processes)))
+
+
 def scene_key(scene):
     """The first 12 hex digits of the SHA-256 of SCENE's content: a scene's
     name in the paths of a study of that one scene (evaluate)."""
@@ -164,6 +176,10 @@ class Grid:
         self.time_repeats = parse_time_repeats(k["TIME_REPEATS"]) if decl.get("timed", True) else "1"
         # TIME_PROCESSES: the processes each timed render runs in (launch.py --processes)
         self.time_processes = parse_time_processes(k["TIME_PROCESSES"]) if decl.get("timed", True) else "1"
+        # TIME_GAUGE, TIME_PROCESSES_MAX: the photon pass as the group's speed gauge (launch.py --gauge)
+        self.time_gauge, self.time_processes_max = (parse_time_gauge(k["TIME_GAUGE"], self.time_processes,
+                                                                     k["TIME_PROCESSES_MAX"])
+                                                    if decl.get("timed", True) else ("0", "1"))
         # TIME_CPU: the CPU its timed one-thread renders are pinned to (launch.py --cpu)
         self.time_cpu = parse_time_cpu(k["TIME_CPU"]) if decl.get("timed", True) and self.threads == "1" else "none"
         # studies.yaml one_repeat: the renders whose work reaches a knob's value run once
@@ -225,6 +241,7 @@ class Grid:
         renders STEM (ESTIMATE-pP-nN/seedK) of one (cell, seed): the members
         (member_words) follow (experiments/launch.py)."""
         return [self.python, "-m", "experiments.launch", "--cpu", self.time_cpu, "--processes", self.time_processes,
+                "--gauge", self.time_gauge, "--max-processes", self.time_processes_max,
                 "--pm", self.pm, "--scene", self.scene,
                 "--width", self.width, "--height", self.height, "--subpixels", self.subpixels,
                 "--threads", self.threads_arg, "--repeats", self.time_repeats, "--of", len(self.run_names),

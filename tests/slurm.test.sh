@@ -103,9 +103,11 @@ if [ "${PM_SLURM:-auto}" != emulate ] && [ "$(id -u)" -eq 0 ] &&
 fi
 
 # same_results A B: the renders make wrote under A and under B agree: the
-# same files, images bit for bit, stats JSON but for its times and its
-# provenance (the load average at the start), run records
-# (experiments/launch.py) in their exit status.
+# same files, images bit for bit, stats JSON but for its times, its
+# provenance (the load average at the start) and the counts of repeats and
+# processes (the photon pass's gauge, TIME_GAUGE, adds processes where a
+# render's times say so), run records (experiments/launch.py) in their
+# exit status.
 same_results() {
   local a=$1/$CELLS b=$2/$CELLS f
   [ -d "$a" ] && [ -d "$b" ] || { echo "missing $a or $b"; return 1; }
@@ -114,7 +116,7 @@ same_results() {
   for f in $(cd "$a" && find . -type f | sort); do
     case "$f" in
       *.exr|*.png) cmp "$a/$f" "$b/$f" || return 1 ;;
-      *.stats.json) diff <(grep -vE '"(time_s[a-z_]*|provenance)"' "$a/$f") <(grep -vE '"(time_s[a-z_]*|provenance)"' "$b/$f") || { echo "$f differs"; return 1; } ;;
+      *.stats.json) diff <(grep -vE '"(time_s[a-z_]*|provenance|repeats|processes)"' "$a/$f") <(grep -vE '"(time_s[a-z_]*|provenance|repeats|processes)"' "$b/$f") || { echo "$f differs"; return 1; } ;;
       *.run.json) diff <(grep '"exit"' "$a/$f") <(grep '"exit"' "$b/$f") || { echo "$f differs"; return 1; } ;;
     esac
   done
@@ -154,8 +156,9 @@ if [ "$MODE" = slurm ] && [ $CLUSTER_UP -eq 1 ]; then
   grouped_ok() {
     local f
     for f in "$JOB"/logs/*.out; do
-      # each render once, whatever its processes (TIME_PROCESSES: "(process I/P)")
-      [ "$(grep '^run ' "$f" | sed 's/ (process [0-9]*\/[0-9]*)//; s/:.*//' | sort -u | wc -l)" -eq 4 ] && return 0
+      # each render once, whatever its processes (TIME_PROCESSES: "(process I/P)";
+      # TIME_GAUGE: "(process I, added by the gauge)")
+      [ "$(grep '^run ' "$f" | sed 's/ (process [^)]*)//; s/:.*//' | sort -u | wc -l)" -eq 4 ] && return 0
     done
     grep -H '^run ' "$JOB"/logs/*.out
     return 1

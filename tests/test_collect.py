@@ -92,7 +92,8 @@ def test_runs_carry_the_references_error(tmp_path):
         mine = ok[ok["method"] == c["method"]]
         close(c["relmse_ref_less_noise_mean"], mine["relmse_ref_less_noise"].mean(), 1e-9, "mean over seeds")
     # the interface: every existing column is still there, the new ones after them
-    assert list(runs.columns[-5:]) == ["ref_noise", "ref_bias", "relmse_ref_less_noise", "cpu", "processes"]
+    assert list(runs.columns[-6:]) == ["ref_noise", "ref_bias", "relmse_ref_less_noise", "cpu", "processes",
+                                     "gauge_added"]
     assert list(cells.columns).index("relmse_ref_less_noise_mean") == list(cells.columns).index("relmse_ref_mean") + 1
 
 

@@ -19,7 +19,9 @@ from experiments import launch, studies
 # a stand-in renderer: the Nth call (COUNTER) logs its method to ORDER_LOG
 # and writes two repeats whose totals are TIMES[N] + 0.1 and TIMES[N];
 # ODD_IMAGE=N / ODD_WORK=N: the Nth call's image / work counter differs;
-# REFUSE=METHOD: that method exits 2
+# REFUSE=METHOD: that method exits 2; TRACES: the Nth call's least photon
+# pass is TRACES[N] (else TIMES[N] / 10); TRACE_WORK=METHOD: that method's
+# photon pass reports other work
 FAKE_PM = """#!/usr/bin/python3
 import json, os, sys
 a = sys.argv[1:]
@@ -34,10 +36,12 @@ if os.environ.get("REFUSE") == method:
 t = float(os.environ["TIMES"].split()[n - 1])
 odd = lambda key: os.environ.get(key) == str(n)
 open(out, "w").write("other" if odd("ODD_IMAGE") else "image of " + method)
-reps = {"trace": [t / 10 + 0.01, t / 10], "total": [t + 0.1, t]}
+tr = float(os.environ["TRACES"].split()[n - 1]) if os.environ.get("TRACES") else t / 10
+reps = {"trace": [tr + 0.01, tr], "total": [t + 0.1, t]}
+rays = (2 if odd("ODD_WORK") else 1) + (10 if os.environ.get("TRACE_WORK") == method else 0)
 json.dump({"status": "ok", "method": method, "time_s": {p: min(v) for p, v in reps.items()}, "repeats": 2,
            "time_s_cold": {p: v[0] for p, v in reps.items()}, "time_s_median": {p: sum(v) / 2 for p, v in reps.items()},
-           "time_s_repeats": reps, "work": {"trace": {"rays": 2 if odd("ODD_WORK") else 1}},
+           "time_s_repeats": reps, "work": {"trace": {"rays": rays}},
            "mean_radiance": [0.5, 0.5, 0.5]}, open(stats, "w"))
 """
 
@@ -57,7 +61,7 @@ def run_group(tmp_path, monkeypatch, processes, times, seed=1, extra=(), env=Non
     monkeypatch.setenv("COUNTER", str(tmp_path / "counter"))
     monkeypatch.setenv("ORDER_LOG", str(tmp_path / "order"))
     monkeypatch.setenv("TIMES", " ".join(map(str, times)))
-    for key in ("ODD_IMAGE", "ODD_WORK", "REFUSE"):
+    for key in ("ODD_IMAGE", "ODD_WORK", "REFUSE", "TRACES", "TRACE_WORK"):
         monkeypatch.delenv(key, raising=False)
     for key, value in (env or {}).items():
         monkeypatch.setenv(key, value)
@@ -148,6 +152,58 @@ def test_refused_and_once_timed_members_run_once(tmp_path, monkeypatch):
     assert "processes" not in files(root, "conventional")[1]
 
 
+GAUGE = ["--gauge", "4", "--max-processes", "4"]
+
+
+def test_gauge_adds_a_process_to_the_member_that_never_ran_at_best_speed(tmp_path, monkeypatch):
+    """Seed 1, A B B A: precomputed's photon passes (0.12, 0.12) are 20%
+    above conventional's least (0.10): precomputed runs once more (0.10)
+    and then nothing more; its time is the least over its three processes,
+    its record says the gauge added one, conventional's none."""
+    rc, order, root = run_group(tmp_path, monkeypatch, 2, [1, 0.9, 0.8, 1, 0.5], extra=GAUGE,
+                                env={"TRACES": "0.10 0.12 0.12 0.11 0.10"})
+    assert rc == 0 and order == ["conventional", "precomputed", "precomputed", "conventional", "precomputed"]
+    st, rec = files(root, "precomputed")
+    assert st["processes"] == 3 and st["time_s"]["trace"] == pytest.approx(0.10)
+    assert st["time_s"]["total"] == pytest.approx(0.5) and rec["processes"] == 3
+    assert rec["gauge_added"] == 1 and rec["pair_pos_processes"] == [2, 1, 2]
+    st, rec = files(root, "conventional")
+    assert st["processes"] == 2 and rec["gauge_added"] == 0
+    assert not list(root.glob("*/*.tmp*")), "temporary files left"
+
+
+def test_gauge_stops_at_max_processes(tmp_path, monkeypatch):
+    """Precomputed's photon pass stays 20% slower: it runs until it has run
+    in --max-processes 4, and the group still finishes."""
+    rc, order, root = run_group(tmp_path, monkeypatch, 2, [1] * 8, extra=GAUGE,
+                                env={"TRACES": "0.10 0.12 0.12 0.10 0.12 0.12 0.12 0.12"})
+    assert rc == 0 and order == ["conventional", "precomputed", "precomputed", "conventional",
+                                 "precomputed", "precomputed"]
+    assert files(root, "precomputed")[1]["gauge_added"] == 2
+
+
+@pytest.mark.parametrize("case", ["inside", "off", "other_work", "no_cap_room"])
+def test_gauge_controls_add_nothing(tmp_path, monkeypatch, case):
+    """No process is added when the slower member's least photon pass is
+    within 4% of the group's (0.1035 against 0.10), when the gauge is off
+    (--gauge 0, 20% slower), when the members' photon passes do different
+    work (no gauge), or when --max-processes leaves no room."""
+    extra = {"inside": GAUGE, "off": ["--gauge", "0", "--max-processes", "4"], "other_work": GAUGE,
+             "no_cap_room": ["--gauge", "4", "--max-processes", "2"]}[case]
+    traces = "0.10 0.1035 0.1035 0.10" if case == "inside" else "0.10 0.12 0.12 0.10"
+    env = {"TRACES": traces + " 0.10 0.10", **({"TRACE_WORK": "precomputed"} if case == "other_work" else {})}
+    rc, order, root = run_group(tmp_path, monkeypatch, 2, [1] * 6, extra=extra, env=env)
+    assert rc == 0 and len(order) == 4
+    assert files(root, "precomputed")[0]["processes"] == 2
+
+
+def test_bad_gauge_refused(tmp_path, monkeypatch, capsys):
+    for extra, text in ((["--gauge", "-1"], "--gauge -1"), (["--max-processes", "1"], "--max-processes 1")):
+        with pytest.raises(SystemExit) as e:
+            run_group(tmp_path, monkeypatch, 2, [1], extra=extra)
+        assert e.value.code == 2 and text in capsys.readouterr().err
+
+
 def test_bad_processes_refused(tmp_path, monkeypatch, capsys):
     with pytest.raises(SystemExit) as e:
         run_group(tmp_path, monkeypatch, 0, [1])
@@ -171,6 +227,27 @@ def test_knob_reaches_the_launcher():
     for bad in ("0", "two", "-1"):
         with pytest.raises(studies.StudyError, match="TIME_PROCESSES=.*positive number of processes"):
             words("table1", TIME_PROCESSES=bad)
+
+
+def test_gauge_knobs_reach_the_launcher():
+    """TIME_GAUGE (default 4) and TIME_PROCESSES_MAX (default 4) are every
+    timed study's --gauge and --max-processes (never below
+    TIME_PROCESSES: no room); an untimed study has no gauge; a bad value
+    is refused."""
+    _, w = words("table1")
+    assert w[w.index("--gauge") + 1] == "4" and w[w.index("--max-processes") + 1] == "4"
+    _, w = words("table1", TIME_GAUGE="2.5", TIME_PROCESSES_MAX="6")
+    assert w[w.index("--gauge") + 1] == "2.5" and w[w.index("--max-processes") + 1] == "6"
+    _, w = words("bias")
+    assert w[w.index("--gauge") + 1] == "0" and w[w.index("--max-processes") + 1] == "1"
+    for bad in ("-1", "four", "1000"):
+        with pytest.raises(studies.StudyError, match="TIME_GAUGE="):
+            words("table1", TIME_GAUGE=bad)
+    _, w = words("table1", TIME_PROCESSES="5")
+    assert w[w.index("--max-processes") + 1] == "5"
+    for bad in ("0", "x"):
+        with pytest.raises(studies.StudyError, match="TIME_PROCESSES_MAX=.*positive number of processes"):
+            words("table1", TIME_PROCESSES_MAX=bad)
 
 
 def test_once_timed_renders_run_in_one_process():

@@ -167,3 +167,6 @@ def test_processes_text():
     assert "1-2 processes" in rp.processes_text(pd.DataFrame({"processes": [1, 2]}))
     assert rp.processes_text(pd.DataFrame({"processes": [1, 1]})) == ""
     assert rp.processes_text(pd.DataFrame({"x": [1]})) == ""
+    text = rp.processes_text(pd.DataFrame({"processes": [2, 3, 4, 2], "gauge_added": [0, 1, 2, 0]}))
+    assert "2-4 processes" in text and "gauge (TIME_GAUGE) added 3 processes to 2 of 4 renders" in text
+    assert "gauge" not in rp.processes_text(pd.DataFrame({"processes": [2, 2], "gauge_added": [0, 0]}))

@@ -20,7 +20,8 @@ rendered first or second by rule pair of experiments/rules/render.smk;
 0: not paired; timed in several processes: the first round's, and the
 times and CPU seconds the minima over the processes), the CPU it was
 pinned to (cpu) and the processes it was timed in (processes,
-TIME_PROCESSES: experiments/launch.py), photon
+TIME_PROCESSES: experiments/launch.py; gauge_added: how many of them the
+photon pass's gauge added, TIME_GAUGE), photon
 counts, and the image's relMSE/NMSE/RMSE/PSNR
 against the reference and its relMSE against the conventional image of the
 same seed and estimate (0 for the conventional image itself), and its role:
@@ -69,7 +70,7 @@ RUN_COLUMNS = [
     "trace_s", "build_s", "precompute_s", "render_s", "total_s", "repeats", "trace_build_s", "precompute_render_s",
     "cpu_s", "user_s", "sys_s", "photons_stored", "representatives", "empty_estimates", "nonfinite_pixels", "loadavg_1min", "pair_pos",
     "relmse_ref", "nmse_ref", "rmse_ref", "psnr_ref", "relmse_conv", "role", "run",
-    "ref_noise", "ref_bias", "relmse_ref_less_noise", "cpu", "processes",
+    "ref_noise", "ref_bias", "relmse_ref_less_noise", "cpu", "processes", "gauge_added",
 ]
 CELL_COLUMNS = [
     "scene", "size", "subpixels", "tag", "method", "estimate", "photons", "nn",
@@ -114,6 +115,7 @@ def read_run(root, method, estimate, photons, nn, seed):
     row["pair_pos"] = rec.get("pair_pos", 0)  # records of unpaired renders have none: not paired
     cpu = rec.get("cpu")  # the CPU the render was pinned to (TIME_CPU); none, or a record before pinning: NaN
     row["cpu"] = math.nan if cpu is None else cpu
+    row["gauge_added"] = rec.get("gauge_added", 0)  # processes the gauge added (TIME_GAUGE; launch.py)
     if status == layout.REFUSED:
         row["status"] = status
         return row

@@ -280,8 +280,11 @@ def processes_text(runs):
     if len(n) == 0 or (len(n) == 1 and n[0] == 1):
         return ""
     many = "-".join(str(x) for x in sorted({int(min(n)), int(max(n))}))
+    g = runs["gauge_added"].fillna(0) if "gauge_added" in runs else pd.Series(dtype=float)
+    added = (f"; the photon pass's gauge (TIME_GAUGE) added {int(g.sum())} processes to {int((g > 0).sum())} of "
+             f"{len(runs)} renders" if (g > 0).any() else "")
     return (f"; each render timed in {many} processes, the methods alternating (A B B A), its time the minimum "
-            "over every repeat of every process (TIME_PROCESSES)")
+            f"over every repeat of every process (TIME_PROCESSES){added}")
 
 
 def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, ref_text="", busy=None):
