@@ -2,7 +2,9 @@
 cost model of this machine (`make calibrate`: RESULTS/calibrate/model.json,
 experiments/calibrate.py) predicts for the study's renders that are missing
 (no record yet), each at its --repeats (TIME_REPEATS, or 1 where the study
-renders it once) in its processes (TIME_PROCESSES, or 1 there):
+renders it once) in its processes (TIME_PROCESSES, or 1 there; the
+processes the photon pass's gauge adds, TIME_GAUGE, depend on the machine
+at the time and are not predicted: runs.csv's gauge_added counts them):
 
     predicted: 12 renders missing, about 0 h 7 min on this machine (cost model results/calibrate/model.json of 2026-12-05)
 

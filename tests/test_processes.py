@@ -2,7 +2,9 @@
 TIME_PROCESSES): each member of a group rendered in several processes, in
 rounds whose order reverses (A B B A), its times the minima over every
 repeat of every process, the group failing when two processes of one
-render disagree in a bit of the image or in a work counter; and of the
+render disagree in a bit of the image or in a work counter; of the gauge
+(--gauge, TIME_GAUGE: a render whose least photon pass stays above its
+group's least gets more processes, up to --max-processes); and of the
 knob's way from studies.yaml to the launcher and to the dry run's
 prediction (tests/test_prediction.py has the prediction's numbers).
 
