@@ -70,7 +70,8 @@ those of a single process.
 
 With --gauge PCT (the study knob TIME_GAUGE) the photon pass is the
 group's speed gauge: it is the same code doing the same work in every
-member (their trace work counters must be equal, else there is no gauge),
+member (their trace work counters must be equal, and the least of them
+at least GAUGE_MIN_S, 10 ms, else there is no gauge),
 so its least time over all of a member's processes says whether that
 member ever ran at the machine's best speed. After the P rounds, a member
 whose least photon pass is more than PCT % above the least of the whole
@@ -96,6 +97,12 @@ import sys
 from experiments.analysis import runs as layout
 
 ESTIMATE_ARGS = {"paper": [], "corrected": ["--bias-correction"]}
+# the shortest photon pass that gauges a speed: a shorter one (a test's or
+# a preview's few thousand photons, about a millisecond) moves by more than
+# the gauge's few percent between repeats of one process, and would add
+# processes for nothing; every cell of the paper's grid at 1024x768 takes
+# 28 ms or more
+GAUGE_MIN_S = 0.01
 STEM = re.compile(r"(?P<estimate>[a-z]+)-p(?P<photons>[0-9]+)-n(?P<nn>[0-9]+)/seed(?P<seed>[0-9]+)")
 
 
@@ -336,7 +343,8 @@ def gauge_slow(renders, pct):
     """The members of RENDERS (the group) whose least photon pass over all
     their processes is more than PCT % above the group's least: among the
     members rendered in several processes, all rendered (exit 0), at least
-    two, with equal trace work counters; [] where there is no such gauge."""
+    two, with equal trace work counters, the group's least photon pass at
+    least GAUGE_MIN_S; [] where there is no such gauge."""
     gauged = [r for r in renders if r.planned > 1]
     if len(gauged) < 2 or any(p["rc"] != 0 for r in gauged for p in r.done):
         return []
@@ -346,6 +354,8 @@ def gauge_slow(renders, pct):
         return []
     least = {r: min(d["time_s"]["trace"] for d in docs[r]) for r in gauged}
     best = min(least.values())
+    if best < GAUGE_MIN_S:
+        return []
     return [r for r in gauged if least[r] > best * (1 + pct / 100)]
 
 

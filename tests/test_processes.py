@@ -184,15 +184,18 @@ def test_gauge_stops_at_max_processes(tmp_path, monkeypatch):
     assert files(root, "precomputed")[1]["gauge_added"] == 2
 
 
-@pytest.mark.parametrize("case", ["inside", "off", "other_work", "no_cap_room"])
+@pytest.mark.parametrize("case", ["inside", "off", "other_work", "no_cap_room", "too_short"])
 def test_gauge_controls_add_nothing(tmp_path, monkeypatch, case):
     """No process is added when the slower member's least photon pass is
     within 4% of the group's (0.1035 against 0.10), when the gauge is off
     (--gauge 0, 20% slower), when the members' photon passes do different
-    work (no gauge), or when --max-processes leaves no room."""
+    work (no gauge), when --max-processes leaves no room, or when the
+    group's least photon pass is shorter than GAUGE_MIN_S (20% slower)."""
     extra = {"inside": GAUGE, "off": ["--gauge", "0", "--max-processes", "4"], "other_work": GAUGE,
-             "no_cap_room": ["--gauge", "4", "--max-processes", "2"]}[case]
-    traces = "0.10 0.1035 0.1035 0.10" if case == "inside" else "0.10 0.12 0.12 0.10"
+             "no_cap_room": ["--gauge", "4", "--max-processes", "2"], "too_short": GAUGE}[case]
+    traces = {"inside": "0.10 0.1035 0.1035 0.10",
+              "too_short": " ".join(str(x * launch.GAUGE_MIN_S) for x in (0.9, 1.08, 1.08, 0.9))
+              }.get(case, "0.10 0.12 0.12 0.10")
     env = {"TRACES": traces + " 0.10 0.10", **({"TRACE_WORK": "precomputed"} if case == "other_work" else {})}
     rc, order, root = run_group(tmp_path, monkeypatch, 2, [1] * 6, extra=extra, env=env)
     assert rc == 0 and len(order) == 4
