@@ -131,6 +131,31 @@ def test_reproducibility_pooled_drift():
     assert reproducibility.pooled_drift([a, b.iloc[:3]], (97, 103))["cells"] == 1
 
 
+def test_rounds_only_leaves_out_the_gauges_processes(tmp_path):
+    """A render the gauge gave a third process (trace 0.10 there, 0.12 in
+    the rounds' two): the rounds alone time it 0.12, so its cell's drift
+    control leaves [97, 103]; renders without an added process keep their
+    time. Controls: no gauge_added column, or none added, gives None; a
+    missing stats file gives None."""
+    import json
+    base = tmp_path / "precomputed-paper-p50000-n10" / "seed1"
+    base.parent.mkdir()
+    (tmp_path / "precomputed-paper-p50000-n10" / "seed1.stats.json").write_text(
+        json.dumps({"time_s_processes": {"trace": [0.12, 0.125, 0.10]}}))
+    runs = pd.DataFrame([{"method": m, "estimate": "paper", "photons": 50000, "nn": 10, "seed": 1, "status": "ok",
+                          "trace_s": 0.10, "processes": 3 if m == "precomputed" else 2,
+                          "gauge_added": 1 if m == "precomputed" else 0,
+                          "run": str(base) if m == "precomputed" else str(tmp_path / "none")}
+                         for m in ("conventional", "precomputed")])
+    r = reproducibility.rounds_only(runs)
+    assert list(r["trace_s"]) == [0.10, 0.12]
+    assert reproducibility.pooled_drift([runs], (97, 103))["inside"] == 1
+    assert reproducibility.pooled_drift([r], (97, 103))["inside"] == 0
+    assert reproducibility.rounds_only(runs.drop(columns="gauge_added")) is None
+    assert reproducibility.rounds_only(runs.assign(gauge_added=0)) is None
+    assert reproducibility.rounds_only(runs.assign(run=str(tmp_path / "missing"))) is None
+
+
 def test_reproducibility_process_change():
     """How far the same render's time moves between two processes: the
     median and 90th percentile of |B / A - 1| against numpy on known ratios
