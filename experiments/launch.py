@@ -70,10 +70,10 @@ those of a single process.
 
 With --gauge PCT (the study knob TIME_GAUGE) the photon pass is the
 group's speed gauge: it is the same code doing the same work in every
-member (their trace work counters must be equal, and the least of them
-at least GAUGE_MIN_S, 10 ms, else there is no gauge),
-so its least time over all of a member's processes says whether that
-member ever ran at the machine's best speed. After the P rounds, a member
+member (their trace work counters must be equal, and the least of its
+times at least GAUGE_MIN_S, 10 ms, else there is no gauge), so its least
+time over all of a member's processes says whether that member ever ran
+at the machine's best speed. After the P rounds, a member
 whose least photon pass is more than PCT % above the least of the whole
 group gets one more process, in further rounds (the order still
 reversing), until none is or it has run in M processes (--max-processes,
