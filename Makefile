@@ -90,7 +90,7 @@ results: $(BUILD)/photonmap | $(DEPS_TEST) ## every study regenerated on one pin
 results-check: | $(DEPS_TEST) ## every render under results/runs by the pinned renderer, every results file naming one commit
 	@$(PYTHON) -m experiments.regenerate check --results $(RESULTS)
 
-calibrate: $(BUILD)/photonmap | $(DEPS_TEST) ## this machine's cost model: each phase's time per unit of its work counters, checked on held-out renders -> results/calibrate/
+calibrate: $(BUILD)/photonmap | $(DEPS_TEST) ## this machine's cost model: each phase's time per unit of its work counters, renders at the studies' sizes timed as theirs (TIME_*), checked on held-out renders -> results/calibrate/
 	$(PYTHON) -m experiments.calibrate --pm $(PM) --out $(RESULTS)/calibrate
 
 stability: $(BUILD)/photonmap | $(DEPS_TEST)

@@ -1,32 +1,37 @@
 """Cost model per machine: each phase's time as a non-negative linear
 function of the work counters the renderer reports (stats' "work"), fitted
-by non-negative least squares on renders timed with --repeats auto (the
-minima), and validated on renders it did not fit.
+by non-negative least squares on calibration renders, and validated on
+renders it did not fit.
 
-    python3 -m experiments.calibrate --pm build/photonmap --out results/calibrate [--cpu first|N|none]
+    python3 -m experiments.calibrate --pm build/photonmap --out results/calibrate
+    python3 -m experiments.calibrate --refit results/calibrate --out DIR    # no renders: refit renders.csv
 
-Every render runs pinned to one CPU (--cpu, default first: the lowest the
-process may run on), as the studies' timed renders are (TIME_CPU), so that
-the model is of the CPU the studies time on.
+The calibration renders are timed as the studies time theirs: both methods
+of one setting are one group of the launcher (experiments/launch.py), one
+thread, with the studies' timing knobs (studies.yaml's TIME_REPEATS,
+TIME_PROCESSES, TIME_GAUGE, TIME_PROCESSES_MAX and TIME_CPU; one set in the
+environment, as make passes its command line, in their place), so a time is
+the minimum over every repeat of every process, on the CPU the studies time
+on. They cover every size a study renders at (SIZES), since a render's cost
+per unit of work depends on its size: a smaller image's eye queries lie
+further apart and find fewer tree nodes in the caches (the `*sparse`
+counters).
 
 writes coefficients.csv (seconds per unit of each counter, per phase),
-renders.csv (every render: counters, measured and predicted times, whether
-it was fitted or held out), model.json (the coefficients and the validation,
-read back by load_model: the analysis's model ratios) and calibrate.md (the
-model and its validation: the median and the largest relative error of the
-predicted total on the held-out renders; the goal is a median of at most
-5%).
+renders.csv (every render: settings, raw counters, measured and predicted
+times, whether it was fitted or held out), model.json (the coefficients,
+the validation and the timing knobs, read back by load_model: the
+analysis's model ratios) and calibrate.md (the model and its validation:
+the median and the largest relative error of the predicted total on the
+held-out renders, per size too; the goal is a median of at most 5%). A
+failed render writes nothing (exit 1).
 
 The analysis side: model_ratio (the model's paired time ratio of two sets
-of renders from their work counters), explain (the phase and the counter
-behind a measured ratio the model does not predict) and predict_seconds
-(the wall time a list of render configurations will take, for a study's dry
-run: each render's counters scaled from the calibration renders' work per
-photon and per eye sample, times its repeats).
-
-The fitted and held-out renders differ in their settings (scene, size,
-photons, n), so the validation asks what the model is for: the time of a
-render it has not seen."""
+of renders from their work counters and eye samples), explain (the phase
+and the counter behind a measured ratio the model does not predict) and
+predict_seconds (the wall time a list of render configurations will take,
+for a study's dry run: each render's counters scaled from the calibration
+renders' work per photon and per eye sample, times its repeats)."""
 
 import argparse
 import json
@@ -41,28 +46,53 @@ import time
 import numpy as np
 from scipy.optimize import nnls
 
-from experiments import launch
+from experiments import studies
 from experiments.analysis import report
+from experiments.analysis import runs as layout
 
+TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # the repository: scenes/, the launcher's cwd
 PHASES = ("trace", "build", "precompute", "render")
 # the fitted parts of a render's total: its phases, and the rest of the total
 # (allocating and freeing the photon list and map, the image, threads)
 PARTS = PHASES + ("other",)
 # the counters each part's time is a function of, besides a constant; the
-# rest's are the trace's stored photons and the eye pass's rays
+# rest's are the trace's stored photons and the eye pass's rays. A name
+# "COUNTER*FACTOR" is the counter times a factor of the render (FACTORS).
 FEATURES = {
     "trace": ("traced_photons", "stored_photons", "rays", "shape_tests"),
-    "build": ("tree_points",),
+    "build": ("tree_points", "tree_points*log2_map"),
     "precompute": ("tree_points", "knn_queries", "map_nodes", "map_points", "rep_evaluations"),
     "render": ("rays", "shape_tests", "knn_queries", "map_nodes", "map_points", "rep_lookups", "rep_nodes",
-               "rep_points", "rep_evaluations"),
+               "rep_points", "rep_evaluations", "map_nodes*sparse", "map_points*sparse", "rep_nodes*sparse"),
     "other": ("stored_photons", "rays"),
 }
 OTHER_FROM = {"stored_photons": "trace", "rays": "render"}
+# the eye samples of the densest calibration size (1024x768, 2x2 subpixels):
+# the eye queries of smaller images lie further apart
+DENSE_SAMPLES = 1024 * 768 * 4
+
+
+def sparse(row):
+    """How much further apart than at DENSE_SAMPLES the render's successive
+    eye queries lie: log2(DENSE_SAMPLES / its eye samples), at least 0 (a
+    query near the last one finds the same tree nodes in the caches)."""
+    return max(0.0, math.log2(DENSE_SAMPLES / row["samples"])) if row.get("samples") else 0.0
+
+
+def log2_map(row):
+    """log2 of the photon map's points (a k-d tree's build sorts them, N log N)."""
+    return math.log2(max(2, row["work"]["build"]["tree_points"]))
+
+
+FACTORS = {"sparse": sparse, "log2_map": log2_map}
 
 
 def counter(row, part, name):
-    """Counter `name` of `part` in row (the rest's from their phases)."""
+    """Counter `name` of `part` in row (the rest's from their phases; a
+    "COUNTER*FACTOR" name: the counter times FACTORS[FACTOR](row))."""
+    if "*" in name:
+        base, factor = name.split("*")
+        return counter(row, part, base) * FACTORS[factor](row)
     return row["work"][OTHER_FROM[name] if part == "other" else part][name]
 
 
@@ -80,16 +110,20 @@ DEFAULT_MODEL = os.path.join(DEFAULT_OUT, MODEL_NAME)
 class ModelError(Exception):
     """A model file that cannot be read, with the reason."""
 
-# (scene, method, photons, nn, width, height): the fitted renders, then the held-out ones
-FIT = [(sc, m, p, n, w, h)
-       for sc in ("cornell", "caustic")
-       for m in ("conventional", "precomputed")
-       for p, n, w, h in ((20000, 20, 128, 96), (50000, 50, 256, 192), (100000, 100, 128, 96),
-                          (100000, 20, 256, 192))]
-HELD_OUT = [(sc, m, p, n, w, h)
-            for sc in ("cornell", "caustic")
-            for m in ("conventional", "precomputed")
-            for p, n, w, h in ((40000, 30, 192, 144), (80000, 70, 160, 120))]
+# The calibration renders, as groups of both methods (paired, timed as the
+# studies time theirs: launch.py's processes, rounds and gauge):
+# (scene, photons, nn, width, height). Every size a study renders at:
+# evaluate's 128x96, resolution's and gather's 256x192 and 512x384, Table
+# 1's 1024x768; the held-out groups have settings no fitted group has, at
+# every size, so the validation asks what the model is for: the time of a
+# render it has not seen.
+SIZES = ((128, 96), (256, 192), (512, 384), (1024, 768))
+SCENES = ("cornell", "caustic")
+METHODS = ("conventional", "precomputed")
+FIT_SETTINGS = ((20000, 20), (100000, 100), (500000, 50))  # (photons, n)
+HELD_SETTINGS = ((50000, 50), (200000, 20))
+FIT = [(sc, p, n, w, h) for w, h in SIZES for sc in SCENES for p, n in FIT_SETTINGS]
+HELD_OUT = [(sc, p, n, w, h) for w, h in SIZES for sc in SCENES for p, n in HELD_SETTINGS]
 
 
 def design(rows, phase):
@@ -140,7 +174,7 @@ def part_error(model, rows, part):
     return float(np.median(errs)) if errs else float("nan")
 
 
-def write_model(path, model, median, largest, phase_errors, provenance, per_unit=None, written=None):
+def write_model(path, model, median, largest, phase_errors, provenance, per_unit=None, written=None, timing=None):
     """model.json: per part its counters and coefficients (seconds; seconds
     per unit), the held-out validation (median and largest relative error
     of the total, the median per phase), the machine's provenance, the
@@ -150,7 +184,7 @@ def write_model(path, model, median, largest, phase_errors, provenance, per_unit
     doc = {"parts": {p: {"counters": ["constant", *FEATURES[p]], "seconds_per_unit": [float(c) for c in model[p]]}
                      for p in PARTS},
            "validation": {"median": median, "largest": largest, "phases": phase_errors},
-           "provenance": provenance, "work_per_unit": per_unit or {},
+           "provenance": provenance, "work_per_unit": per_unit or {}, "timing": timing or {},
            "written": written or time.strftime("%Y-%m-%d", time.gmtime())}
     with open(path + ".tmp", "w", encoding="utf-8") as f:
         json.dump(doc, f, indent=1)
@@ -270,17 +304,17 @@ def predict_seconds(model, per_unit, configs, repeats="auto", rule=None):
         d = drivers(c["photons"], c["nn"], c["width"] * c["height"] * c["subpixels"] ** 2)
         work = {ph: {n: float(np.mean([k[ph][n] for k in known])) * d[driver(ph, n)] for n in known[0][ph]}
                 for ph in PHASES}
-        t = predict(model, {"work": work})["total"]
+        t = predict(model, {"work": work, "samples": d["S"]})["total"]
         out.append(t * repeats_of(repeats, t, rule))
     return out
 
 
-def model_ratio(model, works_a, works_b):
+def model_ratio(model, rows_a, rows_b):
     """The model's paired time ratio A / B: exp of the mean over pairs of the
-    log of the predicted totals' ratio, the work counters (stats' "work") of
-    A[s] and B[s] one pair each; nan with no pair."""
-    logs = [math.log(predict(model, {"work": a})["total"] / predict(model, {"work": b})["total"])
-            for a, b in zip(works_a, works_b)]
+    log of the predicted totals' ratio, the renders A[s] and B[s] ({"work":
+    stats' "work", "samples": its eye samples}) one pair each; nan with no
+    pair."""
+    logs = [math.log(predict(model, a)["total"] / predict(model, b)["total"]) for a, b in zip(rows_a, rows_b)]
     return math.exp(sum(logs) / len(logs)) if logs else math.nan
 
 
@@ -312,60 +346,163 @@ def explain(model, rows_a, rows_b):
     return phase, name if share[name] > 0 else "constant"
 
 
-def render(pm, scene, method, photons, nn, width, height, tmp, cpu=None):
-    """One render with --repeats auto, pinned to CPU (None: unpinned): its
-    counters and its times' minima."""
-    stats = os.path.join(tmp, "s.json")
-    subprocess.run([pm, "render", os.path.join("scenes", scene + ".scene"), "--method", method, "--photons",
-                    str(photons), "--nn", str(nn), "--width", str(width), "--height", str(height), "--threads", "1",
-                    "--repeats", "auto", "--quiet", "--stats", stats], check=True, preexec_fn=launch.pinned(cpu))
-    with open(stats) as f:
-        s = json.load(f)
-    return {"scene": scene, "method": method, "photons": photons, "nn": nn, "width": width, "height": height,
-            "samples": s["samples"], "work": s["work"], "time": s["time_s"], "repeats": s["repeats"],
-            "provenance": s["provenance"]}
+def timing_knobs(env=None):
+    """The studies' timing knobs (studies.yaml's defaults; one given in the
+    environment, as make passes its command line, in their place), checked:
+    {TIME_REPEATS, TIME_PROCESSES, TIME_GAUGE, TIME_PROCESSES_MAX,
+    TIME_CPU, SUBPIXELS}; StudyError names a bad one."""
+    env = os.environ if env is None else env
+    d = studies.read_config()["defaults"]
+    k = {name: studies.knob_text(env.get(name, d[name])) for name in
+         ("TIME_REPEATS", "TIME_PROCESSES", "TIME_GAUGE", "TIME_PROCESSES_MAX", "TIME_CPU", "SUBPIXELS")}
+    studies.parse_time_repeats(k["TIME_REPEATS"])
+    studies.parse_time_processes(k["TIME_PROCESSES"])
+    studies.parse_time_cpu(k["TIME_CPU"])
+    k["TIME_GAUGE"], k["TIME_PROCESSES_MAX"] = studies.parse_time_gauge(k["TIME_GAUGE"], k["TIME_PROCESSES"],
+                                                                         k["TIME_PROCESSES_MAX"])
+    if not k["SUBPIXELS"].isdigit() or int(k["SUBPIXELS"]) < 1:
+        raise studies.StudyError(f"SUBPIXELS={k['SUBPIXELS']}: a positive number of subpixels per side")
+    return k
 
 
-def write(out, model, fitted, held, median, largest, cpu=None):
+def render_group(pm, group, root, k, of, knobs):
+    """Both methods of GROUP (scene, photons, nn, width, height), one thread,
+    seed 1, rendered by the launcher as a study's timed renders are (KNOBS:
+    timing_knobs; renders K and K + 1 of OF, its progress lines), under
+    ROOT; [conventional's, precomputed's] rows: counters, eye samples, the
+    times' minima over every repeat of every process, and the render's
+    settings. CalledProcessError when the launcher fails."""
+    scene, photons, nn, width, height = group
+    cells = os.path.join(root, f"{scene}-{width}x{height}")
+    cmd = [sys.executable, "-m", "experiments.launch", "--pm", pm, "--scene", os.path.join("scenes", scene + ".scene"),
+           "--width", str(width), "--height", str(height), "--subpixels", knobs["SUBPIXELS"], "--threads", "1",
+           "--repeats", knobs["TIME_REPEATS"], "--processes", knobs["TIME_PROCESSES"], "--gauge", knobs["TIME_GAUGE"],
+           "--max-processes", knobs["TIME_PROCESSES_MAX"], "--cpu", knobs["TIME_CPU"], "--of", str(of),
+           "--stem", f"paper-p{photons}-n{nn}/seed1"]
+    for i, method in enumerate(METHODS):
+        cmd += ["--member", cells, method, "", str(k + i)]
+    subprocess.run(cmd, check=True, cwd=TOP)
+    rows = []
+    for method in METHODS:
+        with open(os.path.join(TOP, layout.run_base(cells, method, "paper", photons, nn, 1)) + ".stats.json") as f:
+            s = json.load(f)
+        rows.append({"scene": scene, "method": method, "photons": photons, "nn": nn, "width": width, "height": height,
+                     "samples": s["samples"], "work": s["work"], "time": s["time_s"], "repeats": s["repeats"],
+                     "processes": s.get("processes", 1), "provenance": s["provenance"]})
+    return rows
+
+
+def render_all(pm, groups, root, knobs, k=1, of=None):
+    """Every group of GROUPS rendered (render_group), renders numbered from K
+    of OF; their rows, in order."""
+    of = of or 2 * len(groups)
+    rows = []
+    for i, g in enumerate(groups):
+        rows += render_group(pm, g, root, k + 2 * i, of, knobs)
+    return rows
+
+
+# the raw counters renders.csv keeps per render ("PHASE.COUNTER"): every one
+# a feature is made of, so that the model can be refitted from it (--refit)
+RAW = sorted({(OTHER_FROM.get(f, p) if p == "other" else p, f.split("*")[0]) for p in PARTS for f in FEATURES[p]}
+             | {("build", "tree_points")})
+RENDER_FIELDS = ("set", "scene", "method", "photons", "nn", "width", "height", "samples", "repeats", "processes",
+                 "loadavg_1min", "measured_total", "predicted_total", "rel_error")
+
+
+def render_lines(model, fitted, held):
+    """renders.csv's lines: every render's settings, its measured and
+    predicted times (total and per phase) and its raw counters (RAW)."""
+    lines = [",".join(RENDER_FIELDS + tuple(f"{m}_{p}" for p in PHASES for m in ("measured", "predicted"))
+                      + tuple(f"{p}.{c}" for p, c in RAW))]
+    for name, rows in (("fit", fitted), ("held_out", held)):
+        for r in rows:
+            q = predict(model, r)
+            load = (r.get("provenance") or {}).get("loadavg", [None])[0]
+            lines.append(",".join(
+                [name, r["scene"], r["method"]] + ["%d" % r[k] for k in ("photons", "nn", "width", "height", "samples")]
+                + ["%d" % r.get("repeats", 0), "%d" % r.get("processes", 1), "" if load is None else "%.2f" % load,
+                   "%.6f" % r["time"]["total"], "%.6f" % q["total"],
+                   "%.4f" % ((q["total"] - r["time"]["total"]) / r["time"]["total"])]
+                + ["%.6f" % x for ph in PHASES for x in (r["time"][ph], q[ph])]
+                + ["%d" % r["work"][p][c] for p, c in RAW]))
+    return lines
+
+
+def read_renders(path):
+    """(fitted, held) rows of a renders.csv (render_lines), each with its
+    settings, samples, times and the raw counters: what fit, validate and
+    write need to refit the model without rendering; ModelError when the
+    file lacks a column."""
+    import csv
+    fitted, held = [], []
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            for r in csv.DictReader(f):
+                work = {p: {} for p in PHASES}
+                for p, c in RAW:
+                    work[p][c] = int(r[f"{p}.{c}"])
+                row = {"scene": r["scene"], "method": r["method"], "work": work,
+                       **{k: int(r[k]) for k in ("photons", "nn", "width", "height", "samples", "repeats", "processes")},
+                       "time": {**{p: float(r[f"measured_{p}"]) for p in PHASES}, "total": float(r["measured_total"])},
+                       "provenance": {"loadavg": [float(r["loadavg_1min"]) if r["loadavg_1min"] else None]}}
+                (fitted if r["set"] == "fit" else held).append(row)
+    except (OSError, KeyError, ValueError) as e:
+        raise ModelError(f"{path}: not calibrate's renders.csv ({e.__class__.__name__}: {e})")
+    return fitted, held
+
+
+def size_errors(model, rows):
+    """[(WxH, renders, median, largest relative error of the total)] per size of ROWS."""
+    out = []
+    for w, h in sorted({(r["width"], r["height"]) for r in rows}):
+        e = [abs(predict(model, r)["total"] / r["time"]["total"] - 1) for r in rows if (r["width"], r["height"]) == (w, h)]
+        out.append((f"{w}x{h}", len(e), float(np.median(e)), float(np.max(e))))
+    return out
+
+
+def write(out, model, fitted, held, median, largest, knobs, provenance):
     """OUT's coefficients.csv, renders.csv, model.json and calibrate.md, each
     through a temporary name and a rename; calibrate.md names the commit of
-    the analysis (report.commit) beside the renderer's binary, and the CPU
-    the renders were pinned to (None: unpinned)."""
+    the analysis (report.commit) beside the renderer's binary (PROVENANCE,
+    a stats file's), and the timing knobs the renders ran with (KNOBS)."""
     coef = ["phase,counter,seconds_per_unit"]
     for phase in PARTS:
         for name, c in zip(("constant",) + FEATURES[phase], model[phase]):
             coef.append("%s,%s,%.6g" % (phase, name, c))
     report.write_atomic(os.path.join(out, "coefficients.csv"), "\n".join(coef) + "\n")
-    rend = ["set,scene,method,photons,nn,width,height,repeats,measured_total,predicted_total,rel_error,"
-            + ",".join("measured_%s,predicted_%s" % (p, p) for p in PHASES)]
-    for name, rows in (("fit", fitted), ("held_out", held)):
-        for r in rows:
-            p = predict(model, r)
-            rend.append("%s,%s,%s,%d,%d,%d,%d,%d,%.6f,%.6f,%.4f,%s" % (
-                name, r["scene"], r["method"], r["photons"], r["nn"], r["width"], r["height"], r["repeats"],
-                r["time"]["total"], p["total"], (p["total"] - r["time"]["total"]) / r["time"]["total"],
-                ",".join("%.6f,%.6f" % (r["time"][ph], p[ph]) for ph in PHASES)))
-    report.write_atomic(os.path.join(out, "renders.csv"), "\n".join(rend) + "\n")
+    report.write_atomic(os.path.join(out, "renders.csv"), "\n".join(render_lines(model, fitted, held)) + "\n")
     write_model(os.path.join(out, MODEL_NAME), model, median, largest,
-                {p: part_error(model, held, p) for p in PHASES}, fitted[0]["provenance"], work_per_unit(fitted + held))
-    prov = fitted[0]["provenance"]
+                {p: part_error(model, held, p) for p in PHASES}, provenance, work_per_unit(fitted + held),
+                timing=knobs)
+    prov = provenance
+    pin = knobs["TIME_CPU"]
     md = ["# Cost model of this machine\n",
-          "Generated by `make calibrate` (experiments/calibrate.py) on %s, commit %s. Each phase's time (the minimum "
-          "over `--repeats auto`, one thread, %s) as a non-negative linear "
-          "function of its work counters (`other`: the total less the phases, on the stored photons and the eye "
-          "rays), fitted on %d renders, validated on %d renders of other "
-          "settings (`renders.csv`). Machine: %s; binary %s (%s), %s `%s`.\n" % (
-              report.today(), report.commit(), "unpinned" if cpu is None else "every render pinned to CPU %d" % cpu,
-              len(fitted), len(held), prov["cpu"], prov["commit"], prov["tree"],
+          "Generated by `make calibrate` (experiments/calibrate.py) on %s, commit %s. Each phase's time as a "
+          "non-negative linear function of its work counters (`other`: the total less the phases, on the stored "
+          "photons and the eye rays), fitted on %d renders, validated on %d renders of other settings at the same "
+          "sizes (`renders.csv`). Machine: %s; binary %s (%s), %s `%s`.\n" % (
+              report.today(), report.commit(), len(fitted), len(held), prov["cpu"], prov["commit"], prov["tree"],
               prov["compiler"], prov["flags"]),
+          "Every render is timed as the studies time theirs: both methods of a setting as one group of the "
+          "launcher (experiments/launch.py), one thread, %s, `--repeats %s` in %s processes in rounds, the speed "
+          "gauge at %s%% (up to %s processes); a time is the minimum over every repeat of every process. The "
+          "sizes are the studies' (%s), %d photon settings fitted and %d held out at each.\n" % (
+              "unpinned" if pin == "none" else "pinned to CPU " + pin, knobs["TIME_REPEATS"], knobs["TIME_PROCESSES"],
+              knobs["TIME_GAUGE"], knobs["TIME_PROCESSES_MAX"],
+              ", ".join(f"{w}x{h}" for w, h in sorted({(r["width"], r["height"]) for r in fitted + held})),
+              len({(r["photons"], r["nn"]) for r in fitted}), len({(r["photons"], r["nn"]) for r in held})),
           "**Held-out renders: median relative error of the total %.1f%%, largest %.1f%%** (goal: median "
           "at most %.0f%%: %s).\n" % (100 * median, 100 * largest, 100 * GOAL_MEDIAN,
                                        "met" if median <= GOAL_MEDIAN else "not met")]
     loads = [r["provenance"]["loadavg"][0] for r in fitted + held if r["provenance"]["loadavg"][0] is not None]
     if loads:
-        md.append("The 1-minute load average when the renders started: %.1f to %.1f on %s; the times are minima "
-                  "of repeats, and a machine shared more than its cores moves them nonetheless.\n" % (
-                      min(loads), max(loads), prov["cpu"]))
+        md.append("The 1-minute load average when the renders started: %.1f to %.1f; the times are minima "
+                  "of repeats and processes, and a machine shared more than its cores moves them nonetheless.\n" % (
+                      min(loads), max(loads)))
+    md.append("| held-out size | renders | median relative error of the total | largest |\n|---|---:|---:|---:|\n"
+              + "\n".join("| %s | %d | %.1f%% | %.1f%% |" % (s, n, 100 * m, 100 * x) for s, n, m, x in size_errors(model, held))
+              + "\n")
     md.append("| held-out median relative error | %s |\n|---|%s\n| | %s |\n" % (
         " | ".join(PHASES), "---:|" * len(PHASES),
         " | ".join("%.1f%%" % (100 * part_error(model, held, p)) for p in PHASES)))
@@ -375,8 +512,10 @@ def write(out, model, fitted, held, median, largest, cpu=None):
             if c > 0:
                 table.append("| %s | %s | %.4g |" % (phase, name, c * 1e9))
     md.append("\n".join(table) + "\n")
-    md.append("Counters with a zero coefficient explain nothing the others do not (`coefficients.csv` "
-              "lists them all).\n")
+    md.append("A counter `C*sparse` is C times log2(%d / the render's eye samples), at least 0: the eye queries of "
+              "an image smaller than 1024x768 with 2x2 subpixels lie further apart, and find fewer of the tree's "
+              "nodes in the caches; `C*log2_map` is C times log2 of the photon map's points. Counters with a zero "
+              "coefficient explain nothing the others do not (`coefficients.csv` lists them all).\n" % DENSE_SAMPLES)
     report.write_atomic(os.path.join(out, "calibrate.md"), "\n".join(md))
 
 
@@ -384,20 +523,35 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--pm", default="build/photonmap")
     ap.add_argument("--out", default=DEFAULT_OUT)
-    ap.add_argument("--cpu", default="first",
-                    help="the CPU every render is pinned to, as the studies' timed renders are (TIME_CPU): "
-                         "first, a number, or none")
+    ap.add_argument("--refit", metavar="DIR",
+                    help="no renders: the model refitted on DIR's renders.csv (and DIR/model.json's provenance)")
     a = ap.parse_args(argv)
     try:
-        cpu = launch.resolve_cpu(a.cpu)
-    except launch.LaunchError as e:
+        knobs = timing_knobs()
+    except studies.StudyError as e:
         ap.error(str(e))
-    with tempfile.TemporaryDirectory() as tmp:
-        fitted = [render(a.pm, *c, tmp, cpu) for c in FIT]
-        held = [render(a.pm, *c, tmp, cpu) for c in HELD_OUT]
+    if a.refit:
+        try:
+            fitted, held = read_renders(os.path.join(a.refit, "renders.csv"))
+            with open(os.path.join(a.refit, MODEL_NAME), encoding="utf-8") as f:
+                doc = json.load(f)
+            provenance, knobs = doc["provenance"], doc["timing"]
+        except (ModelError, OSError, ValueError, KeyError) as e:
+            print(f"calibrate: {e}", file=sys.stderr)
+            return 1
+    else:
+        os.makedirs(a.out, exist_ok=True)
+        with tempfile.TemporaryDirectory(dir=a.out, prefix=".renders-") as tmp:
+            try:
+                rows = render_all(a.pm, FIT + HELD_OUT, tmp, knobs)
+            except subprocess.CalledProcessError as e:
+                print(f"calibrate: a calibration render failed (exit {e.returncode}); nothing written", file=sys.stderr)
+                return 1
+        fitted, held = rows[:2 * len(FIT)], rows[2 * len(FIT):]
+        provenance = fitted[0]["provenance"]
     model = fit(fitted)
     median, largest = validate(model, held)
-    write(a.out, model, fitted, held, median, largest, cpu)
+    write(a.out, model, fitted, held, median, largest, knobs, provenance)
     print("calibrate: held-out median error %.1f%%, largest %.1f%% -> %s" % (100 * median, 100 * largest, a.out))
     return 0
 

@@ -161,9 +161,10 @@ PAIRED_RATIOS = (("total_s", "paired_ratio"), ("cpu_s", "paired_cpu_ratio"), ("t
 
 
 def model_rows(sel, conv):
-    """The pairs of calibrate's rows ({"work", "time"}) of the seeds where
-    both SEL and CONV rendered ok: the work counters from each render's
-    stats file, the times (the repeats' minima) from runs.csv; None when a
+    """The pairs of calibrate's rows ({"work", "samples", "time"}) of the
+    seeds where both SEL and CONV rendered ok: the work counters and eye
+    samples from each render's stats file, the times (the repeats' minima)
+    from runs.csv; None when a
     stats file is not there (a runs.csv without its renders) or has no
     counters."""
     a = sel[sel["status"] == "ok"].drop_duplicates("seed").set_index("seed")
@@ -174,10 +175,10 @@ def model_rows(sel, conv):
             r = frame.loc[seed]
             if not os.path.isfile(r["run"] + ".stats.json"):
                 return None
-            work = layout.load_json(r["run"] + ".stats.json").get("work")
-            if work is None:
+            stats = layout.load_json(r["run"] + ".stats.json")
+            if stats.get("work") is None:
                 return None
-            rows.append({"work": work, "time": {**{ph: float(r[f"{ph}_s"]) for ph in PHASES},
+            rows.append({"work": stats["work"], "samples": stats.get("samples"), "time": {**{ph: float(r[f"{ph}_s"]) for ph in PHASES},
                                                 "total": float(r["total_s"])}})
     return out
 
@@ -197,7 +198,7 @@ def model_columns(model, sel, conv, sfx):
     if not pairs or not pairs[0]:
         return out
     coef, validation = model
-    q = calibrate.model_ratio(coef, [r["work"] for r in pairs[0]], [r["work"] for r in pairs[1]])
+    q = calibrate.model_ratio(coef, *pairs)
     m = math.exp(float(np.mean([math.log(x["time"]["total"] / y["time"]["total"]) for x, y in zip(*pairs)])))
     out[f"model_ratio_percent{sfx}"] = 100 * q
     if abs(m / q - 1) > validation["median"]:
