@@ -195,3 +195,42 @@ def test_processes_text():
     text = rp.processes_text(pd.DataFrame({"processes": [2, 3, 4, 2], "gauge_added": [0, 1, 2, 0]}))
     assert "2-4 processes" in text and "gauge (TIME_GAUGE) added 3 processes to 2 of 4 renders" in text
     assert "gauge" not in rp.processes_text(pd.DataFrame({"processes": [2, 2], "gauge_added": [0, 0]}))
+
+
+def spell_runs(tmp_path, conv2):
+    """Two groups' renders with their stats and records: seed 1 fast in both
+    members; seed 2's conventional processes timed CONV2 (the gauge gave
+    it four), its precomputed ones 0.100 and 0.101."""
+    procs = {("conventional", 1): ([0.100, 0.101], [1, 2]), ("precomputed", 1): ([0.100, 0.102], [2, 1]),
+             ("conventional", 2): (conv2, [2, 1, 2, 1]), ("precomputed", 2): ([0.100, 0.101], [1, 2])}
+    rows = []
+    for (m, seed), (t, pos) in procs.items():
+        base = tmp_path / f"{m}-paper-p50000-n10" / f"seed{seed}"
+        base.parent.mkdir(exist_ok=True)
+        (tmp_path / f"{m}-paper-p50000-n10" / f"seed{seed}.stats.json").write_text(
+            json.dumps({"time_s": {"trace": min(t)}, "time_s_processes": {"trace": t}}))
+        (tmp_path / f"{m}-paper-p50000-n10" / f"seed{seed}.run.json").write_text(
+            json.dumps({"pair_pos_processes": pos}))
+        rows.append({"method": m, "estimate": "paper", "photons": 50000, "nn": 10, "seed": seed, "status": "ok",
+                     "run": str(base)})
+    return pd.DataFrame(rows)
+
+
+def test_slow_spells_by_hand(tmp_path):
+    """Seed 2's conventional member ran all four processes 10-12% slow: the
+    run's 10th percentile is 0.100, so four of ten processes are slow; in
+    the order they ran (prec .100, conv .110, conv .111, prec .101, conv
+    .112, conv .111) a slow one follows a slow one in 2 of 3 cases; the
+    group is uneven by 10%. Control: the same member at the others' speed
+    leaves nothing slow and nothing uneven; a missing record gives None."""
+    sp = reproducibility.slow_spells(spell_runs(tmp_path, [0.110, 0.111, 0.112, 0.111]), 4.0)
+    assert sp["processes"] == 10 and abs(sp["slow"] - 0.4) < 1e-12 and abs(sp["after_slow"] - 2 / 3) < 1e-12
+    assert [u[:4] for u in sp["uneven"]] == [("paper", 50000, 10, 2)] and abs(sp["uneven"][0][4] - 10.0) < 1e-9
+    text = "\n".join(reproducibility.spell_lines([("A", spell_runs(tmp_path, [0.110, 0.111, 0.112, 0.111]))], 4.0))
+    assert "| A | 10 | 40 | 67 | 1 |" in text and "A: paper P_e=50000 n=10 seed 2 (10.0%)" in text
+    calm = reproducibility.slow_spells(spell_runs(tmp_path, [0.100, 0.101, 0.100, 0.101]), 4.0)
+    assert calm["slow"] == 0 and calm["uneven"] == [] and np.isnan(calm["after_slow"])
+    runs = spell_runs(tmp_path, [0.1, 0.1, 0.1, 0.1])
+    os.remove(tmp_path / "conventional-paper-p50000-n10" / "seed2.run.json")
+    assert reproducibility.slow_spells(runs, 4.0) is None
+    assert reproducibility.spell_lines([("A", runs)], 4.0) == []

@@ -16,8 +16,10 @@ A: the median |difference| against REPRO_BUSY_GOAL_PP, and what the load did
 to each phase (the median ratio busy / A of each phase's repeat-minimum time
 over the renders, per method). Where the noise arises: how far each phase's
 repeat minimum moves between A and B (the same render in another process),
-and the drift control if each render's time were the minimum over the
-processes of two or three runs. The images of
+the drift control if each render's time were the minimum over the
+processes of two or three runs, and the machine's slow spells in each run
+(slow_spells: how many processes ran their photon pass slow, whether a
+spell outlasts a process, and the groups the gauge left uneven). The images of
 one seed are the same bit for bit in both runs (the renderer is
 deterministic), so the error columns must agree exactly: the largest
 difference of any render's relMSE between the runs is reported, and a
@@ -224,7 +226,87 @@ def rounds_only(runs):
     return out
 
 
-def noise_lines(runs_a, runs_b, runs_c, drift):
+def group_processes(runs):
+    """{(estimate, P_e, n, seed): [(method, trace seconds)] in the order the
+    processes ran} over the ok renders of RUNS: each render's processes'
+    photon-pass minima (its stats' time_s_processes; one process: time_s)
+    and their places in their rounds (its record's pair_pos_processes;
+    process i of a member ran in round i). None when a file is missing or
+    has no photon-pass time."""
+    groups = {}
+    for _, row in runs[runs["status"] == "ok"].iterrows():
+        try:
+            st = layout.load_json(row["run"] + ".stats.json")
+            rec = layout.load_json(row["run"] + ".run.json")
+            t = (st.get("time_s_processes") or {}).get("trace") or [st["time_s"]["trace"]]
+            pos = rec.get("pair_pos_processes") or [rec.get("pair_pos", 0)] * len(t)
+        except (layout.RunError, KeyError, TypeError, ValueError):
+            return None
+        key = (row["estimate"], int(row["photons"]), int(row["nn"]), int(row["seed"]))
+        groups.setdefault(key, []).extend((i, int(p), row["method"], float(x)) for i, (p, x) in enumerate(zip(pos, t)))
+    return {k: [(m, x) for _, _, m, x in sorted(v)] for k, v in groups.items()}
+
+
+def slow_spells(runs, pct):
+    """How the machine's slow spells fall on the processes of RUNS (a run of
+    the grid): a process is slow when its photon pass (the same work in
+    both methods) took more than PCT % over the run's 10th percentile of
+    the processes with its photon count. Returns {"processes", "slow" (the
+    share of slow processes), "after_slow" (the share of slow processes
+    among those that ran right after a slow one of the same group; nan
+    without such), "uneven": [(estimate, P_e, n, seed, gap %)] the groups
+    whose two members' least photon passes lie more than PCT % apart: one
+    member never ran in the state the other caught}, or None without the
+    renders' files."""
+    groups = group_processes(runs)
+    if not groups:
+        return None
+    by_p = {}
+    for (_, photons, _, _), procs in groups.items():
+        by_p.setdefault(photons, []).extend(x for _, x in procs)
+    ref = {p: float(np.percentile(v, 10)) for p, v in by_p.items()}
+    slow, after, uneven = [], [], []
+    for key, procs in sorted(groups.items()):
+        flags = [x > ref[key[1]] * (1 + pct / 100) for _, x in procs]
+        slow += flags
+        after += [b for a, b in zip(flags, flags[1:]) if a]
+        least = {}
+        for m, x in procs:
+            least[m] = min(least.get(m, math.inf), x)
+        if len(least) == 2:
+            gap = 100 * (max(least.values()) / min(least.values()) - 1)
+            if gap > pct:
+                uneven.append((*key, gap))
+    return {"processes": len(slow), "slow": float(np.mean(slow)),
+            "after_slow": float(np.mean(after)) if after else math.nan, "uneven": uneven}
+
+
+def spell_lines(named, pct):
+    """Markdown lines on the machine's slow spells in each run of NAMED
+    [(name, runs)] (slow_spells); none when no run has its files."""
+    rows, unevens = [], []
+    for name, runs in named:
+        sp = slow_spells(runs, pct) if runs is not None else None
+        if sp is None:
+            continue
+        rows.append([name, str(sp["processes"]), fmt_fixed(100 * sp["slow"], 0), fmt_fixed(100 * sp["after_slow"], 0),
+                     str(len(sp["uneven"]))])
+        unevens += [f"{name}: {e} P_e={p} n={n} seed {s} ({fmt_fixed(g, 1)}%)" for e, p, n, s, g in sp["uneven"]]
+    if not rows:
+        return []
+    lines = ["", f"The machine's slow spells: a process counts as slow when its photon pass (the same work in both "
+             f"methods) took more than {fmt(pct)}% over its run's 10th percentile for its photon count. A spell that "
+             "outlasts one process shows as a slow process followed by another more often than slow processes "
+             "occur at all; a group whose members' least photon passes lie more than "
+             f"{fmt(pct)}% apart after the gauge had one member never catch the state the other did, and its seed's "
+             "drift control leans by that much:", ""]
+    lines += report.md_table(["run", "processes", "slow %", "slow after a slow one %", "uneven groups"], rows)
+    if unevens:
+        lines += ["", "Uneven groups: " + "; ".join(unevens) + "."]
+    return lines
+
+
+def noise_lines(runs_a, runs_b, runs_c, drift, pct=4.0):
     """Markdown lines of where the time noise arises: how far a phase's
     repeat minimum moves between two processes of the same render (A and B:
     same bits, same work, another time), and the drift control if each
@@ -258,6 +340,7 @@ def noise_lines(runs_a, runs_b, runs_c, drift):
                   "TIME_GAUGE % above its pair's, so it holds every seed's trace ratio near 100%: the drift "
                   "control of A and B is in part its doing, and the rows \"the rounds alone\" show it without. "
                   "The test it leaves independent is A against B."]
+    lines += spell_lines([("A", runs_a), ("B", runs_b), ("busy", runs_c)], pct)
     return lines + [""]
 
 
@@ -315,9 +398,10 @@ def processes_text(runs):
             f"over every repeat of every process (TIME_PROCESSES){added}")
 
 
-def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, ref_text="", busy=None):
+def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, ref_text="", busy=None, pct=4.0):
     """The text of reproducibility.md; BUSY: (frame, summary, phase rows,
-    runs) of the busy run against A, or None. The drift window is SUMM's."""
+    runs) of the busy run against A, or None. The drift window is SUMM's;
+    PCT the gauge's threshold (slow_spells)."""
     first = runs_a.iloc[0]
     lines = ["# Reproducibility: `make reproduce-table` rendered again", "",
              f"Run A is Table 1's own renders; run B is the same grid ({first['scene']} at "
@@ -357,7 +441,7 @@ def markdown(frame, summ, img_diff, img_n, runs_a, runs_b, ref_text="", busy=Non
     lines += ["## A against B", ""] + comparison_table(frame, "b") + [""]
     if "trace_s" in runs_a.columns and "trace_s" in runs_b.columns:
         lines += noise_lines(runs_a, runs_b, busy[3] if busy is not None else None,
-                             (summ["drift_lo"], summ["drift_hi"]))
+                             (summ["drift_lo"], summ["drift_hi"]), pct)
     if busy is not None:
         bframe, bsumm, phases, runs_c = busy
         lines += ["## A against the run with a busy loop on the other core", "",
@@ -393,6 +477,8 @@ def main(argv=None):
     ap.add_argument("--max-pp", type=float, default=4.0)
     ap.add_argument("--busy-goal-pp", type=float, default=3.0)
     ap.add_argument("--drift", default="97 103", help="'LO HI': the drift control's window, %%")
+    ap.add_argument("--gauge", type=float, default=4.0,
+                    help="TIME_GAUGE: a process is slow, a group uneven, above this %% (the machine's slow spells; 0: 4)")
     ap.add_argument("--ref", default="", help="the reference EXR of the error columns (its JSON beside it, if any)")
     ap.add_argument("--equal-error-a", default="", help="run A's equal-error CSV: the tightest target the reference judges")
     ap.add_argument("--out", required=True, help="stem of OUT.md and OUT.csv")
@@ -444,7 +530,8 @@ def main(argv=None):
     ref_text = ""
     if args.ref:
         ref_text = reference.describe(args.ref, reference.tightest_of(args.equal_error_a) if args.equal_error_a else None)
-    report.write_atomic(args.out + ".md", markdown(frame, summ, img_diff, img_n, ra, rb, ref_text, busy))
+    report.write_atomic(args.out + ".md", markdown(frame, summ, img_diff, img_n, ra, rb, ref_text, busy,
+                                                    args.gauge if args.gauge > 0 else 4.0))
 
 
 if __name__ == "__main__":

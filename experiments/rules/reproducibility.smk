@@ -23,6 +23,7 @@ rule reproducibility:
             + (["--table-busy", BUSY.files["table"] + ".csv", "--runs-busy", BUSY.files["runs_csv"]] if BUSY else [])
             + ["--goal-pp", STUDY.knobs["REPRO_GOAL_PP"], "--max-pp", STUDY.knobs["REPRO_MAX_PP"],
             "--busy-goal-pp", STUDY.knobs["REPRO_BUSY_GOAL_PP"], "--drift", STUDY.knobs["REPRO_DRIFT"],
+            "--gauge", STUDY.knobs["TIME_GAUGE"],
             "--ref", A.ref, "--equal-error-a", A.files["equal_error"] + ".csv",
             "--out", STUDY.files["out"]]),
     shell:
