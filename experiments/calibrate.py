@@ -34,6 +34,7 @@ for a study's dry run: each render's counters scaled from the calibration
 renders' work per photon and per eye sample, times its repeats)."""
 
 import argparse
+import csv
 import json
 import math
 import os
@@ -434,7 +435,6 @@ def read_renders(path):
     settings, samples, times and the raw counters: what fit, validate and
     write need to refit the model without rendering; ModelError when the
     file lacks a column."""
-    import csv
     fitted, held = [], []
     try:
         with open(path, newline="", encoding="utf-8") as f:
