@@ -249,3 +249,34 @@ def test_calibrate_renders_then_refits(tmp_path, monkeypatch):
     fail.chmod(0o755)
     assert calibrate.main(["--pm", str(fail), "--out", str(tmp_path / "y")]) == 1
     assert not (tmp_path / "y" / "model.json").exists()
+
+
+def test_slow_spell_groups_are_rendered_again(monkeypatch):
+    """A group whose photon pass per stored photon lies 30% over its scene's
+    others is rendered again, and keeps the faster rendering; a group within
+    SPELL_PCT is not. Control: a group that stays slow is tried REDO_MAX
+    times, then kept as it is."""
+    calls = []
+
+    def fake_group(pm, group, root, k, of, knobs):
+        calls.append(group)
+        scene, photons = group[0], group[1]
+        slow = {"a": 1.3, "b": 1.3 if stubborn else (1.3 if calls.count(group) == 1 else 1.0)}.get(group[5], 1.0)
+        return [{"scene": scene, "method": m, "time": {"trace": 1e-7 * 3 * photons * slow},
+                 "work": {"trace": {"stored_photons": 3 * photons}}} for m in calibrate.METHODS]
+
+    monkeypatch.setattr(calibrate, "render_group", fake_group)
+    groups = [("cornell", 1000 * (i + 1), 10, 32, 24, "b" if i == 3 else "-") for i in range(10)]
+    stubborn = False
+    rows, redone = calibrate.render_all("pm", groups, "root", {})
+    assert redone == 1 and calls.count(groups[3]) == 2 and len(calls) == 11
+    assert abs(rows[6]["time"]["trace"] / (3e-7 * 4000) - 1) < 1e-12  # the faster rendering kept
+    calls.clear()
+    stubborn = True
+    rows, redone = calibrate.render_all("pm", groups, "root", {})
+    assert redone == 1 and calls.count(groups[3]) == 1 + calibrate.REDO_MAX
+    assert abs(rows[6]["time"]["trace"] / (3e-7 * 4000 * 1.3) - 1) < 1e-12
+    # within SPELL_PCT of the others: nothing rendered again
+    assert calibrate.slow_pairs([fake_group(None, ("cornell", 1000, 10, 32, 24, "-"), 0, 0, 0, 0)] * 9
+                                + [[dict(r, time={"trace": r["time"]["trace"] * 1.05}) for r in
+                                    fake_group(None, ("cornell", 1000, 10, 32, 24, "-"), 0, 0, 0, 0)]]) == []
