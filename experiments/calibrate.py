@@ -12,10 +12,9 @@ thread, with the studies' timing knobs (studies.yaml's TIME_REPEATS,
 TIME_PROCESSES, TIME_GAUGE, TIME_PROCESSES_MAX and TIME_CPU; one set in the
 environment, as make passes its command line, in their place), so a time is
 the minimum over every repeat of every process, on the CPU the studies time
-on. They cover every size a study renders at (SIZES), since a render's cost
-per unit of work depends on its size: a smaller image's eye queries lie
-further apart and find fewer tree nodes in the caches (the `*sparse`
-counters).
+on. They cover every size a study renders at (SIZES): the model is asked
+for the times of all of them. A counter "C*log2_map" is C times log2 of
+the photon map's points (the build sorts them: N log N).
 
 writes coefficients.csv (seconds per unit of each counter, per phase),
 renders.csv (every render: settings, raw counters, measured and predicted
@@ -64,28 +63,16 @@ FEATURES = {
     "build": ("tree_points", "tree_points*log2_map"),
     "precompute": ("tree_points", "knn_queries", "map_nodes", "map_points", "rep_evaluations"),
     "render": ("rays", "shape_tests", "knn_queries", "map_nodes", "map_points", "rep_lookups", "rep_nodes",
-               "rep_points", "rep_evaluations", "map_nodes*sparse", "map_points*sparse", "rep_nodes*sparse"),
+               "rep_points", "rep_evaluations"),
     "other": ("stored_photons", "rays"),
 }
 OTHER_FROM = {"stored_photons": "trace", "rays": "render"}
-# the eye samples of the densest calibration size (1024x768, 2x2 subpixels):
-# the eye queries of smaller images lie further apart
-DENSE_SAMPLES = 1024 * 768 * 4
-
-
-def sparse(row):
-    """How much further apart than at DENSE_SAMPLES the render's successive
-    eye queries lie: log2(DENSE_SAMPLES / its eye samples), at least 0 (a
-    query near the last one finds the same tree nodes in the caches)."""
-    return max(0.0, math.log2(DENSE_SAMPLES / row["samples"])) if row.get("samples") else 0.0
-
-
 def log2_map(row):
     """log2 of the photon map's points (a k-d tree's build sorts them, N log N)."""
     return math.log2(max(2, row["work"]["build"]["tree_points"]))
 
 
-FACTORS = {"sparse": sparse, "log2_map": log2_map}
+FACTORS = {"log2_map": log2_map}
 
 
 def counter(row, part, name):
@@ -555,10 +542,9 @@ def write(out, model, fitted, held, median, largest, knobs, provenance):
             if c > 0:
                 table.append("| %s | %s | %.4g |" % (phase, name, c * 1e9))
     md.append("\n".join(table) + "\n")
-    md.append("A counter `C*sparse` is C times log2(%d / the render's eye samples), at least 0: the eye queries of "
-              "an image smaller than 1024x768 with 2x2 subpixels lie further apart, and find fewer of the tree's "
-              "nodes in the caches; `C*log2_map` is C times log2 of the photon map's points. Counters with a zero "
-              "coefficient explain nothing the others do not (`coefficients.csv` lists them all).\n" % DENSE_SAMPLES)
+    md.append("`C*log2_map` is the counter C times log2 of the photon map's points (a k-d tree's build sorts them: "
+              "N log N). Counters with a zero coefficient explain nothing the others do not (`coefficients.csv` "
+              "lists them all).\n")
     report.write_atomic(os.path.join(out, "calibrate.md"), "\n".join(md))
 
 

@@ -159,50 +159,38 @@ def test_written_files_name_the_commit():
 # ---- the factors of the derived counters, and the renders themselves
 
 def test_derived_counters_by_hand():
-    """C*sparse is C x log2(DENSE_SAMPLES / samples), 0 at or above the
-    dense size; C*log2_map is C x log2 of the map's points."""
+    """C*log2_map is C x log2 of the map's points; an unknown factor is an error."""
     work = {p: {"map_nodes": 0, "tree_points": 0} for p in calibrate.PHASES}
-    work["render"]["map_nodes"] = 1000
     work["build"]["tree_points"] = 1024
-    row = {"work": work, "samples": calibrate.DENSE_SAMPLES // 4}
-    assert calibrate.counter(row, "render", "map_nodes*sparse") == 2000
-    assert calibrate.counter(dict(row, samples=calibrate.DENSE_SAMPLES * 4), "render", "map_nodes*sparse") == 0
+    row = {"work": work}
     assert calibrate.counter(row, "build", "tree_points*log2_map") == 1024 * 10
-    # a row without its eye samples (a stats file before they were written): no sparseness, not a guess
-    assert calibrate.counter({"work": work}, "render", "map_nodes*sparse") == 0
+    assert calibrate.counter(row, "build", "tree_points") == 1024
+    import pytest
+    with pytest.raises(KeyError):
+        calibrate.counter(row, "build", "tree_points*nothing")
 
 
-def test_sparse_counters_carry_the_cost_across_sizes():
-    """Times whose cost per tree node grows as the image shrinks (the caches'
-    coherence): the model with the *sparse counters predicts a size it did
-    not fit; control: without them (their coefficients zeroed and the rest
-    refitted) it misses by more than the goal."""
-    rng = np.random.default_rng(5)
-
-    def rows_at(sizes):
+def test_log2_map_carries_the_build_across_map_sizes():
+    """Build times of N log N (a k-d tree's sort): fitted on maps of 10^4
+    and 10^7 points, the model predicts 10^5 and 10^6 within the goal;
+    control: without the N log N counter (its coefficient left out and the
+    rest refitted) it misses by more than the goal."""
+    def rows(ns):
         out = []
-        for w in sizes:
-            for nodes in (2e6, 5e6, 1e7):
-                samples = w * (w * 3 // 4) * 4
-                work = {p: {f.split("*")[0]: 0 for fs in calibrate.FEATURES.values() for f in fs}
-                        for p in calibrate.PHASES}
-                work["build"]["tree_points"] = 100000
-                work["render"].update(map_nodes=int(nodes * samples / 1e6), rays=samples)
-                sp = max(0.0, math.log2(calibrate.DENSE_SAMPLES / samples))
-                t = {p: 0.0 for p in calibrate.PHASES}
-                t["render"] = (20e-9 * (1 + 0.25 * sp) * work["render"]["map_nodes"] + 1e-7 * samples) * (
-                    1 + 0.01 * rng.standard_normal())
-                t["total"] = t["render"]
-                out.append({"work": work, "samples": samples, "time": t})
+        for n in ns:
+            work = {p: {f.split("*")[0]: 0 for fs in calibrate.FEATURES.values() for f in fs} for p in calibrate.PHASES}
+            work["build"]["tree_points"] = n
+            t = {p: 0.0 for p in calibrate.PHASES}
+            t["build"] = 8e-9 * n * math.log2(n) + 1e-3
+            t["total"] = t["build"]
+            out.append({"work": work, "time": t})
         return out
-    fit_rows, held = rows_at((128, 512, 1024)), rows_at((256,))
-    model = calibrate.fit(fit_rows)
-    assert calibrate.validate(model, held)[0] <= calibrate.GOAL_MEDIAN
+    fit_rows, held = rows([10 ** 4, 2 * 10 ** 4, 10 ** 7, 2 * 10 ** 7]), rows([10 ** 5, 10 ** 6])
+    assert calibrate.validate(calibrate.fit(fit_rows), held)[0] <= calibrate.GOAL_MEDIAN
     saved = dict(calibrate.FEATURES)
     try:
-        calibrate.FEATURES["render"] = tuple(f for f in saved["render"] if not f.endswith("*sparse"))
-        flat = calibrate.fit(fit_rows)
-        assert calibrate.validate(flat, held)[0] > calibrate.GOAL_MEDIAN
+        calibrate.FEATURES["build"] = ("tree_points",)
+        assert calibrate.validate(calibrate.fit(fit_rows), held)[0] > calibrate.GOAL_MEDIAN
     finally:
         calibrate.FEATURES.clear()
         calibrate.FEATURES.update(saved)
