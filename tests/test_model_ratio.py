@@ -145,3 +145,21 @@ def test_runs_without_their_stats_files(tmp_path):
     t, _ = table.summarize(runs, cells, paper, (model, VALIDATION))
     assert t["model_ratio_percent"].isna().all() and not t["model_differs"].any()
     assert table.model_text(prec(t, 10), (model, VALIDATION)) == "n/a"
+
+
+def test_a_model_of_other_counters_is_named_not_fatal(tmp_path):
+    """A model file written for other counters (an older calibrate): load_model
+    refuses it with the reason, and the table's model line says there is no
+    model and why, instead of the table failing; control: no file, no reason."""
+    path = str(tmp_path / "model.json")
+    model = synthetic_model()
+    calibrate.write_model(path, model, 0.03, 0.08, {p: 0.02 for p in calibrate.PHASES}, {"cpu": "test"})
+    doc = json.load(open(path))
+    doc["parts"]["build"]["counters"] = ["constant", "tree_points"]
+    doc["parts"]["build"]["seconds_per_unit"] = [0.0, 1e-7]
+    open(path, "w").write(json.dumps(doc))
+    with pytest.raises(calibrate.ModelError, match="not this version's") as e:
+        calibrate.load_model(path)
+    line = table.model_lines(None, None, ["paper"], str(e.value))[1]
+    assert line.startswith("Model ratio: no model (") and "not this version's" in line
+    assert table.model_lines(None, None, ["paper"])[1].startswith("Model ratio: no model (`make calibrate`")

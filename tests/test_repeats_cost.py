@@ -136,3 +136,16 @@ def test_broken_stats_refused(results, capsys):
     assert repeats_cost.main(["--results", str(results), "--out", out]) == 2
     assert str(bad) in capsys.readouterr().err
     assert not os.path.exists(out + ".md")
+
+
+def test_model_of_other_counters_named(results):
+    """A model file of other counters (an older calibrate) is named with the
+    reason in the section, and the rest is written (exit 0)."""
+    os.makedirs(results / "calibrate")
+    (results / "calibrate" / "model.json").write_text(json.dumps(
+        {"parts": {p: {"counters": ["constant"], "seconds_per_unit": [0.0]} for p in calibrate.PARTS},
+         "validation": {"median": 0.1, "largest": 0.2}}))
+    out = str(results / "bench" / "repeats")
+    assert repeats_cost.main(["--results", str(results), "--out", out]) == 0
+    md = open(out + ".md").read()
+    assert "Not measured: " in md and "not this version's" in md

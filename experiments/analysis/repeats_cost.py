@@ -194,9 +194,12 @@ def repeats_section(rows):
 
 def model_section(model_path):
     """The second section of OUT.md: the cost model's seconds per unit of
-    work (ns per unit), or that there is none."""
+    work (ns per unit), or that there is none, or why it cannot be used."""
     out = ["## The cost model, per unit of work", ""]
-    loaded = calibrate.load_model(model_path)
+    try:
+        loaded = calibrate.load_model(model_path)
+    except calibrate.ModelError as e:  # a model of other counters: named, not fatal
+        return out + [f"Not measured: {e}.", ""]
     if loaded is None:
         return out + [f"Not measured: run make calibrate (no {model_path}).", ""]
     model, validation = loaded

@@ -24,6 +24,7 @@ intervals are disjoint.
 import argparse
 import math
 import os
+import sys
 
 import numpy as np
 import pandas as pd
@@ -214,12 +215,14 @@ def model_text(row, model, sfx=""):
     return fmt(row.get(f"model_ratio_percent{sfx}", math.nan)) if len(row) else "n/a"
 
 
-def model_lines(table, model, estimates):
+def model_lines(table, model, estimates, problem=""):
     """Markdown lines: the model's validation error and, per estimate, the
     cells where the measured and the model's ratio differ by more, with the
-    phase and the counter that explain it."""
+    phase and the counter that explain it; without a model, why (PROBLEM:
+    the model file that could not be used, and the reason)."""
     if model is None:
-        return ["", f"Model ratio: no model (`make calibrate` writes `{calibrate.DEFAULT_MODEL}`, this machine's "
+        why = f" ({problem})" if problem else ""
+        return ["", f"Model ratio: no model{why} (`make calibrate` writes `{calibrate.DEFAULT_MODEL}`, this machine's "
                 "cost model; the table then gives its predicted ratio beside the measured one)."]
     err = model[1]["median"]
     out = ["", f"Model ratio: the calibrated cost model's (`{calibrate.DEFAULT_MODEL}`, validation error: median "
@@ -462,7 +465,7 @@ def markdown(table, runs, estimates, args):
         out += report.md_table(["P_e", "n", "paper conv. s", "paper prop. s", "paper ratio %", "our conv. s",
                                 "our prec. s", "our ratio % [95% CI]", "model ratio %", "our conv. CPU s",
                                 "our prec. CPU s", "our CPU ratio % [95% CI]"], rows, ["r"] * 12)
-        out += model_lines(table, args.model_state, estimates)
+        out += model_lines(table, args.model_state, estimates, getattr(args, "model_problem", ""))
         out += ["", "## Our phases (paper estimate, median seconds over seeds)", "",
                 "Each phase's own median (so the phases need not add up to the median total). Empty estimates: "
                 "eye samples where no photon or representative applied (black), median over seeds.", ""]
@@ -592,10 +595,12 @@ def main():
         report.die("table.py", f"{args.runs_csv}: no render of the grid")
     args.ref = cells["ref"].dropna().iloc[0] if cells["ref"].notna().any() else ""
     args.ref_fast = cells["ref_fast"].dropna().iloc[0] if cells["ref_fast"].notna().any() else ""
+    args.model_problem = ""
     try:
         args.model_state = calibrate.load_model(args.model)
-    except calibrate.ModelError as e:
-        report.die("table.py", str(e))
+    except calibrate.ModelError as e:  # a model of other counters: the table without its model column, and why
+        args.model_state, args.model_problem = None, str(e)
+        print(f"table.py: {e}; the table has no model ratios", file=sys.stderr)
     try:
         table, estimates = summarize(runs, cells, paper, args.model_state)
     except layout.RunError as e:
