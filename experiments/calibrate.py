@@ -13,7 +13,9 @@ TIME_PROCESSES, TIME_GAUGE, TIME_PROCESSES_MAX and TIME_CPU; one set in the
 environment, as make passes its command line, in their place), so a time is
 the minimum over every repeat of every process, on the CPU the studies time
 on. They cover every size a study renders at (SIZES): the model is asked
-for the times of all of them. A counter "C*log2_map" is C times log2 of
+for the times of all of them. A group caught whole in a slow spell of the
+machine (its photon pass per stored photon well over its scene's others:
+slow_pairs) is rendered again, keeping the faster. A counter "C*log2_map" is C times log2 of
 the photon map's points (the build sorts them: N log N).
 
 writes coefficients.csv (seconds per unit of each counter, per phase),
