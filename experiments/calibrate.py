@@ -294,7 +294,7 @@ def predict_seconds(model, per_unit, configs, repeats="auto", rule=None):
         d = drivers(c["photons"], c["nn"], c["width"] * c["height"] * c["subpixels"] ** 2)
         work = {ph: {n: float(np.mean([k[ph][n] for k in known])) * d[driver(ph, n)] for n in known[0][ph]}
                 for ph in PHASES}
-        t = predict(model, {"work": work, "samples": d["S"]})["total"]
+        t = predict(model, {"work": work})["total"]
         out.append(t * repeats_of(repeats, t, rule))
     return out
 
@@ -302,8 +302,7 @@ def predict_seconds(model, per_unit, configs, repeats="auto", rule=None):
 def model_ratio(model, rows_a, rows_b):
     """The model's paired time ratio A / B: exp of the mean over pairs of the
     log of the predicted totals' ratio, the renders A[s] and B[s] ({"work":
-    stats' "work", "samples": its eye samples}) one pair each; nan with no
-    pair."""
+    stats' "work"}) one pair each; nan with no pair."""
     logs = [math.log(predict(model, a)["total"] / predict(model, b)["total"]) for a, b in zip(rows_a, rows_b)]
     return math.exp(sum(logs) / len(logs)) if logs else math.nan
 

@@ -162,10 +162,9 @@ PAIRED_RATIOS = (("total_s", "paired_ratio"), ("cpu_s", "paired_cpu_ratio"), ("t
 
 
 def model_rows(sel, conv):
-    """The pairs of calibrate's rows ({"work", "samples", "time"}) of the
-    seeds where both SEL and CONV rendered ok: the work counters and eye
-    samples from each render's stats file, the times (the repeats' minima)
-    from runs.csv; None when a
+    """The pairs of calibrate's rows ({"work", "time"}) of the seeds where
+    both SEL and CONV rendered ok: the work counters from each render's
+    stats file, the times (the repeats' minima) from runs.csv; None when a
     stats file is not there (a runs.csv without its renders) or has no
     counters."""
     a = sel[sel["status"] == "ok"].drop_duplicates("seed").set_index("seed")
@@ -179,8 +178,8 @@ def model_rows(sel, conv):
             stats = layout.load_json(r["run"] + ".stats.json")
             if stats.get("work") is None:
                 return None
-            rows.append({"work": stats["work"], "samples": stats.get("samples"), "time": {**{ph: float(r[f"{ph}_s"]) for ph in PHASES},
-                                                "total": float(r["total_s"])}})
+            rows.append({"work": stats["work"], "time": {**{ph: float(r[f"{ph}_s"]) for ph in PHASES},
+                                                         "total": float(r["total_s"])}})
     return out
 
 
