@@ -217,8 +217,10 @@ def merge_stats(paths, label):
     process's, with time_s the minimum over every repeat of every process
     (per phase, and the total the least repeat total), time_s_repeats every
     repeat in the order run, repeats their number, time_s_median their
-    median, time_s_cold the first process's first repeat, and processes and
-    time_s_processes (each process's minima). Raises LaunchError when a
+    median, time_s_cold the first process's first repeat, processes and
+    time_s_processes (each process's minima), and minor_faults_repeats
+    every repeat's page faults in the order run (where every process
+    reports them). Raises LaunchError when a
     process's work counters or mean radiance differ from the first's (the
     renderer would not be deterministic)."""
     docs = [layout.load_json(p) for p in paths]
@@ -238,6 +240,10 @@ def merge_stats(paths, label):
     out["time_s_repeats"] = reps
     out["processes"] = len(docs)
     out["time_s_processes"] = {p: [d["time_s"][p] for d in docs] for p in phases}
+    if all("minor_faults_repeats" in d for d in docs):
+        out["minor_faults_repeats"] = [v for d in docs for v in d["minor_faults_repeats"]]
+    else:
+        out.pop("minor_faults_repeats", None)
     return out
 
 

@@ -165,7 +165,7 @@ static pm_status tree_begin(kd_tree *t, uint32_t n, uint32_t leaf_size, kd_par *
     uint64_t nblocks = ((uint64_t)n + KD_BLOCK - 1) / KD_BLOCK;
     kp->t = t;
     kp->n = n;
-    kp->box = malloc(sizeof *kp->box * (nblocks ? nblocks : 1));
+    kp->box = mem_alloc(sizeof *kp->box * (nblocks ? nblocks : 1));
     t->split = mem_alloc(sizeof(float) * nleaves);
     t->axis = mem_alloc(nleaves);
     t->leaf_start = mem_alloc(sizeof(uint32_t) * (nleaves + 1));
@@ -173,7 +173,7 @@ static pm_status tree_begin(kd_tree *t, uint32_t n, uint32_t leaf_size, kd_par *
     t->y = mem_zalloc(((size_t)n + KD_CHUNK) * sizeof(float));
     t->z = mem_zalloc(((size_t)n + KD_CHUNK) * sizeof(float));
     if (!kp->box || !t->split || !t->axis || !t->leaf_start || !t->x || !t->y || !t->z) {
-        free(kp->box);
+        mem_free(kp->box);
         kp->box = NULL;
         kd_free(t);
         return PM_ERR_NOMEM;
@@ -197,7 +197,7 @@ static void tree_end(kd_par *kp, unsigned threads)
             t->lo[a] = kp->box[k][0][a] < t->lo[a] ? kp->box[k][0][a] : t->lo[a];
             t->hi[a] = kp->box[k][1][a] > t->hi[a] ? kp->box[k][1][a] : t->hi[a];
         }
-    free(kp->box);
+    mem_free(kp->box);
     kp->box = NULL;
 }
 
@@ -209,7 +209,7 @@ pm_status kd_build(kd_tree *t, const float *pts, uint32_t n, uint32_t leaf_size,
         return rc;
     kp.it = mem_alloc(sizeof(kd_item) * (n ? n : 1));
     if (!kp.it) {
-        free(kp.box);
+        mem_free(kp.box);
         kd_free(t);
         return PM_ERR_NOMEM;
     }

@@ -1,5 +1,5 @@
-/* mem: the large buffers' allocator (mem.h): huge-page-advised anonymous
- * mappings for large buffers, malloc for small ones, a header in front of
+/* mem: the large buffers' allocator (mem.h): anonymous mappings for large
+ * buffers (huge-page-advised from MEM_HUGE_MIN), malloc for small ones, a header in front of
  * each that says which and how large, and, when asked (mem_keep), the
  * freed mappings kept for the next buffer (the renderer's one piece of
  * process-wide state: an allocator's free list, like malloc's own, behind
@@ -108,10 +108,15 @@ static void advise_huge(void *p, size_t len)
 #endif
 }
 
-/* A mapping of `map` bytes (page-rounded) whose start is 2 MiB aligned:
- * maps 2 MiB more and trims both ends. Returns NULL when it fails. */
+/* A mapping of `map` bytes (page-rounded): below MEM_HUGE_MIN a plain
+ * one; from there one whose start is 2 MiB aligned, advised as huge pages
+ * (maps 2 MiB more and trims both ends). Returns NULL when it fails. */
 static void *map_aligned(size_t map)
 {
+    if (map < MEM_HUGE_MIN) { /* no huge page: 4 KiB pages, as mmap aligns */
+        void *p = mmap(NULL, map, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        return p == MAP_FAILED ? NULL : p;
+    }
     if (map > SIZE_MAX - MEM_ALIGN)
         return NULL;
     size_t len = map + MEM_ALIGN;
@@ -135,7 +140,7 @@ static void *alloc_impl(size_t bytes, int zero)
         return NULL;
     size_t total = bytes + MEM_HEAD;
     mem_head *h;
-    if (total < MEM_HUGE_MIN) {
+    if (total < MEM_MAP_MIN) {
         void *m = NULL;
         if (posix_memalign(&m, MEM_HEAD, total) != 0)
             return NULL;
@@ -227,8 +232,8 @@ void *mem_realloc(void *p, size_t bytes)
     if (bytes > SIZE_MAX - MEM_ALIGN - MEM_HEAD)
         return NULL;
     size_t total = bytes + MEM_HEAD;
-    if (h->map && (total >= MEM_HUGE_MIN || page_round(total) <= h->map)) {
-        /* a mapping stays one, also when it shrinks below MEM_HUGE_MIN:
+    if (h->map && (total >= MEM_MAP_MIN || page_round(total) <= h->map)) {
+        /* a mapping stays one, also when it shrinks below MEM_MAP_MIN:
          * moving it to malloc would copy it into fresh small pages */
         size_t map = page_round(total);
         if (map <= h->map) {

@@ -484,8 +484,8 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, unsigned threads
     m->stored = l->count;
     uint64_t nblocks = (l->count + PHOTONS_BLOCK - 1) / PHOTONS_BLOCK;
     build_ctx bc = {l, leave_out, m, left, NULL, 0, 0, NULL, NULL};
-    bc.box = malloc(sizeof *bc.box * (nblocks ? nblocks : 1));
-    bc.at = malloc(sizeof *bc.at * (nblocks ? nblocks : 1));
+    bc.box = mem_alloc(sizeof *bc.box * (nblocks ? nblocks : 1));
+    bc.at = mem_alloc(sizeof *bc.at * (nblocks ? nblocks : 1));
     pm_status rc = (!bc.box || !bc.at) ? PM_ERR_NOMEM : PM_OK;
     uint32_t n = 0, nout = 0;
     if (rc == PM_OK) {
@@ -519,8 +519,8 @@ pm_status photons_build_map(photons_list *l, uint8_t leave_out, unsigned threads
         if (left)
             left->count = nout;
     }
-    free(bc.box);
-    free(bc.at);
+    mem_free(bc.box);
+    mem_free(bc.at);
     photons_list_free(l);
     if (rc == PM_OK)
         rc = kd_build_items(&m->tree, bc.items, n, KD_DEFAULT_LEAF, threads);

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mem.h"
 #include "parallel.h"
 
 #define REPS_CHUNK 1024u
@@ -78,7 +79,7 @@ pm_status reps_collect(const reps_params *p, const photons_map *m, const photons
     uint32_t nin = 0, nleft = left ? (uint32_t)left->count : 0;
     for (uint32_t i = 0; i < m->count; i++)
         nin += (m->ph[i].flags & PHOTONS_FLAG_REP) != 0;
-    out->site = malloc(sizeof(reps_site) * (nin + nleft ? nin + nleft : 1));
+    out->site = mem_alloc(sizeof(reps_site) * (nin + nleft ? nin + nleft : 1));
     if (!out->site)
         return PM_ERR_NOMEM;
     uint32_t r = 0;
@@ -170,10 +171,10 @@ static void evaluate_chunk(uint64_t chunk, unsigned thread, void *arg)
 static void free_values(reps_set *r)
 {
     kd_free(&r->own);
-    free(r->value);
-    free(r->rep_of);
-    free((void *)r->state);
-    free(r->site_of);
+    mem_free(r->value);
+    mem_free(r->rep_of);
+    mem_free((void *)r->state);
+    mem_free(r->site_of);
     r->value = NULL;
     r->rep_of = NULL;
     r->state = NULL;
@@ -218,7 +219,7 @@ static pm_status first_radius2(reps_set *r, float max_r2, work_counts *work)
     if (r->count < 2)
         return PM_OK;
     uint32_t step = (r->count + REPS_FIRST_SAMPLES - 1) / REPS_FIRST_SAMPLES, k = 0;
-    float *d2s = malloc(sizeof(float) * ((r->count + step - 1) / step));
+    float *d2s = mem_alloc(sizeof(float) * ((r->count + step - 1) / step));
     if (!d2s)
         return PM_ERR_NOMEM;
     kd_work w = {0};
@@ -232,7 +233,7 @@ static pm_status first_radius2(reps_set *r, float max_r2, work_counts *work)
     }
     qsort(d2s, k, sizeof(float), cmp_float);
     float f = REPS_FIRST_SCALE * d2s[(uint32_t)(REPS_FIRST_QUANTILE * (double)(k - 1))];
-    free(d2s);
+    mem_free(d2s);
     work->rep_nodes += w.nodes;
     work->rep_points += w.points;
     if (f < max_r2)
@@ -246,25 +247,25 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
     uint32_t count = r->count;
     uint32_t *order = NULL;
     r->gather = *g;
-    r->value = malloc(sizeof(reps_value) * (count ? count : 1));
+    r->value = mem_alloc(sizeof(reps_value) * (count ? count : 1));
     if (r->rep_eval == CONFIG_REP_EVAL_LAZY)
-        r->state = malloc(sizeof(atomic_uchar) * (count ? count : 1));
+        r->state = mem_alloc(sizeof(atomic_uchar) * (count ? count : 1));
     est_scratch *scratch = est_scratch_new(nt, g->nn);
     pm_status rc = (!r->value || !scratch || (r->rep_eval == CONFIG_REP_EVAL_LAZY && !r->state)) ? PM_ERR_NOMEM : PM_OK;
     if (rc == PM_OK && r->rep_tree == CONFIG_REP_TREE_SEPARATE) {
         /* the representatives' own tree first: the precompute then runs in
          * its leaf order (nearby queries in a row) and stores in that order */
-        float *pos = malloc(sizeof(float) * 3 * (count ? count : 1));
-        order = malloc(sizeof(uint32_t) * (count ? count : 1));
+        float *pos = mem_alloc(sizeof(float) * 3 * (count ? count : 1));
+        order = mem_alloc(sizeof(uint32_t) * (count ? count : 1));
         rc = (!pos || !order) ? PM_ERR_NOMEM : PM_OK;
         if (rc == PM_OK) {
             for (uint32_t i = 0; i < count; i++)
                 memcpy(pos + 3 * (size_t)i, r->site[i].pos, 3 * sizeof(float));
             rc = kd_build(&r->own, pos, count, KD_DEFAULT_LEAF, order, nt);
         }
-        free(pos);
+        mem_free(pos);
     } else if (rc == PM_OK) {
-        r->rep_of = malloc(sizeof(uint32_t) * (m->count ? m->count : 1));
+        r->rep_of = mem_alloc(sizeof(uint32_t) * (m->count ? m->count : 1));
         rc = r->rep_of ? PM_OK : PM_ERR_NOMEM;
         if (rc == PM_OK) {
             for (uint32_t i = 0; i < m->count; i++)
@@ -293,7 +294,7 @@ pm_status reps_evaluate(reps_set *r, const photons_map *m, const est_gather *g, 
         r->site_of = order; /* the lookup finds a value's site by it */
         order = NULL;
     }
-    free(order);
+    mem_free(order);
     est_scratch_delete(scratch, nt);
     if (rc != PM_OK)
         free_values(r);
@@ -487,6 +488,6 @@ size_t reps_bytes(const reps_set *r, const photons_map *m)
 void reps_free(reps_set *r)
 {
     free_values(r);
-    free(r->site);
+    mem_free(r->site);
     memset(r, 0, sizeof *r);
 }

@@ -86,6 +86,12 @@ static void write_repeats(FILE *f, const stats_run *st)
         fputc(']', f);
     }
     fputs("},\n", f);
+    if (r != &st->repeats)
+        return; /* no repeat loop: no fault counts */
+    fputs("  \"minor_faults_repeats\": [", f);
+    for (uint32_t i = 0; i < r->n; i++)
+        fprintf(f, "%s%llu", i ? ", " : "", (unsigned long long)r->faults[i]);
+    fputs("],\n", f);
 }
 
 /* The provenance object (threads: the render's). */

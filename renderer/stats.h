@@ -14,10 +14,13 @@
 /* The timed phases and their total, in the order of stats_repeats' rows. */
 enum { STATS_TRACE, STATS_BUILD, STATS_PRECOMPUTE, STATS_RENDER, STATS_TOTAL, STATS_PHASES };
 
-/* Every repeat's times (repeat.h), seconds: t[i][phase] for repeat i. */
+/* Every repeat's times (repeat.h), seconds: t[i][phase] for repeat i, and
+ * the minor page faults the process took during repeat i (getrusage's
+ * count, every thread's: the fresh pages the repeat touched). */
 typedef struct {
     uint32_t n; /* repeats done; 0: one render, whose times are stats_run's */
     double t[CONFIG_MAX_REPEATS][STATS_PHASES];
+    uint64_t faults[CONFIG_MAX_REPEATS];
 } stats_repeats;
 
 /* What a render measured: the stats file's times and counts. */

@@ -43,7 +43,7 @@ reps = {"trace": [tr + 0.01, tr], "total": [t + 0.1, t]}
 rays = (2 if odd("ODD_WORK") else 1) + (10 if os.environ.get("TRACE_WORK") == method else 0)
 json.dump({"status": "ok", "method": method, "time_s": {p: min(v) for p, v in reps.items()}, "repeats": 2,
            "time_s_cold": {p: v[0] for p, v in reps.items()}, "time_s_median": {p: sum(v) / 2 for p, v in reps.items()},
-           "time_s_repeats": reps, "work": {"trace": {"rays": rays}},
+           "time_s_repeats": reps, "minor_faults_repeats": [100 * n, n], "work": {"trace": {"rays": rays}},
            "mean_radiance": [0.5, 0.5, 0.5]}, open(stats, "w"))
 """
 
@@ -85,8 +85,8 @@ def test_rounds_reverse_and_times_are_minima_over_processes(tmp_path, monkeypatc
     """P = 2, seed 1: conventional, precomputed, precomputed, conventional;
     each render's time_s is the least repeat of both processes (the second
     conventional process, 0.7, is faster than its first, 0.9), every repeat
-    is kept in the order run, the cold time is the first process's first
-    repeat; the record's cpu_s is the least process's and it names each
+    is kept in the order run (its page faults too), the cold time is the
+    first process's first repeat; the record's cpu_s is the least process's and it names each
     process's place. Control: seed 2 starts with precomputed."""
     rc, order, root = run_group(tmp_path, monkeypatch, 2, [0.9, 0.5, 0.6, 0.7])
     assert rc == 0 and order == ["conventional", "precomputed", "precomputed", "conventional"]
@@ -97,6 +97,7 @@ def test_rounds_reverse_and_times_are_minima_over_processes(tmp_path, monkeypatc
     assert st["time_s_cold"]["total"] == pytest.approx(1.0)
     assert st["time_s_median"]["total"] == pytest.approx(0.85)
     assert st["time_s_processes"]["total"] == pytest.approx([0.9, 0.7])
+    assert st["minor_faults_repeats"] == [100, 1, 400, 4]  # every repeat's, in the order run
     assert rec["processes"] == 2 and rec["pair_pos_processes"] == [1, 2] and rec["pair_pos"] == 1
     assert rec["cpu_s"] == min(rec["cpu_s_processes"]) and len(rec["cpu_s_processes"]) == 2
     st, rec = files(root, "precomputed")

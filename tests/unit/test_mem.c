@@ -1,8 +1,10 @@
 /* test_mem: the large buffers' allocator (mem.c): rounding, alignment,
  * zeroing, growth and shrinking across the mapping threshold with the
- * contents kept, and pages handed back reading as zero. */
+ * contents kept, pages handed back reading as zero, and kept buffers that
+ * fault no fresh page. */
 #include <stdint.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #include "check.h"
 #include "mem.h"
@@ -210,4 +212,54 @@ void test_mem_reuse_many(void)
     CHECK_MSG(reused == 0, "%zu mappings kept without mem_keep", reused);
     for (size_t i = 0; i < N; i++)
         mem_free(b[i]);
+}
+
+/* The minor page faults of filling bytes [0, n) of p. */
+static long fill_faults(unsigned char *p, size_t n)
+{
+    struct rusage a, b;
+    getrusage(RUSAGE_SELF, &a);
+    memset(p, 0x5a, n);
+    getrusage(RUSAGE_SELF, &b);
+    return b.ru_minflt - a.ru_minflt;
+}
+
+/* Fills a fresh buffer of n bytes, frees it, and fills a buffer of n
+ * bytes again: the second fill's page faults, the first's in *first; -1
+ * when memory runs out. */
+static long refill_faults(size_t n, long *first)
+{
+    unsigned char *a = mem_alloc(n);
+    if (!a)
+        return -1;
+    *first = fill_faults(a, n);
+    mem_free(a);
+    unsigned char *b = mem_alloc(n);
+    if (!b)
+        return -1;
+    long again = fill_faults(b, n);
+    mem_free(b);
+    return again;
+}
+
+/* A buffer from MEM_MAP_MIN bytes (header included) is a mapping, kept by
+ * mem_keep, so that the same buffer again touches no fresh page; one below
+ * is malloc's and never kept. Control: without mem_keep the same buffer
+ * again faults its pages afresh. */
+void test_mem_reuse_mid(void)
+{
+    size_t mid = (size_t)1 << 20; /* between MEM_MAP_MIN and MEM_HUGE_MIN */
+    long pages = (long)(mid / 4096), first = 0;
+    CHECK(mid + 64 >= MEM_MAP_MIN && mid + 64 < MEM_HUGE_MIN);
+    mem_keep((size_t)64 << 20);
+    mem_free(mem_alloc(MEM_MAP_MIN - 64 - 1)); /* malloc's */
+    CHECK(mem_trim() == 0);
+    long again = refill_faults(mid, &first);
+    CHECK_MSG(first >= pages / 2, "the first fill faulted %ld pages", first);
+    CHECK_MSG(again >= 0 && again <= 4, "the kept buffer faulted %ld fresh pages again", again);
+    CHECK(mem_trim() >= mid);
+    mem_keep(0);
+    long control = refill_faults(mid, &first); /* nothing kept: fresh pages again */
+    CHECK_MSG(control >= pages / 2, "without mem_keep only %ld pages faulted", control);
+    CHECK(mem_trim() == 0);
 }
