@@ -268,3 +268,18 @@ def test_slow_spell_groups_are_rendered_again(monkeypatch):
     assert calibrate.slow_pairs([fake_group(None, ("cornell", 1000, 10, 32, 24, "-"), 0, 0, 0, 0)] * 9
                                 + [[dict(r, time={"trace": r["time"]["trace"] * 1.05}) for r in
                                     fake_group(None, ("cornell", 1000, 10, 32, 24, "-"), 0, 0, 0, 0)]]) == []
+
+
+def test_calm_errors_leave_out_the_slow_spell():
+    """Held-out renders whose photon pass ran 20% slow (a slow spell, the
+    totals slowed alike) are counted and left out of the diagnostic, whose
+    median is then the validation of the others; control: with no spell
+    nothing is left out and the median is validate's."""
+    model = calibrate.fit(synthetic(40, 1))
+    held = synthetic(20, 2)
+    assert calibrate.calm_errors(model, held)[:2] == (0, calibrate.validate(model, held)[0])
+    slowed = [dict(r, time={k: v * 1.2 for k, v in r["time"].items()}) for r in held[:5]] + held[5:]
+    slow, median, largest = calibrate.calm_errors(model, slowed)
+    assert slow == 5
+    assert (median, largest) == calibrate.validate(model, held[5:])
+    assert calibrate.validate(model, slowed)[0] > median
