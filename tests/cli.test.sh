@@ -206,10 +206,12 @@ assert three["work"]["render"]["rep_lookups"] > 0 and three["work"]["precompute"
 p = three["provenance"]
 assert set(p) == {"commit", "tree", "compiler", "flags", "cpu", "threads", "loadavg"} and p["threads"] == 2, p
 # kept memory: a warm repeat touches next to no fresh page (with malloc's
-# heap holding the mid-size buffers the second repeat faulted 90% as many)
+# heap holding the mid-size buffers the second repeat faulted 90% as many);
+# under ASan, whose allocator holds freed memory back, only the counts' shape
 faults = three["minor_faults_repeats"]
 assert len(faults) == 3 and len(one["minor_faults_repeats"]) == 1, (faults, one["minor_faults_repeats"])
-assert faults[0] > 0 and max(faults[1:]) <= 0.1 * faults[0], faults
+if "-fsanitize=address" not in p["flags"]:
+    assert faults[0] > 0 and max(faults[1:]) <= 0.1 * faults[0], faults
 PY
 }
 check "--repeats 3: the same image, each repeat's times, minima, median, cold, page faults; work as on 1 thread" repeats_ok
