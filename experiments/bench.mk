@@ -3,7 +3,7 @@
 # nanoflann behind experiments/bench/nano.cpp, FLANN behind flann.cpp:
 # its headers pull in lz4 for serialisation, hence -llz4) and writes results/bench/bench.md
 # via experiments/bench/run.sh (BENCH_REPS, BENCH_HEAVY_REPS tune it), then
-# results/bench/repeats.{md,csv} (bench-repeats).
+# results/bench/repeats.{md,csv}, repeats-warm.csv (bench-repeats).
 
 $(BUILD)/bench/nano.o: experiments/bench/nano.cpp | $(DEPS_TEST)
 	@mkdir -p $(dir $@)
@@ -65,7 +65,8 @@ bench-threads: $(BUILD)/photonmap
 # study run root (renders, repeats per render, one run against the repeats'
 # time, how far the minima lie below the first run and the median per phase),
 # and the cost model of `make calibrate` per unit of work (RESULTS/calibrate/
-# model.json, or "not measured") -> RESULTS/bench/repeats.{md,csv}
+# model.json, or "not measured"), which repeats are warm per process
+# -> RESULTS/bench/repeats.{md,csv}, repeats-warm.csv
 # (experiments/analysis/repeats_cost.py). Renders nothing: seconds.
 .PHONY: bench-repeats
 bench-repeats: | $(DEPS_TEST)

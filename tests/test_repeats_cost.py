@@ -149,3 +149,66 @@ def test_model_of_other_counters_named(results):
     assert repeats_cost.main(["--results", str(results), "--out", out]) == 0
     md = open(out + ".md").read()
     assert "Not measured: " in md and "not this version's" in md
+
+
+def merged(path, processes, faults=None, minima=None):
+    """A stats file at PATH of one render timed in PROCESSES (a list of
+    lists of repeats, as rep()), merged as launch.py's merge_stats merges
+    them; FAULTS every repeat's page faults; MINIMA replaces
+    time_s_processes (a split that does not check)."""
+    stats(path, [r for p in processes for r in p])
+    with open(path) as f:
+        doc = json.load(f)
+    keys = PH + ("total",)
+    doc["processes"] = len(processes)
+    doc["time_s_processes"] = minima or {k: [min(sum(r[q] for q in PH) if k == "total" else r[k] for r in p)
+                                             for p in processes] for k in keys}
+    if faults is not None:
+        doc["minor_faults_repeats"] = faults
+    with open(path, "w") as f:
+        json.dump(doc, f)
+
+
+def test_warm_repeats_known_answer(tmp_path):
+    """Per process: two processes of three repeats, the first cold in every
+    phase, the second repeat warm in one process and 10% slow in the other's
+    build; page faults per repeat; the medians and warm shares by hand."""
+    root = tmp_path / "runs" / "w-32x24-s2-t1"
+    cold, warm, slow = rep(2.0, 2.0, 2.0, 2.0), rep(1.0, 1.0, 1.0, 1.0), rep(1.0, 1.1, 1.0, 1.0)
+    merged(str(root / "x" / "seed1.stats.json"), [[cold, warm, warm], [cold, slow, warm]],
+           faults=[1000, 10, 0, 3000, 30, 0])
+    # a render of two repeats per process: too few for the section
+    merged(str(root / "x" / "seed2.stats.json"), [[cold, warm], [cold, warm]])
+    rows, warmrows = repeats_cost.collect_all(str(tmp_path))
+    every = [w for w in warmrows if w["study"] == repeats_cost.ALL]
+    assert [w["repeat"] for w in every] == [1, 2, 3] and every[0]["processes"] == 2 and every[0]["unsplit"] == 0
+    assert every[0]["build_over_least_median"] == pytest.approx(2.0) and every[0]["build_warm_share"] == 0.0
+    assert every[1]["build_over_least_median"] == pytest.approx(1.05) and every[1]["build_warm_share"] == 0.5
+    assert every[1]["trace_warm_share"] == 1.0 and every[2]["build_warm_share"] == 1.0
+    assert every[0]["minor_faults_median"] == 2000 and every[1]["minor_faults_median"] == 20
+    out = str(tmp_path / "bench" / "repeats")
+    assert repeats_cost.main(["--results", str(tmp_path), "--out", out]) == 0
+    lines = open(out + "-warm.csv").read().splitlines()
+    assert lines[0].split(",") == repeats_cost.WARM_COLUMNS and len(lines) == 1 + 2 * 3
+    md = open(out + ".md").read()
+    assert "| 2 | 1.000 (100.0%) | 1.050 (50.0%) |" in md
+    assert "for the build in 50.0% of the processes" in md
+    assert not os.path.exists(out + "-warm.csv.tmp")
+
+
+def test_warm_split_that_does_not_check_is_left_out(tmp_path):
+    """Negative control: a render whose processes' minima do not match the
+    split (its repeats cannot be told apart) is counted, not guessed; one
+    whose repeats do not divide among its processes likewise."""
+    root = tmp_path / "runs" / "w-32x24-s2-t1"
+    a, b = rep(2.0, 2.0, 2.0, 2.0), rep(1.0, 1.0, 1.0, 1.0)
+    keys = PH + ("total",)
+    merged(str(root / "x" / "seed1.stats.json"), [[a, b, b], [a, b, b]],
+           minima={k: [9.0, 9.0] for k in keys})
+    merged(str(root / "x" / "seed2.stats.json"), [[a, b, b], [a, b]])
+    every = [w for w in repeats_cost.collect_all(str(tmp_path))[1] if w["study"] == repeats_cost.ALL]
+    assert every[0]["processes"] == 0 and every[0]["unsplit"] == 2
+    assert all(math.isnan(every[1][f"{p}_over_least_median"]) for p in repeats_cost.PHASES)
+    out = str(tmp_path / "bench" / "repeats")
+    assert repeats_cost.main(["--results", str(tmp_path), "--out", out]) == 0
+    assert "No process of at least 3 repeats under runs/." in open(out + ".md").read()

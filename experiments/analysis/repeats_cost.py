@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """repeats_cost.py: the cost of timing renders with repeats, and the cost
-model per unit of work (issue 35, goal 8) -> OUT.md and OUT.csv.
+model per unit of work (issue 35, goal 8) -> OUT.md, OUT.csv and
+OUT-warm.csv.
 
     python3 -m experiments.analysis.repeats_cost --results DIR --out DIR/bench/repeats
 
@@ -22,7 +23,18 @@ runs/) and over all of them:
       the repeats (100 x (1 - min / median)): the noise the repeats remove
       (a phase that takes no time in a render, precompute in the
       conventional method, does not count there).
-The second section of OUT.md, "the cost model, per unit of work": the
+The second section of OUT.md, "which repeats are warm", and OUT-warm.csv:
+per process of a render (a render timed in several processes, launch.py's
+merge_stats, lists every process's repeats in the order run; the split is
+recovered from `processes` and checked against `time_s_processes`, each
+process's minima, and a render whose split does not check is counted, not
+guessed), over the processes of at least WARM_REPEATS repeats, for each of
+the first WARM_REPEATS repeats and each phase: the median of the repeat's
+time over the process's least, the share of processes where it lies within
+WARM_MARGIN of the least, and the median of the repeat's page faults
+(`minor_faults_repeats`, where the stats have them). The first repeat is
+cold by design; the section shows whether the second already is not.
+The third section of OUT.md, "the cost model, per unit of work": the
 coefficients of the cost model `make calibrate` writes (MODEL, default
 DIR/calibrate/model.json; experiments/calibrate.py) in ns per unit of each
 phase's work counters, with its held-out validation; "not measured: run
@@ -46,6 +58,12 @@ from experiments.analysis import report
 
 PHASES = ("trace", "build", "precompute", "render", "total")
 ALL = "all studies"
+# the repeats the warm section follows per process (--repeats auto's least),
+# and the distance from the process's least repeat that counts as warm
+WARM_REPEATS = 3
+WARM_MARGIN = 0.03
+WARM_COLUMNS = (["study", "repeat", "processes"] + [f"{p}_over_least_median" for p in PHASES]
+                + [f"{p}_warm_share" for p in PHASES] + ["minor_faults_median"])
 CSV_COLUMNS = (["study", "renders", "left_out", "repeats_median", "repeats_min", "repeats_max", "single_s",
                 "repeats_s", "factor", "extra_s", "renders_repeated"]
                + [f"min_below_cold_{p}_pct" for p in PHASES] + [f"min_below_median_{p}_pct" for p in PHASES])
@@ -95,6 +113,31 @@ def render_times(path):
                          "a stats file of photonmap render --stats has time_s and time_s_repeats")
     if out["repeats"] != len(totals) or not totals:
         raise StatsError(f"{path}: repeats is {out['repeats']} but time_s_repeats.total has {len(totals)} values")
+    out["processes"] = split_processes(doc, reps)
+    return out
+
+
+def split_processes(doc, reps):
+    """The processes of one render's stats DOC, each as {"times": {phase:
+    [its repeats' s]}, "faults": [its repeats' page faults] or None}, from
+    REPS (every repeat in the order run); None when the split cannot be
+    recovered: the repeats do not divide evenly among `processes`, or a
+    process's least repeat is not its minimum in `time_s_processes`."""
+    k = int(doc.get("processes", 1))
+    n = len(reps["total"])
+    if k < 1 or n % k:
+        return None
+    m = n // k
+    faults = doc.get("minor_faults_repeats")
+    if faults is not None and len(faults) != n:
+        faults = None
+    per_process = doc.get("time_s_processes")
+    out = []
+    for j in range(k):
+        times = {p: [float(t) for t in reps[p][j * m:(j + 1) * m]] for p in PHASES}
+        if k > 1 and (not per_process or any(min(times[p]) != float(per_process[p][j]) for p in PHASES)):
+            return None
+        out.append({"times": times, "faults": None if faults is None else [int(f) for f in faults[j * m:(j + 1) * m]]})
     return out
 
 
@@ -128,8 +171,31 @@ def summarise(name, renders, left_out):
     return row
 
 
-def collect(results):
-    """The rows of OUT.csv: one per run root with a render, then ALL."""
+def warm_rows(name, renders):
+    """The rows of OUT-warm.csv for the study NAME's RENDERS (render_times):
+    one per repeat 1..WARM_REPEATS, over the processes of at least
+    WARM_REPEATS repeats; with "unsplit", the renders whose processes could
+    not be told apart (left out)."""
+    procs = [p for r in renders if r["processes"] for p in r["processes"]
+             if len(p["times"]["total"]) >= WARM_REPEATS]
+    unsplit = sum(1 for r in renders if r["processes"] is None)
+    rows = []
+    for i in range(WARM_REPEATS):
+        row = {"study": name, "repeat": i + 1, "processes": len(procs), "unsplit": unsplit}
+        for ph in PHASES:
+            ratios = [p["times"][ph][i] / min(p["times"][ph]) for p in procs if min(p["times"][ph]) > 0]
+            row[f"{ph}_over_least_median"] = float(np.median(ratios)) if ratios else math.nan
+            row[f"{ph}_warm_share"] = (float(np.mean([x <= 1 + WARM_MARGIN for x in ratios]))
+                                       if ratios else math.nan)
+        faults = [p["faults"][i] for p in procs if p["faults"] is not None]
+        row["minor_faults_median"] = float(np.median(faults)) if faults else math.nan
+        rows.append(row)
+    return rows
+
+
+def collect_all(results):
+    """(rows of OUT.csv, rows of OUT-warm.csv): one per run root with a
+    render, then ALL (warm: WARM_REPEATS rows each)."""
     by_root, left, every = {}, {}, []
     for root, path in stats_files(results):
         t = render_times(path)
@@ -138,10 +204,18 @@ def collect(results):
             continue
         by_root.setdefault(root, []).append(t)
         every.append(t)
-    rows = [summarise(root, by_root.get(root, []), left.get(root, 0)) for root in sorted(set(by_root) | set(left))]
+    roots = sorted(set(by_root) | set(left))
+    rows = [summarise(root, by_root.get(root, []), left.get(root, 0)) for root in roots]
+    warm = [w for root in roots for w in warm_rows(root, by_root.get(root, []))]
     if rows:
         rows.append(summarise(ALL, every, sum(left.values())))
-    return rows
+        warm += warm_rows(ALL, every)
+    return rows, warm
+
+
+def collect(results):
+    """The rows of OUT.csv: one per run root with a render, then ALL."""
+    return collect_all(results)[0]
 
 
 def fmt(v, spec):
@@ -192,6 +266,35 @@ def repeats_section(rows):
     return out + [""]
 
 
+def warm_section(warm):
+    """The section "which repeats are warm" of OUT.md (Markdown lines), from
+    the rows of OUT-warm.csv: all studies' rows in a table, and a sentence
+    on the second repeat."""
+    out = ["## Which repeats are warm", ""]
+    every = [w for w in warm if w["study"] == ALL]
+    if not every or not every[0]["processes"]:
+        return out + [f"No process of at least {WARM_REPEATS} repeats under runs/.", ""]
+    second = every[1]
+    unsplit = (f" {every[0]['unsplit']} renders whose processes could not be told apart are left out."
+               if every[0]["unsplit"] else "")
+    out += [f"Per process of a render, over the {every[0]['processes']} processes of at least {WARM_REPEATS} "
+            f"repeats in all the studies under runs/: each of the first {WARM_REPEATS} repeats' time over the process's least "
+            f"repeat (median), with the share of processes where it lies within {100 * WARM_MARGIN:g}% of the "
+            "least (\"warm\"), and the repeat's page faults (median; `minor_faults_repeats`). The first repeat "
+            "is the cold time by design." + unsplit, "",
+            "| repeat | " + " | ".join(f"{p}: over least (warm)" for p in PHASES) + " | page faults |",
+            "|---:|" + "---:|" * (len(PHASES) + 1)]
+    for w in every:
+        out.append(f"| {w['repeat']} | " + " | ".join(
+            f"{fmt(w[f'{p}_over_least_median'], '.3f')} ({pct(100 * w[f'{p}_warm_share'])})" for p in PHASES)
+            + f" | {fmt(w['minor_faults_median'], '.0f')} |")
+    out += ["", f"The second repeat is warm (within {100 * WARM_MARGIN:g}% of the least) for the build in "
+            f"{pct(100 * second['build_warm_share'])} of the processes, for the precompute in "
+            f"{pct(100 * second['precompute_warm_share'])} and for the whole render in "
+            f"{pct(100 * second['total_warm_share'])}; the numbers per study are in the warm CSV.", ""]
+    return out
+
+
 def model_section(model_path):
     """The second section of OUT.md: the cost model's seconds per unit of
     work (ns per unit), or that there is none, or why it cannot be used."""
@@ -220,23 +323,31 @@ def model_section(model_path):
     return out + [""]
 
 
-def write(rows, model_path, out):
-    """OUT.csv and OUT.md, each to a temporary name and renamed."""
-    os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
-    with open(out + ".csv.tmp", "w", encoding="utf-8") as f:
-        f.write(",".join(CSV_COLUMNS) + "\n")
+def write_csv(path, columns, rows):
+    """ROWS under COLUMNS to PATH.tmp (nan as empty); the caller renames."""
+    with open(path + ".tmp", "w", encoding="utf-8") as f:
+        f.write(",".join(columns) + "\n")
         for r in rows:
             f.write(",".join("" if isinstance(r[c], float) and math.isnan(r[c]) else
-                             (f"{r[c]:.6g}" if isinstance(r[c], float) else str(r[c])) for c in CSV_COLUMNS) + "\n")
+                             (f"{r[c]:.6g}" if isinstance(r[c], float) else str(r[c])) for c in columns) + "\n")
+
+
+def write(rows, model_path, out, warm=()):
+    """OUT.csv, OUT-warm.csv (the rows WARM) and OUT.md, each to a temporary
+    name and renamed."""
+    os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
+    write_csv(out + ".csv", CSV_COLUMNS, rows)
+    write_csv(out + "-warm.csv", WARM_COLUMNS, warm)
     md = ["# Repeats and the cost model", "",
           f"Written by `make bench-repeats` (experiments/analysis/repeats_cost.py) on {report.today()}, commit "
           f"{report.commit()}, from the stats files of the "
           "renders under runs/ and the cost model of `make calibrate`; the numbers per study are in "
-          f"`{os.path.basename(out)}.csv`.", ""]
-    md += repeats_section(rows) + model_section(model_path)
+          f"`{os.path.basename(out)}.csv` and `{os.path.basename(out)}-warm.csv`.", ""]
+    md += repeats_section(rows) + warm_section(warm) + model_section(model_path)
     with open(out + ".md.tmp", "w", encoding="utf-8") as f:
         f.write("\n".join(md))
     os.replace(out + ".csv.tmp", out + ".csv")
+    os.replace(out + "-warm.csv.tmp", out + "-warm.csv")
     os.replace(out + ".md.tmp", out + ".md")
 
 
@@ -248,14 +359,14 @@ def main(argv=None):
     a = ap.parse_args(argv)
     model_path = a.model or os.path.join(a.results, "calibrate", calibrate.MODEL_NAME)
     try:
-        rows = collect(a.results)
-        write(rows, model_path, a.out)
+        rows, warm = collect_all(a.results)
+        write(rows, model_path, a.out, warm)
     except (StatsError, calibrate.ModelError) as e:
         print(f"repeats_cost: {e}", file=sys.stderr)
         return 2
     tot = rows[-1] if rows else None
     print(f"repeats_cost: {tot['renders'] if tot else 0} renders, repeats x{fmt(tot['factor'], '.2f') if tot else '—'}"
-          f" -> {a.out}.md, {a.out}.csv")
+          f" -> {a.out}.md, {a.out}.csv, {a.out}-warm.csv")
     return 0
 
 
