@@ -113,8 +113,9 @@ reference: reference-small $(foreach n,$(REF_LARGE),$(call ref_path,$(n)).exr)
 # written to reference/SCENE/SCENE-pbrt-bdpt-256x192-seedK.{exr,log}.
 # pbrt is not a Debian package: without it (PBRT=/path/to/pbrt or on PATH)
 # the target refuses, and nothing else needs it.
-# (fewer seeds for the last three: what fitted the time on a loaded machine)
-REF_PBRT_SCENES := cornell:64:4 tworooms:64:2 caustic:16:2 slabs:16:2 library:16:2
+# (two seeds each: what is committed and what reference/pbrt/agreement.md
+# compares; more fitted no session's time on a loaded machine)
+REF_PBRT_SCENES := cornell:64:2 tworooms:64:2 caustic:16:2 slabs:16:2 library:16:2
 REF_PBRT_PATH_SPP := 64
 .PHONY: reference-pbrt
 reference-pbrt: $(BUILD)/photonmap
