@@ -3,21 +3,37 @@
 # (the SCENE_BVH_MIN_SHAPES threshold of renderer/scene.h). Renders with
 # `--accel linear` and `--accel bvh`, one thread, and prints the photon-pass
 # (trace) and eye-pass (render) times from --stats, each the minimum over the
-# repeats of one process (--repeats REPEATS), as a Markdown table; also checks
+# repeats of one process (--repeats ACCEL_REPEATS), as a Markdown table; also checks
 # that both images are bit-identical.
 #   make accel                             (results/accel/accel.md)
 #   bash experiments/accel.sh [OUT.md]     (default: stdout; a file is
 #                                           written under a temporary name and renamed)
-# Knobs (environment): REPEATS (auto), PM (build/photonmap), SIZE (1024x768),
-# PHOTONS (500000), NN (100), METHOD (precomputed), ACCEL_CPU (first: the
-# lowest CPU this script may run on; a number; none): the CPU every render
-# is pinned to (taskset), as the studies pin their timed renders (TIME_CPU).
+# Knobs (environment), prefixed like the other scripted targets' (grid.sh's
+# GRID_*, scaling.sh's SCALING_*): ACCEL_REPEATS (auto), ACCEL_SIZE
+# (1024x768), ACCEL_PHOTONS (500000), ACCEL_NN (100), ACCEL_METHOD
+# (precomputed), ACCEL_CPU (first: the lowest CPU this script may run on; a
+# number; none): the CPU every render is pinned to (taskset), as the studies
+# pin their timed renders (TIME_CPU); PM (build/photonmap). The study knobs
+# it does not read (SIZE, PHOTONS, NN, NNS, METHOD, SEEDS, REPEATS) are
+# refused when set, exit 2, so that `make accel SIZE=...` does not run the
+# defaults unannounced.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+for k in SIZE PHOTONS NN NNS METHOD SEEDS REPEATS; do
+  if [ -n "${!k:-}" ]; then
+    echo "accel.sh: $k is not a knob of make accel; it reads ACCEL_SIZE, ACCEL_PHOTONS, ACCEL_NN, ACCEL_METHOD and ACCEL_REPEATS" >&2
+    exit 2
+  fi
+done
 PM=${PM:-build/photonmap}
 . "experiments/pin.sh"
 pin_to "${ACCEL_CPU:-first}"
-REPEATS=${REPEATS:-auto} SIZE=${SIZE:-1024x768} PHOTONS=${PHOTONS:-500000} NN=${NN:-100} METHOD=${METHOD:-precomputed}
+REPEATS=${ACCEL_REPEATS:-auto} SIZE=${ACCEL_SIZE:-1024x768} PHOTONS=${ACCEL_PHOTONS:-500000} NN=${ACCEL_NN:-100}
+METHOD=${ACCEL_METHOD:-precomputed}
+if ! [[ $SIZE =~ ^[1-9][0-9]*x[1-9][0-9]*$ ]]; then
+  echo "accel.sh: ACCEL_SIZE '$SIZE' is not WIDTHxHEIGHT" >&2
+  exit 2
+fi
 W=${SIZE%x*} H=${SIZE#*x}
 TMP=$(mktemp -d /tmp/accel.XXXXXX)
 OUT=${1:-}
