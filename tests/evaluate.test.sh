@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.." || exit 1
 . tests/lib.sh
 unset MAKEFLAGS MFLAGS MAKELEVEL
 if ! command -v povray > /dev/null || ! command -v oiiotool > /dev/null; then
-  echo "skipped: povray or oiiotool missing (make deps)"; echo "0 passed, 0 failed"; exit 0
+  echo "skipped: povray or oiiotool missing (make deps)"; echo "0 passed, 0 failed, 1 skipped"; exit 0
 fi
 make -s build/photonmap > /dev/null || { echo "FAIL build"; echo "0 passed, 1 failed"; exit 1; }
 KNOBS=(SIZE=32x24 SEEDS=2 PHOTONS="4000 8000" NNS="10 30" BOOTSTRAP=200 CONV_REF_FACTOR=20 CONV_REF_NN=100

@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 if ! printf 'int LLVMFuzzerTestOneInput(const char *d, unsigned long n);\nint LLVMFuzzerTestOneInput(const char *d, unsigned long n) { (void)d; (void)n; return 0; }\n' |
      ${FUZZ_CC:-clang} -fsanitize=fuzzer -x c - -o "$TMP/probe" >/dev/null 2>&1; then
   echo "note: clang with the libFuzzer runtime (libclang-rt-dev) is missing: fuzzing skipped"
-  check "fuzz: skipped (no libFuzzer runtime)" true
+  skip "fuzz: no libFuzzer runtime"
   finish; exit
 fi
 

@@ -1,7 +1,10 @@
 # lib.sh: helpers for the tests/*.test.sh scripts (sourced). `check NAME CMD...`
-# runs one check; `finish` prints "N passed, N failed" and sets the exit code.
+# runs one check; `skip NAME` counts one that cannot run here; `finish`
+# prints "N passed, N failed" (", N skipped" when any was) and sets the exit
+# code.
 PASS=0
 FAIL=0
+SKIP=0
 PM=${PM:-build/photonmap}
 TMP=$(mktemp -d /tmp/pm-test.XXXXXX)
 trap 'rm -rf "$TMP"' EXIT
@@ -24,7 +27,11 @@ expect_exit() {
   if ! grep -qE -- "$pattern" "$TMP/.stderr"; then echo "stderr does not match '$pattern':"; cat "$TMP/.stderr"; return 1; fi
 }
 
+skip() { # name: a check that cannot run here, reported and counted as skipped
+  SKIP=$((SKIP + 1)); echo "skip $1"
+}
+
 finish() {
-  echo "$PASS passed, $FAIL failed"
+  if [ "$SKIP" -gt 0 ]; then echo "$PASS passed, $FAIL failed, $SKIP skipped"; else echo "$PASS passed, $FAIL failed"; fi
   [ "$FAIL" -eq 0 ]
 }
