@@ -118,3 +118,57 @@ def test_headline_only_where_defined():
     text = evaluate.verdict_of(ee, "paper")
     assert "1.8x" not in text and "[0.9, 7]" not in text, text
     assert "(relMSE 0.02) the method pays: 1.5x [1.2, 1.9]" in text, text
+
+
+def paired_runs(seeds=6, spread=0.3, drop=None):
+    """A grid where each seed's photon map makes both methods' renders
+    slower or faster together (a per-seed factor, spread SPREAD in log, the
+    same for every cell and both methods) and the precomputed method is 2x
+    faster: the per-seed ratio is exactly 2. DROP (method, n, seed) leaves
+    one render out."""
+    rng = np.random.default_rng(4)
+    seed_factor = {s: math.exp(spread * rng.standard_normal()) for s in range(1, seeds + 1)}
+    rows = []
+    for method, scale in (("conventional", 1.0), ("precomputed", 0.5)):
+        for n in (10, 20, 50, 100):
+            for s in range(seeds, 0, -1):  # seeds out of order: the samples are sorted by seed
+                if drop == (method, n, s):
+                    continue
+                rows.append({"role": "grid", "status": "ok", "estimate": "paper", "method": method,
+                             "photons": 1000, "nn": n, "seed": s, "cpu_s": scale * n * seed_factor[s],
+                             "relmse_ref": (1.0 / n) * seed_factor[s]})
+    return pd.DataFrame(rows)
+
+
+def test_bootstrap_is_paired_over_seeds():
+    """A seed's renders move together in both methods (one photon map): the
+    paired bootstrap draws each seed once for every cell of both methods,
+    so the per-seed factor cancels and the speed-up's band is 2 within
+    1e-9 however large the seeds' spread; a cell's seeds are sorted by seed.
+    Negative control: one render missing, the cells' seeds differ, each
+    cell is drawn on its own and the band widens well past that."""
+    res = equal_error.analyse(paired_runs(), "paper", "cpu_s", "auto", np.random.default_rng(3), 400)
+    assert res["paired"] and res["rows"]
+    for r in res["rows"]:
+        close(r["lo"], 2.0, 1e-9, "paired band, low end")
+        close(r["hi"], 2.0, 1e-9, "paired band, high end")
+    seeds = {}
+    equal_error.cell_samples(paired_runs(), "paper", "conventional", "cpu_s", seeds)
+    assert seeds[(1000, 10)] == (1, 2, 3, 4, 5, 6)
+    ctl = equal_error.analyse(paired_runs(drop=("precomputed", 50, 3)), "paper", "cpu_s", "auto",
+                              np.random.default_rng(3), 400)
+    assert not ctl["paired"]
+    widths = [r["hi"] / r["lo"] for r in ctl["rows"] if math.isfinite(r["lo"])]
+    assert widths and max(widths) > 1.2, widths
+    assert "once for every cell of both methods" in equal_error.paired_text([res])
+    assert "on their own" in equal_error.paired_text([ctl])
+
+
+def test_shared_indices():
+    """One draw for every cell when all share their seeds; None when one
+    cell's seeds differ."""
+    rng = np.random.default_rng(1)
+    same = {"a": {(1, 1): (1, 2, 3), (1, 2): (1, 2, 3)}, "b": {(1, 1): (1, 2, 3)}}
+    idx = equal_error.shared_indices(same, rng, 50)
+    assert idx.shape == (50, 3) and idx.min() >= 0 and idx.max() <= 2
+    assert equal_error.shared_indices({"a": {(1, 1): (1, 2, 3)}, "b": {(1, 1): (1, 2)}}, rng, 50) is None

@@ -72,8 +72,25 @@ def test_phase_share_memory_and_bound():
     runs = synthetic(3.0, c_map=2e-9)
     s = gather.grid_summary(runs, "total_s", np.random.default_rng(1), 400)
     pairs = gather.pairs_of(runs)
-    want_gather = np.median(pairs["gather_s_c"]) / np.median(pairs["gather_s_p"])
+    # paired: the geometric mean of each cell and seed's own ratio, not a
+    # ratio of medians pooled over the grid's cells
+    want_gather = float(np.exp(np.mean(np.log(pairs["gather_s_c"] / pairs["gather_s_p"]))))
     close(s["gather"][0], want_gather, 1e-9, "gather phase speed-up")
+    # control: cells whose ratios differ (one cell's conventional gather 3x
+    # slower, and seeds of unequal speed), where a ratio of pooled medians
+    # is not the paired mean
+    runs2 = runs.copy()
+    first = runs2["photons"] == runs2["photons"].iloc[0]
+    conv = runs2["method"] == "conventional"
+    runs2.loc[first & conv, "gather_s"] *= 3.0
+    runs2.loc[runs2["seed"] == runs2["seed"].max(), "gather_s"] *= 1.7
+    s2 = gather.grid_summary(runs2, "total_s", np.random.default_rng(1), 400)
+    p2 = gather.pairs_of(runs2)
+    want2 = float(np.exp(np.mean(np.log(p2["gather_s_c"] / p2["gather_s_p"]))))
+    close(s2["gather"][0], want2, 1e-9, "paired gather speed-up, unequal cells")
+    unpaired = np.median(p2["gather_s_c"]) / np.median(p2["gather_s_p"])
+    assert abs(unpaired - want2) > 1e-3 * want2, (unpaired, want2)
+    assert s2["gather"][1] < s2["gather"][0] < s2["gather"][2]
     close(s["share"][0], 0.03, 1e-9, "precompute share")
     close(s["memory"], 0.25, 1e-9, "memory increase")
     b, c_map, c_rep = s["bound"]

@@ -6,10 +6,12 @@ method needs to reach the target, read off its Pareto front of (time, error)
 cells by log-log interpolation (stats.time_at_error), and the speed-up
 conventional time / precomputed time at the same error, per estimate. A
 cell's time is the median over its seeds, its error the mean relMSE against
-the reference over its seeds. Uncertainty: a bootstrap over seeds (in every
-cell its seeds are drawn with replacement, each draw a whole render: its
-time and its error together; then cell medians and means, fronts and
-interpolation are recomputed); intervals are the 2.5% and 97.5% quantiles
+the reference over its seeds. Uncertainty: a bootstrap over seeds (the
+seeds are drawn with replacement once for every cell of both methods, a
+paired bootstrap, since a seed is one photon map shared by both methods;
+per cell where the cells do not share their seeds; each draw a whole
+render: its time and its error together; then cell medians and means,
+fronts and interpolation are recomputed); intervals are the 2.5% and 97.5% quantiles
 of the resamples where the value is defined. A speed-up is a headline (a
 number a summary quotes: headline()) only where at least DEFINED_MIN of the
 resamples reach the target on both fronts; the tightest target both fronts
@@ -32,11 +34,12 @@ METHODS = ("conventional", "precomputed")
 TIME_LABEL = report.TIME_LABEL
 
 
-def cell_samples(runs, estimate, method, time_col):
-    """{(photons, nn): (times, errors)} per-seed arrays of the ok renders of
-    one method and estimate that have an error against the reference (for
-    the conventional method of a variant without its own, the renders it is
-    compared with)."""
+def cell_samples(runs, estimate, method, time_col, seeds_out=None):
+    """{(photons, nn): (times, errors)} per-seed arrays, in seed order, of
+    the ok renders of one method and estimate that have an error against
+    the reference (for the conventional method of a variant without its
+    own, the renders it is compared with); SEEDS_OUT, a dict when given,
+    receives each cell's seeds as a tuple."""
     mine = runs[(runs["estimate"] == estimate) & (runs["method"] == method)]
     # a variant's conventional renders are the ones it is compared with
     role = "grid" if (mine["role"] == "grid").any() or method != "conventional" else "comparison"
@@ -44,8 +47,26 @@ def cell_samples(runs, estimate, method, time_col):
     sel = sel[np.isfinite(sel[metrics.PRIMARY_COLUMN].astype(float)) & np.isfinite(sel[time_col].astype(float))]
     out = {}
     for (p, n), g in sel.groupby(["photons", "nn"], sort=True):
+        g = g.sort_values("seed", kind="stable")
         out[(int(p), int(n))] = (g[time_col].to_numpy(np.float64), g[metrics.PRIMARY_COLUMN].to_numpy(np.float64))
+        if seeds_out is not None:
+            seeds_out[(int(p), int(n))] = tuple(int(x) for x in g["seed"])
     return out
+
+
+def shared_indices(seeds, rng, replicates):
+    """One (replicates, S) matrix of seed positions drawn with replacement,
+    for every cell of every method at once, when every cell in SEEDS
+    ({method: {cell: tuple of seeds}}) has the same S seeds: a seed is one
+    photon map, shared by both methods, so a resample keeps a seed's renders
+    together across cells and methods (a paired bootstrap). None when the
+    cells' seeds differ (a render failed): each cell is then resampled on
+    its own."""
+    every = {s for per in seeds.values() for s in per.values()}
+    if len(every) != 1:
+        return None
+    (one,) = every
+    return stats.resample_indices(rng, len(one), replicates) if len(one) else None
 
 
 def cell_points(samples):
@@ -57,7 +78,11 @@ def cell_points(samples):
     return keys, t, np.array([m for m, _ in ei]), np.array([h for _, h in ei])
 
 
-def auto_targets(fronts, count=5):
+# how many targets EE_TARGETS=auto spaces inside the fronts' common range
+AUTO_TARGETS = 5
+
+
+def auto_targets(fronts, count=AUTO_TARGETS):
     """COUNT relMSE targets spaced evenly in log inside the error range that
     every front in FRONTS (lists of errors) covers, rounded to two
     significant digits; [] when the ranges do not overlap."""
@@ -118,15 +143,17 @@ def curve_targets(fronts, count=CURVE_POINTS):
     return x
 
 
-def bootstrap_times(samples, targets, rng, replicates):
+def bootstrap_times(samples, targets, rng, replicates, shared=None):
     """(replicates, len(targets)) array: the front time at each target for
-    each bootstrap resample of the cells' seeds (nan where undefined)."""
+    each bootstrap resample of the cells' seeds (nan where undefined); with
+    SHARED (shared_indices) every cell takes the same draw of seeds, else
+    each cell's are drawn on its own."""
     keys = list(samples)
     t_b = np.empty((replicates, len(keys)))
     e_b = np.empty((replicates, len(keys)))
     for j, k in enumerate(keys):
         t, e = samples[k]
-        idx = stats.resample_indices(rng, t.size, replicates)
+        idx = shared if shared is not None else stats.resample_indices(rng, t.size, replicates)
         t_b[:, j] = np.median(t[idx], axis=1)
         e_b[:, j] = e[idx].mean(axis=1)
     out = np.full((replicates, len(targets)), math.nan)
@@ -144,8 +171,9 @@ def analyse(runs, estimate, time_col, targets_arg, rng, replicates):
     res = {"estimate": estimate, "cells": {}, "fronts": {}, "targets": [], "rows": [], "samples": {},
            "curve": [], "tightest": None, "headline": None, "range": None}
     samples = res["samples"]
+    seeds = {m: {} for m in METHODS}
     for m in METHODS:
-        samples[m] = cell_samples(runs, estimate, m, time_col)
+        samples[m] = cell_samples(runs, estimate, m, time_col, seeds[m])
         keys, t, e, h = cell_points(samples[m])
         res["cells"][m] = (keys, t, e, h)
         res["fronts"][m] = stats.pareto_front(t, e)
@@ -172,7 +200,9 @@ def analyse(runs, estimate, time_col, targets_arg, rng, replicates):
         point[m] = [stats.time_at_error(t[f], e[f], x) for x in targets]
         segs = [stats.front_segment(e[f], x) for x in targets]
         between[m] = ["" if sg is None else " .. ".join(dict.fromkeys(label(keys[f[k]]) for k in sg)) for sg in segs]
-    boot = {m: bootstrap_times(samples[m], targets, rng, replicates) for m in METHODS}
+    shared = shared_indices(seeds, rng, replicates)
+    res["paired"] = shared is not None
+    boot = {m: bootstrap_times(samples[m], targets, rng, replicates, shared) for m in METHODS}
     speed = boot["conventional"] / boot["precomputed"]
     res["curve"], res["tightest"] = [], None
     for i, x in enumerate(targets):
@@ -189,6 +219,21 @@ def analyse(runs, estimate, time_col, targets_arg, rng, replicates):
             res["tightest"] = row
     res["headline"] = headline(res["curve"])
     return res
+
+
+def paired_text(results):
+    """How the bootstrap drew the seeds of RESULTS (analyse's dicts): one
+    draw shared by every cell of both methods (paired), or per cell."""
+    paired = [r for r in results if r.get("paired")]
+    shared = ("the seeds are drawn with replacement once for every cell of both methods (paired: a seed is one "
+              "photon map, the same in both methods, so a resample keeps a seed's renders together)")
+    own = "every cell's seeds are drawn with replacement on their own"
+    if len(paired) == len(results):
+        return shared
+    if not paired:
+        return own + " (the cells do not share their seeds)"
+    return (shared + " for the " + ", ".join(r["estimate"] for r in paired) + " estimate; for the others, "
+            + own + " (their cells do not share their seeds)")
 
 
 def label(key):
@@ -219,6 +264,8 @@ def section(res, time_col):
     else:
         lo_r, hi_r = res["range"]
         sp = [r["speedup"] for r in res["curve"] if report.isnum(r["speedup"])]
+        sp95 = [r["speedup"] for r in res["curve"]
+                if report.isnum(r["speedup"]) and r["defined_fraction"] >= DEFINED_MIN]
         h = res.get("headline")
         out += ["", f"**The tightest target both fronts reach**, where the curve starts: relMSE {fmt(t['target'])} "
                 "(the larger of the two fronts' smallest errors, defined as such, not chosen from the curve): "
@@ -233,8 +280,12 @@ def section(res, time_col):
                  "both fronts."), "",
                 f"**The curve** (`kind` = curve in the CSV, {len(res['curve'])} targets evenly in log over the whole "
                 f"range both fronts span, {fmt(lo_r)} to {fmt(hi_r)}; figure `{os.path.basename(res['figure'])}`): "
-                + (f"speed-up from {fmt(min(sp))} to {fmt(max(sp))} over the range; a single number is one point of "
-                   "it, and its peak is not a summary." if sp else "undefined everywhere.")]
+                + ((f"speed-up from {fmt(min(sp95))} to {fmt(max(sp95))} at the {len(sp95)} targets at least "
+                    f"{100 * DEFINED_MIN:.0f}% of the resamples reach" if sp95 else
+                    f"no target that {100 * DEFINED_MIN:.0f}% of the resamples reach")
+                   + f" (from {fmt(min(sp))} to {fmt(max(sp))} at its point estimates over the whole range, where "
+                   "fewer resamples reach the ends); a single number is one point of it, and its peak is not a "
+                   "summary." if sp else "undefined everywhere.")]
     if not res["targets"]:
         return out
     out += ["", "At each relMSE target: the time each method needs (its front interpolated in log-log between the "
@@ -365,10 +416,11 @@ def main():
            "front; between two neighbouring front cells log(time) is interpolated linearly in log(relMSE). A target "
            "below a front's smallest error is not reached in the grid, one above its largest would need a cell "
            "cheaper than the grid's cheapest: both are left undefined rather than extrapolated. Intervals: "
-           f"{args.bootstrap} bootstrap resamples over seeds (random seed {args.bootstrap_seed}); in each, every "
-           "cell's seeds are drawn with replacement (a render's time and error together) and medians, means, "
+           f"{args.bootstrap} bootstrap resamples over seeds (random seed {args.bootstrap_seed}); in each, "
+           + paired_text(results) + " (a render's time and error together), and medians, means, "
            "fronts and interpolation are recomputed. Targets: "
-           + ("five relMSE values spaced evenly in log inside the range both fronts reach (`EE_TARGETS=auto`)."
+           + (f"{AUTO_TARGETS} relMSE values spaced evenly in log inside the range both fronts reach, rounded to two "
+              "significant digits (fewer where two round alike; `EE_TARGETS=auto`)."
               if args.targets.strip() in ("", "auto") else f"`EE_TARGETS={args.targets}`.")]
     if not has_ref:
         out += ["", "No render has an error against a reference (no reference of this size): nothing to compare."]

@@ -7,12 +7,14 @@ methods under final gathering over P_e x n x N (the gather rays, --gather N),
     - the fronts of time against relMSE (a cell: its seeds' median time, mean
       relMSE against the grid's converged reference);
     - the equal-error speed-up conventional / precomputed with its 95%
-      bootstrap band (equal_error.bootstrap_times: seeds resampled in every
-      cell) over the targets where at least DEFINED_MIN of the resamples reach
+      bootstrap band (equal_error.bootstrap_times: the seeds resampled once
+      for every cell of both methods where the cells share them, paired,
+      else per cell) over the targets where at least DEFINED_MIN of the resamples reach
       both fronts;
     - the gather phase's own speed-up (the stats key gather_time:
       gather_thread_s, conventional over precomputed, pairs of one cell and
-      seed; interval: stats.median_ratio);
+      seed: the geometric mean of the paired ratios over the grid's pairs,
+      with its t interval, stats.paired_log_ratio);
     - the precompute as a share of the time saved (precompute_s of the
       precomputed render over the paired total time saved);
     - the memory increase (bytes_representatives over bytes_photon_map plus
@@ -111,12 +113,18 @@ def load_grids(grids, time_col):
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
 
 
-def samples_of(runs, method, time_col):
-    """{(P_e, n, N): (times, errors)} of one method's ok renders."""
+def samples_of(runs, method, time_col, seeds_out=None):
+    """{(P_e, n, N): (times, errors)} of one method's ok renders, in seed
+    order; SEEDS_OUT, a dict when given, receives each cell's seeds."""
     sel = runs[runs["method"] == method]
     sel = sel[np.isfinite(sel[metrics.PRIMARY_COLUMN].astype(float)) & np.isfinite(sel[time_col].astype(float))]
-    return {(int(p), int(n), int(g)): (d[time_col].to_numpy(np.float64), d[metrics.PRIMARY_COLUMN].to_numpy(np.float64))
-            for (p, n, g), d in sel.groupby(["photons", "nn", "N"], sort=True)}
+    out = {}
+    for (p, n, g), d in sel.groupby(["photons", "nn", "N"], sort=True):
+        d = d.sort_values("seed", kind="stable")
+        out[(int(p), int(n), int(g))] = (d[time_col].to_numpy(np.float64), d[metrics.PRIMARY_COLUMN].to_numpy(np.float64))
+        if seeds_out is not None:
+            seeds_out[(int(p), int(n), int(g))] = tuple(int(x) for x in d["seed"])
+    return out
 
 
 def cell_label(key):
@@ -131,9 +139,11 @@ def fronts(samples):
     return keys, t, e, stats.pareto_front(t, e)
 
 
-def equal_error_rows(samples, rng, replicates):
+def equal_error_rows(samples, rng, replicates, seeds=None):
     """Per target over the fronts' common range: both times, the speed-up,
-    its band and the share of resamples defined."""
+    its band and the share of resamples defined; SEEDS ({method: {cell:
+    seeds}}) pairs the bootstrap where every cell shares its seeds
+    (equal_error.shared_indices)."""
     f = {m: fronts(samples[m]) for m in METHODS}
     errs = [list(f[m][2][f[m][3]]) for m in METHODS]
     rng_ = equal_error.common_range(errs)
@@ -141,7 +151,9 @@ def equal_error_rows(samples, rng, replicates):
         return []
     lo, hi = rng_
     targets = [lo] if lo == hi else [float(x) for x in np.exp(np.linspace(math.log(hi), math.log(lo), TARGETS))]
-    boot = {m: equal_error.bootstrap_times(samples[m], targets, rng, replicates) for m in METHODS}
+    targets[0], targets[-1] = hi, lo  # exp(log(x)) may round past a front's end
+    shared = equal_error.shared_indices(seeds, rng, replicates) if seeds else None
+    boot = {m: equal_error.bootstrap_times(samples[m], targets, rng, replicates, shared) for m in METHODS}
     with np.errstate(divide="ignore", invalid="ignore"):
         speed = boot["conventional"] / boot["precomputed"]
     rows = []
@@ -183,19 +195,21 @@ def work_bound(pairs, time_col):
 
 def grid_summary(runs, time_col, rng, replicates):
     """Everything one grid's section says: a dict."""
-    samples = {m: samples_of(runs, m, time_col) for m in METHODS}
+    seeds = {m: {} for m in METHODS}
+    samples = {m: samples_of(runs, m, time_col, seeds[m]) for m in METHODS}
     out = {"cells": {m: len(samples[m]) for m in METHODS}, "rows": [], "gather": (math.nan,) * 3,
-           "share": (math.nan,) * 3, "memory": math.nan, "bound": (math.nan,) * 3, "samples": samples}
+           "share": (math.nan,) * 3, "share_pairs": (0, 0), "memory": math.nan, "bound": (math.nan,) * 3, "samples": samples}
     if all(samples[m] for m in METHODS):
-        out["rows"] = equal_error_rows(samples, rng, replicates)
+        out["rows"] = equal_error_rows(samples, rng, replicates, seeds)
     pairs = pairs_of(runs)
     if len(pairs):
-        out["gather"] = stats.median_ratio(pairs["gather_s_c"], pairs["gather_s_p"], rng, replicates)
+        out["gather"] = stats.paired_log_ratio(pairs["gather_s_c"], pairs["gather_s_p"])[:3]
         saved = (pairs[f"{time_col}_c"] - pairs[f"{time_col}_p"]).to_numpy(np.float64)
         pre = pairs["precompute_s_p"].to_numpy(np.float64)
         with np.errstate(divide="ignore", invalid="ignore"):
             share = np.where(saved > 0, pre / saved, math.nan)
         out["share"] = stats.median_range(share)
+        out["share_pairs"] = (int(np.isfinite(share).sum()), int(share.size))
         p = runs[runs["method"] == "precomputed"]
         base = p["bytes_photon_map"] + p["bytes_caustic_map"]
         out["memory"] = float(np.median(p["bytes_representatives"] / base)) if len(p) else math.nan
@@ -283,7 +297,8 @@ def write(runs, direct, time_col, out, figure, rng, replicates, pm, refs=None):
              f"Machine: {report.machine()}; load average at the report: {report.loadavg_now()}; commit {report.commit()}; "
              f"renderer {report.renderer_note(pm)}; {report.today()}.", "",
              f"Time: {report.TIME_LABEL.get(time_col, time_col)}. Error: {metrics.PRIMARY_COLUMN} against each grid's "
-             "converged reference. Intervals: 95%, bootstrap over seeds. Equal-error speed-ups count only at targets "
+             "converged reference. Intervals: 95%, bootstrap over seeds (one draw for every cell of both methods where "
+             "the cells share their seeds, paired). Equal-error speed-ups count only at targets "
              f"where at least {DEFINED_MIN:.0%} of the resamples reach both fronts.", "",
              f"Published: {PUBLISHED}.", ""]
     csv_rows = []
@@ -312,8 +327,10 @@ def write(runs, direct, time_col, out, figure, rng, replicates, pm, refs=None):
         b, c_map, c_rep = s["bound"]
         lines += [f"- equal-error speed-up over the counted targets: band {fmt_interval(lo, hi)}"
                   + (" (above 1)" if lo > 1 else ""),
-                  f"- gather phase (gather_thread_s) speed-up: {fmt(gr)} {fmt_interval(glo, ghi)}",
-                  f"- precompute as a share of the time saved: median {fmt(sh)} (range {fmt(shlo)}-{fmt(shhi)})",
+                  f"- gather phase (gather_thread_s) speed-up, the geometric mean of the paired ratios (cell and "
+                  f"seed) with its 95% t interval: {fmt(gr)} {fmt_interval(glo, ghi)}",
+                  f"- precompute as a share of the time saved: median {fmt(sh)} (range {fmt(shlo)}-{fmt(shhi)}) over "
+                  f"the {s['share_pairs'][0]} of {s['share_pairs'][1]} pairs where the precomputed render saved time",
                   f"- memory: the representatives add {fmt(100 * s['memory'])}% to the photon maps",
                   f"- bound from the work counters (lookups at y free): {fmt(b)} "
                   f"(fit: {fmt(1e9 * c_map)} ns per map node or point, {fmt(1e9 * c_rep)} ns per representative node or point)",
