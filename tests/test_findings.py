@@ -1164,3 +1164,32 @@ def test_rerun_text():
     assert findings.rerun_text(rec) == "; its rerun (`make reproducibility`, run b) gives the same counts"
     rec["rerun"] = None
     assert findings.rerun_text(rec) == ""
+
+
+def test_brief_table_equal_error_and_gather_wording():
+    """The opening's sentences say only what their tests say: Table 1's fall
+    over n is claimed when the two ends' intervals are ranked (control: they
+    overlap, no change is claimed; the paper's own course is said apart);
+    the equal-error sentence gives the smallest and largest speed-up over
+    the targets enough resamples reach, not "faster at the tightest"; final
+    gathering's span is of point estimates, with the grids whose intervals
+    lie above 1 counted."""
+    def table(rank, paper_last):
+        first = {"photons": 50000, "nn": 10, "ratio": 68.0, "paper": 70.4}
+        last = {"photons": 50000, "nn": 100, "ratio": 28.5, "paper": paper_last}
+        return {"photons": [50000], "over_n": {50000: {"first": first, "last": last, "rank": rank}}, "reversed": []}
+    text = findings.brief_table(table("lower", 29.3))
+    assert "time falls from 68.0% to 28.5% of the conventional one's, as in the paper (70.4% and 29.3%)." in text
+    text = findings.brief_table(table("overlap", 29.3))
+    assert "time goes from 68.0% to 28.5%" in text and "no change is claimed" in text and "as in the paper" not in text
+    text = findings.brief_table(table("lower", 80.0))
+    assert "where the paper's does not fall (70.4% and 80.0%)" in text
+    span = ({"speedup": 2.24, "target": 0.0102}, {"speedup": 3.28, "target": 0.0124})
+    rec = {"estimates": [{"estimate": findings.PRIMARY_ESTIMATE, "span": span, "span_rank": "lower", "tightest": {}}]}
+    text = findings.brief_equal_error(rec)
+    assert "speed-up at equal error runs from 2.24x" in text and "to 3.28x (0.0124): it depends on the target" in text
+    assert "tightest" not in text and "faster" not in text
+    g = {"grids": [{}, {}, {}], "every": [{}], "speedup": (0.8, 3.2)}
+    text = findings.brief_gather(g)
+    assert "(point estimates); its interval lies above 1 at every counted target in 1 of 3 grids." in text
+    assert "faster" not in text
