@@ -187,7 +187,7 @@ def test_markdown_numbers_and_rules_csv(tmp_path):
 def test_conclusions_record(tmp_path):
     """The record the report and the figure are written from: the rule that
     differs from the paper is the one left out of those not rejected, the
-    lowest chi^2 is a matching rule, the paper's slope ratios are the ones
+    rule with the largest Holm p is a matching rule, the paper's slope ratios are the ones
     the synthetic table was built with, and the sensitivity rows scale the
     noise; negative control: with every rule at the paper's slope none is
     left out."""

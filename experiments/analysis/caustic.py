@@ -162,7 +162,8 @@ def markdown(summary, args, per_run):
                 "(its relMSE over the conventional one's, same seed) is larger in the window than over the whole "
                 f"image (intervals disjoint) at {', '.join(more) if more else 'no cell'}"
                 + (f"; smaller at {', '.join(less)}" if less else "")
-                + (f"; the same within the intervals at {', '.join(same)}" if same else "") + "."]
+                + (f"; undetermined (the intervals overlap; no equality is claimed) at {', '.join(same)}"
+                   if same else "") + "."]
         out += ["- Peak ratio, precomputed vs conventional (95% intervals disjoint): less of the caustic's peak kept "
                 f"at {', '.join(lower_peak) if lower_peak else 'no cell'}; more (a brighter peak) at "
                 f"{', '.join(higher_peak) if higher_peak else 'no cell'}; the others overlap.", ""]

@@ -339,7 +339,9 @@ def diff_png(a, b, path):
     q = np.round(img * 255).astype(np.uint8)
     buf = oiio.ImageBuf(oiio.ImageSpec(a.shape[1], a.shape[0], 3, oiio.UINT8))
     buf.set_pixels(oiio.ROI(0, a.shape[1], 0, a.shape[0]), q)
-    buf.write(path + ".tmp.png")
+    if not buf.write(path + ".tmp.png"):
+        print(f"{path}: cannot write: {buf.geterror()}", file=sys.stderr)
+        sys.exit(1)
     os.replace(path + ".tmp.png", path)
 
 
@@ -533,7 +535,8 @@ def cmd_report(a):
                   "| conventional | precomputed | difference | converged reference |", "|---|---|---|---|",
                   "| ![](conventional.png) | ![](precomputed.png) | ![](difference.png) | ![](reference.png) |", ""]
     lines += ["## Time ratios", "", f"Precomputed / conventional time ({a.time}: the renderer's own timer), paired "
-              "per seed (back to back), median over seeds with its 95% t interval of the paired log ratio; "
+              "per seed (back to back), the geometric mean over seeds (exp of the mean paired log ratio) with its 95% t "
+              "interval; "
               "relMSE per method (mean over seeds).", "",
               "| variant | estimate | P_e | n | time ratio % [95%] | relMSE conventional | relMSE precomputed |",
               "|---|---|---|---|---|---|---|"]
@@ -543,9 +546,10 @@ def cmd_report(a):
         for _, q in t[t["method"] == "precomputed"].sort_values(["photons", "nn"]).iterrows():
             for e in a.estimates.split():
                 sfx = "" if e == "paper" else f"_{e}"
-                pr = q.get("paired_ratio_percent" + sfx, q.get("paired_ratio_percent"))
-                lo = q.get("paired_ratio_ci95_lo" + sfx, q.get("paired_ratio_ci95_lo"))
-                hi = q.get("paired_ratio_ci95_hi" + sfx, q.get("paired_ratio_ci95_hi"))
+                # an estimate the table has no column for has no ratio (never the paper estimate's)
+                pr = q.get("paired_ratio_percent" + sfx, math.nan)
+                lo = q.get("paired_ratio_ci95_lo" + sfx, math.nan)
+                hi = q.get("paired_ratio_ci95_hi" + sfx, math.nan)
                 sel = rr[(rr["photons"] == q["photons"]) & (rr["nn"] == q["nn"]) & (rr["estimate"] == e) & (rr["status"] == "ok")]
                 ec = runs[(runs["photons"] == q["photons"]) & (runs["nn"] == q["nn"]) & (runs["estimate"] == e)
                           & (runs["method"] == "conventional") & (runs["status"] == "ok")]["relmse_ref"].mean()
@@ -570,7 +574,8 @@ def cmd_report(a):
     lines += ["## Settings", "", a.settings, ""]
     if os.path.exists(a.equal_error_png):
         import shutil
-        shutil.copyfile(a.equal_error_png, os.path.join(a.out, "equal-error.png"))
+        shutil.copyfile(a.equal_error_png, os.path.join(a.out, "equal-error.png.tmp"))
+        os.replace(os.path.join(a.out, "equal-error.png.tmp"), os.path.join(a.out, "equal-error.png"))
     with open(os.path.join(a.out, "report.md.tmp"), "w") as fh:
         fh.write("\n".join(lines))
     os.replace(os.path.join(a.out, "report.md.tmp"), os.path.join(a.out, "report.md"))

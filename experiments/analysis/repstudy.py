@@ -474,8 +474,8 @@ def sensitivity_column(factor):
 def conclusions(res):
     """What the report and the figure state beyond analyse's tables, from
     RES: the renders' size and conventional seeds, the paper's slope ratio
-    per P_e, the rules tested (Holm), the one with the lowest chi^2, those
-    not rejected, the best table shape, the verdicts with the paper's noise
+    per P_e, the rules tested (Holm), the one with the largest Holm p
+    (chi^2 per dof breaking ties), those not rejected, the best table shape, the verdicts with the paper's noise
     scaled by each factor of SENSITIVITY, and the rules with the shared tree."""
     fits, scores, conv = res["fits"], res["scores"], res["conv"]
     first = fits.drop_duplicates("photons").set_index("photons")
@@ -488,7 +488,10 @@ def conclusions(res):
                       if fits.loc[fits["rule"] == r, "kind"].iloc[0] == "shared"]}
     tested = scores.dropna(subset=["p_holm"])
     if len(tested):
-        b = tested.sort_values("chi2").iloc[0]
+        # the rule with the least evidence against it: the largest p (chi^2
+        # alone would favour the rules fitted to the paper, one dof fewer)
+        b = tested.assign(_fit=tested["chi2"] / tested["dof"].clip(lower=1)).sort_values(
+            ["p_holm", "_fit"], ascending=[False, True]).iloc[0]
         rec["best"] = {k: b[k] for k in ("label", "chi2", "dof", "p_holm")}
         rec["kept"] = tested[tested["verdict"] == "not rejected"]["label"].tolist()
         shape = scores.dropna(subset=["shape_factor"]).sort_values("shape_factor")
@@ -584,8 +587,9 @@ def markdown(res, rec, args, base_path, variant_paths):
     b, kept = rec["best"], rec["kept"]
     if b is not None:
         out += [f"**Finding.** Rules not rejected against the paper's slope ratios after Holm over {m} rules: "
-                f"{', '.join(kept) if kept else 'none'}; lowest chi^2: **{b['label']}** (chi^2 {fmt(b['chi2'], 3)} "
-                f"with {int(b['dof'])} dof, Holm p = {fmt(b['p_holm'], 2)})."
+                f"{', '.join(kept) if kept else 'none'}; the least evidence against it (the largest Holm p): "
+                f"**{b['label']}** (chi^2 {fmt(b['chi2'], 3)} with {int(b['dof'])} dof, Holm p = "
+                f"{fmt(b['p_holm'], 2)}); the rules not rejected are not ranked among themselves."
                 + (f" Best table shape: {rec['best_shape'][0]} (x{fmt(rec['best_shape'][1], 3)})."
                    if rec["best_shape"] is not None else ""), ""]
         for a in rec["sensitivity"]:

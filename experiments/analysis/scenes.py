@@ -30,15 +30,22 @@ from experiments.analysis.report import fmt, fmt_ci
 
 
 def knn_share(table, photons, nn):
-    """(share of the conventional total spent in the kNN, speed-up of the
-    total) at one cell of a table1.csv, paper estimate."""
+    """(share of the conventional total spent in the kNN, (speed-up, lo,
+    hi)) at one cell of a table1.csv, paper estimate: the speed-up is
+    conventional / precomputed time, the table's paired ratio over seeds
+    inverted (geometric mean of the per-seed ratios, 95% t interval); nan
+    where the cell or the column is missing."""
+    nan3 = (float("nan"),) * 3
     conv = table[(table.method == "conventional") & (table.photons == photons) & (table.nn == nn)]
     prec = table[(table.method == "precomputed") & (table.photons == photons) & (table.nn == nn)]
     if conv.empty or prec.empty:
-        return float("nan"), float("nan")
+        return float("nan"), nan3
     c, p = conv.iloc[0], prec.iloc[0]
     share = (c.render_median_s - p.render_median_s) / c.total_median_s
-    return float(share), float(c.total_median_s / p.total_median_s)
+    ratio = [float(p.get(k, float("nan"))) for k in
+             ("paired_ratio_percent", "paired_ratio_ci95_hi", "paired_ratio_ci95_lo")]
+    speed = tuple(100.0 / r if report.isnum(r) and r > 0 else float("nan") for r in ratio)
+    return float(share), speed
 
 
 def mean_difference(runs, photons, nn, ref):
@@ -106,7 +113,8 @@ def main():
         diff, seeds = mean_difference(runs, cell_p, cell_n, ref)
         empty = table[(table.method == "precomputed") & (table.photons == cell_p) & (table.nn == cell_n)]
         row = {"scene": name, "knn_share": share, "knn_share_min": float(np.nanmin(shares)),
-               "knn_share_max": float(np.nanmax(shares)), "speedup_total": speed,
+               "knn_share_max": float(np.nanmax(shares)), "speedup_total": speed[0],
+               "speedup_total_lo": speed[1], "speedup_total_hi": speed[2],
                "concentration_top1": concentration(diff) if diff is not None else float("nan"),
                "diff_seeds": seeds,
                "empty_estimates_prec": float(empty.iloc[0].empty_estimates) if not empty.empty else float("nan")}
@@ -173,15 +181,16 @@ def main():
     md += ["", "## The share of the kNN, and the speed-up of the total", "",
            f"At P_e = {plotting.kilo(cell_p)}, n = {cell_n} (paper estimate; medians over seeds): the share of the "
            "conventional render's total time spent in the k-nearest search (its eye pass minus the precomputed eye "
-           "pass, which casts the same rays), its range over the grid's cells, and the ratio of the two methods' "
-           "total times at this cell. Where the error lies: the share of the squared difference precomputed - "
+           "pass, which casts the same rays), its range over the grid's cells, and conventional / precomputed time at "
+           "this cell, paired per seed (the geometric mean of the per-seed ratios with its 95% t interval, from the "
+           "table's paired time ratio). Where the error lies: the share of the squared difference precomputed - "
            "conventional that sits in its 1% largest pixels (1% if spread evenly), and the precomputed method's "
            "diffuse hits without an agreeing representative (black samples).", ""]
     md += report.md_table(
-        ["scene", "kNN share of the conventional total", "range over the grid", "conventional / precomputed total",
+        ["scene", "kNN share of the conventional total", "range over the grid", "conventional / precomputed time [95% CI]",
          "difference energy in the top 1% of pixels", "empty precomputed estimates (median over seeds)"],
         [[r["scene"], f"{r['knn_share']:.0%}", f"{r['knn_share_min']:.0%} - {r['knn_share_max']:.0%}",
-          f"{r['speedup_total']:.2f}", f"{r['concentration_top1']:.0%}", fmt(r["empty_estimates_prec"])]
+          fmt_ci(r["speedup_total"], r["speedup_total_lo"], r["speedup_total_hi"]), f"{r['concentration_top1']:.0%}", fmt(r["empty_estimates_prec"])]
          for r in rows],
         align="lrrrrr")
     md += ["", "![(precomputed - conventional) / reference per scene](figures/scenes.png)", ""]
