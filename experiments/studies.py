@@ -506,7 +506,11 @@ def main(argv=None):
     given = {}
     for a in args[2:]:
         name, _, value = a.partition("=")
-        given[name] = knob_text(yaml.safe_load(value)) if value else ""
+        try:
+            given[name] = knob_text(yaml.safe_load(value)) if value else ""
+        except yaml.YAMLError as e:
+            print(f"studies: {name}={value}: not a value ({' '.join(str(e).split())})", file=sys.stderr)
+            return 2
     try:
         study = load(args[1], given)
     except StudyError as e:

@@ -279,8 +279,13 @@ def write_png(img, path):
 def build(a):
     """The `build` command: renders, measures, writes OUT.exr/.png/.json;
     returns the exit status."""
-    seeds = [int(s) for s in a.seeds.split()]
-    grid = {int(s) for s in a.grid_seeds.split()}
+    try:
+        seeds = [int(s) for s in a.seeds.split()]
+        grid = {int(s) for s in a.grid_seeds.split()}
+    except ValueError:
+        print(f"reference: CONV_REF_SEEDS='{a.seeds}' or the grid's seeds '{a.grid_seeds}': not whole numbers",
+              file=sys.stderr)
+        return 2
     if len(seeds) < 2 or len(set(seeds)) != len(seeds):
         print(f"reference: CONV_REF_SEEDS={a.seeds}: need at least two different seeds", file=sys.stderr)
         return 2

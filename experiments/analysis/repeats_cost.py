@@ -148,6 +148,7 @@ def below(minimum, other):
 
 
 def median_or_nan(values):
+    """The median of VALUES without NaN; nan when none is left."""
     v = [x for x in values if not math.isnan(x)]
     return float(np.median(v)) if v else math.nan
 
@@ -219,10 +220,12 @@ def collect(results):
 
 
 def fmt(v, spec):
+    """V formatted with SPEC, or an em dash for nan."""
     return "—" if isinstance(v, float) and math.isnan(v) else format(v, spec)
 
 
 def pct(v):
+    """V as a percentage with one decimal, or an em dash for nan."""
     return "—" if math.isnan(v) else f"{v:.1f}%"
 
 
@@ -352,6 +355,8 @@ def write(rows, model_path, out, warm=()):
 
 
 def main(argv=None):
+    """The command line: returns 0, or 2 when a stats file or the model
+    cannot be read (named on stderr)."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[1])
     ap.add_argument("--results", required=True, help="the results directory (its runs/ and calibrate/)")
     ap.add_argument("--out", required=True, help="output stem: OUT.md and OUT.csv")

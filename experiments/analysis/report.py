@@ -22,25 +22,36 @@ TIME_LABEL = {"cpu_s": "CPU seconds of the process (user + system, /usr/bin/time
               "total_s": "wall-clock seconds of the render (the stats JSON's time_s.total)"}
 
 
-def die(where, what):
-    """Print 'WHERE: WHAT' on stderr and exit 1."""
+# exit statuses: a runtime failure (a file a step before did not make, I/O),
+# and bad input (a file that is there but not what it must be, an option's
+# value)
+EXIT_FAILURE = 1
+EXIT_BAD_INPUT = 2
+
+
+def die(where, what, code=EXIT_FAILURE):
+    """Print 'WHERE: WHAT' on stderr and exit CODE (EXIT_FAILURE, or
+    EXIT_BAD_INPUT for input that is there but malformed)."""
     print(f"{where}: {what}", file=sys.stderr)
-    sys.exit(1)
+    sys.exit(code)
 
 
 def read_csv(path, need, where, hint="", comment=None):
     """The CSV at PATH as a pandas frame, its columns NEED checked by name.
-    On a missing or unreadable file or a missing column: exits 1 with
-    'WHERE: PATH: ...' (HINT says what makes the file)."""
+    A missing file exits EXIT_FAILURE with 'WHERE: PATH: missing (HINT)'
+    (HINT says what makes it); an unreadable or malformed one, or one that
+    lacks a column, exits EXIT_BAD_INPUT naming the file and the cause."""
     if not os.path.isfile(path):
         die(where, f"{path}: missing" + (f" ({hint})" if hint else ""))
     try:
         frame = pd.read_csv(path, comment=comment)
-    except (OSError, UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError) as e:
+    except (UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError) as e:
+        die(where, f"{path}: not a CSV ({e})", EXIT_BAD_INPUT)
+    except OSError as e:
         die(where, f"{path}: {e}")
     missing = [c for c in need if c not in frame.columns]
     if missing:
-        die(where, f"{path}: no column(s) {', '.join(missing)}")
+        die(where, f"{path}: no column(s) {', '.join(missing)}", EXIT_BAD_INPUT)
     return frame
 
 
