@@ -49,3 +49,29 @@ def test_resolution_prints_reference_error():
         with open(out) as f:
             text = f.read()
         assert "its own error is not measured here" in text and "0.000512" not in text
+
+
+def test_cheapest_names_the_cells_it_is_not_told_from():
+    """A cell is cheapest outright only when every other cell's range of
+    times over seeds lies above its own; the cells whose range overlaps it
+    are named beside it (control: disjoint ranges name none)."""
+    from experiments.analysis import resolution
+
+    def c(nn, t, lo, hi):
+        return {"method": "precomputed", "estimate": "paper", "photons": 50000, "nn": nn, "time": t, "mean": 0.01,
+                "half": 0.001, "tmin": lo, "tmax": hi}
+    a, b, far = c(10, 1.0, 0.9, 1.2), c(20, 1.1, 1.05, 1.3), c(50, 2.0, 1.8, 2.2)
+    best, ties = resolution.cheapest([far, b, a])
+    assert best is a and ties == [b]
+    text = resolution.cheapest_text([far, b, a])
+    assert text.startswith("prec./paper, P_e=50k, n=10: 1 s") and "not told apart from 1 other cell" in text
+    assert "n=20" in text and "n=50" not in text
+    assert resolution.cheapest([far, a]) == (a, []) and "not told apart" not in resolution.cheapest_text([far, a])
+    assert resolution.cheapest_text([]) == "none in grid"
+    # the table's min and max columns give the range; without them the median alone
+    table = pd.DataFrame([{"method": "precomputed", "photons": 50000, "nn": 10, "total_median_s": 1.0,
+                           "total_min_s": 0.8, "total_max_s": 1.4, "relmse_ref_mean": 0.01, "relmse_ref_ci95": 0.001}])
+    (cand,) = resolution.candidates(table, "total_s")
+    assert (cand["tmin"], cand["tmax"]) == (0.8, 1.4)
+    (cand,) = resolution.candidates(table.drop(columns=["total_min_s", "total_max_s"]), "total_s")
+    assert (cand["tmin"], cand["tmax"]) == (1.0, 1.0)
