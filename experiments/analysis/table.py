@@ -277,9 +277,29 @@ def ranked_clauses(pairs):
     return "; ".join(f"{text} in {cell_list(labels)}" for text, labels in pairs if labels)
 
 
-def rank_sentences(table, estimates):
+def estimate_comparisons(runs, est, method):
+    """(cell labels, paired_difference dicts with compare_family's
+    verdicts) of one METHOD's error (ERR) with estimate EST against the
+    paper estimate's, per cell, paired per seed (the same photon map and
+    render but for the estimate), Holm over the cells; the conventional
+    renders are the comparison ones where there are any."""
+    ok = runs[(runs["status"] == "ok") & (runs["method"] == method)]
+    role = "comparison" if method == "conventional" and (ok["role"] == "comparison").any() else "grid"
+    ok = ok[ok["role"] == role]
+    m = ok[ok["estimate"] == est].merge(ok[ok["estimate"] == "paper"], on=["photons", "nn", "seed"],
+                                        suffixes=("", "_paper"))
+    labels, comps = [], []
+    for (p, n), g in m.groupby(["photons", "nn"], sort=True):
+        labels.append(cell_label({"photons": int(p), "nn": int(n)}))
+        comps.append(stats.paired_difference(g[ERR].astype(float), g[f"{ERR}_paper"].astype(float)))
+    return labels, stats.compare_family(comps)
+
+
+def rank_sentences(table, estimates, runs=None):
     """Markdown lines that rank numbers only where the 95% intervals are
-    disjoint, and name the cells where they overlap."""
+    disjoint, and name the cells where they overlap; the estimates' errors
+    against each other are compared paired per seed (RUNS, the grid's
+    renders), Holm over the cells."""
     lines = []
     prec = [r for _, r in table.iterrows() if r["method"] != "conventional"]
     if "paper" in estimates and prec:
@@ -301,19 +321,22 @@ def rank_sentences(table, estimates):
     if prec:
         lines.append("- **Error, precomputed vs conventional**: the paired comparison above (same seed, Holm over "
                      "the cells; \"equivalent\" only within its margin delta).")
-    if "paper" in estimates and len(estimates) > 1:
+    if "paper" in estimates and len(estimates) > 1 and runs is not None:
+        m = f"{100 * stats.EQUIVALENCE_MARGIN:g}%"
         for est in [e for e in estimates if e != "paper"]:
-            sfx = suffix(est)
             for method in ("conventional", "precomputed"):
-                by = {"higher": [], "lower": [], "overlap": [], "unknown": []}
-                for _, r in table[table["method"] == method].iterrows():
-                    by[stats.rank(interval(r, ERR, sfx), interval(r, ERR))].append(cell_label(r))
-                better, worse, overlap = by["lower"], by["higher"], by["overlap"]
-                if better or worse or overlap:
-                    parts = ranked_clauses([(f"{est} lower", better), (f"{est} higher", worse),
-                                            ("intervals overlap (no ranking)", overlap)])
-                    lines.append(f"- **{est} vs paper estimate, {method}** (relMSE against the reference, 95% "
-                                 "t-intervals): " + parts + ".")
+                labels, comps = estimate_comparisons(runs, est, method)
+                by = {"higher": [], "lower": [], "equivalent": [], "undetermined": []}
+                for lab, c in zip(labels, comps):
+                    by[c["verdict"]].append(lab)
+                if labels:
+                    parts = ranked_clauses([(f"{est} lower", by["lower"]), (f"{est} higher", by["higher"]),
+                                            (f"equivalent within {m}", by["equivalent"]),
+                                            ("undetermined (neither ranked nor within the margin)",
+                                             by["undetermined"])])
+                    lines.append(f"- **{est} vs paper estimate, {method}** (relMSE against the reference, paired "
+                                 f"per seed, Holm over the {len(labels)} cells; equivalent: the 95% interval of the "
+                                 f"difference inside +-{m} of the paper estimate's): " + parts + ".")
     floor = table["relmse_ref_floor"].iloc[0] if len(table) else math.nan
     if isnum(floor):
         for est in estimates:
@@ -509,8 +532,9 @@ def markdown(table, runs, estimates, args):
     out += paired_section(table, estimates)
     out += ["", "## What the intervals allow us to say", "",
             "Generated from the intervals above; two numbers are ranked only when their 95% intervals are "
-            "disjoint (a conservative test: with few seeds, real differences can stay unranked).", ""]
-    out += rank_sentences(table, estimates)
+            "disjoint (a conservative test: with few seeds, real differences can stay unranked), the estimates' "
+            "errors against each other by the paired test per seed (Holm over the cells).", ""]
+    out += rank_sentences(table, estimates, runs)
 
     refused = grid[grid["status"] == "refused"]
     if len(refused):
