@@ -13,7 +13,9 @@ same seed inside the window, and the excess: the precomputed render's relMSE
 over the conventional one's of the same seed, in the window and over the
 whole image (a caustic smeared more than the rest of the picture has a
 larger excess in the window). Per cell and method: mean over seeds with its
-95% t-interval (stats.t_interval). Input: the runs.csv of `make caustic`
+95% t-interval (stats.t_interval); the methods, and the window against the
+whole image, are compared paired per seed, Holm over the cells
+(comparison_lines: stats.paired_difference, stats.compare_family). Input: the runs.csv of `make caustic`
 (the table machinery run on the caustic scene), with the images it names.
 """
 
@@ -120,54 +122,65 @@ def markdown(summary, args, per_run):
                                 "peak ratio prec.", "window relMSE prec. vs conv.", "image relMSE conv.",
                                 "image relMSE prec."], rows)
         out += [""]
-        # what the intervals allow: per cell, precomputed against conventional in the window
-        worse, better, overlap, lower_peak, higher_peak = [], [], [], [], []
-        for (p, n), g in s.groupby(["photons", "nn"], sort=True):
-            c = g[g["method"] == "conventional"]
-            q = g[g["method"] == "precomputed"]
-            if c.empty or q.empty:
-                continue
-            lab = f"({kilo(p)}, {n})"
-            a = (q["win_relmse_ref_mean"].iloc[0] - q["win_relmse_ref_ci95"].iloc[0],
-                 q["win_relmse_ref_mean"].iloc[0] + q["win_relmse_ref_ci95"].iloc[0])
-            b = (c["win_relmse_ref_mean"].iloc[0] - c["win_relmse_ref_ci95"].iloc[0],
-                 c["win_relmse_ref_mean"].iloc[0] + c["win_relmse_ref_ci95"].iloc[0])
-            {"overlap": overlap, "unknown": overlap, "higher": worse, "lower": better}[stats.rank(a, b)].append(lab)
-            pa = (q["win_peak_ratio_mean"].iloc[0] - q["win_peak_ratio_ci95"].iloc[0],
-                  q["win_peak_ratio_mean"].iloc[0] + q["win_peak_ratio_ci95"].iloc[0])
-            pb = (c["win_peak_ratio_mean"].iloc[0] - c["win_peak_ratio_ci95"].iloc[0],
-                  c["win_peak_ratio_mean"].iloc[0] + c["win_peak_ratio_ci95"].iloc[0])
-            if not stats.intervals_overlap(pa, pb):
-                (lower_peak if pa[1] < pb[0] else higher_peak).append(lab)
-        parts = []
-        if worse:
-            parts.append(f"precomputed worse in the window (95% intervals disjoint) at {', '.join(worse)}")
-        if better:
-            parts.append(f"precomputed better at {', '.join(better)}")
-        if overlap:
-            parts.append(f"no ranking (intervals overlap) at {', '.join(overlap)}")
-        out += ["- Window relMSE, precomputed vs conventional: " + "; ".join(parts) + "."]
-        more, less, same = [], [], []
-        for (p, n), g in s.groupby(["photons", "nn"], sort=True):
-            q = g[g["method"] == "precomputed"]
-            if q.empty:
-                continue
-            w = (q["win_excess_mean"].iloc[0] - q["win_excess_ci95"].iloc[0],
-                 q["win_excess_mean"].iloc[0] + q["win_excess_ci95"].iloc[0])
-            i = (q["img_excess_mean"].iloc[0] - q["img_excess_ci95"].iloc[0],
-                 q["img_excess_mean"].iloc[0] + q["img_excess_ci95"].iloc[0])
-            lab = f"({kilo(p)}, {n})"
-            (same if stats.intervals_overlap(w, i) else more if w[0] > i[1] else less).append(lab)
-        out += ["- Does the caustic suffer more than the rest of the image? The precomputed method's excess error "
-                "(its relMSE over the conventional one's, same seed) is larger in the window than over the whole "
-                f"image (intervals disjoint) at {', '.join(more) if more else 'no cell'}"
-                + (f"; smaller at {', '.join(less)}" if less else "")
-                + (f"; undetermined (the intervals overlap; no equality is claimed) at {', '.join(same)}"
-                   if same else "") + "."]
-        out += ["- Peak ratio, precomputed vs conventional (95% intervals disjoint): less of the caustic's peak kept "
-                f"at {', '.join(lower_peak) if lower_peak else 'no cell'}; more (a brighter peak) at "
-                f"{', '.join(higher_peak) if higher_peak else 'no cell'}; the others overlap.", ""]
+        out += comparison_lines(per_run[per_run["estimate"] == est])
     return "\n".join(out) + "\n"
+
+
+def paired_cells(per_run, a_of, b_of):
+    """(cell labels, paired_difference dicts with compare_family's
+    verdicts, Holm over the cells) of A against B per cell (P_e, n) of one
+    estimate's PER_RUN rows: A_OF(precomputed row) and B_OF(precomputed
+    row, its conventional row of the same seed) give one pair per seed."""
+    conv = per_run[per_run["method"] == "conventional"].set_index("run")
+    labels, comps = [], []
+    for (p, n), g in per_run[per_run["method"] == "precomputed"].groupby(["photons", "nn"], sort=True):
+        pairs = [(a_of(r), b_of(r, conv.loc[r["conv_run"]] if r["conv_run"] in conv.index else None))
+                 for _, r in g.iterrows()]
+        a = [x for x, y in pairs]
+        b = [y for x, y in pairs]
+        labels.append(f"({kilo(p)}, {n})")
+        comps.append(stats.paired_difference(a, b))
+    return labels, stats.compare_family(comps)
+
+
+def verdict_clauses(labels, comps, words):
+    """'WORDS[verdict] at (50k, 10), (100k, 20)' for each verdict that has a
+    cell, joined by '; ' ('no cell' when none)."""
+    by = {}
+    for lab, c in zip(labels, comps):
+        by.setdefault(c["verdict"], []).append(lab)
+    parts = [f"{words[v]} at {', '.join(by[v])}" for v in ("higher", "lower", "equivalent", "undetermined") if v in by]
+    return "; ".join(parts) if parts else "no cell"
+
+
+def comparison_lines(per_run):
+    """The report's paired verdicts for one estimate's PER_RUN rows:
+    precomputed against conventional in the window (relMSE, peak ratio),
+    and the precomputed method's excess error in the window against the
+    whole image's; per seed, Holm over the cells, 'equivalent' within the
+    margin."""
+    m = f"{100 * stats.EQUIVALENCE_MARGIN:g}%"
+    nan = math.nan
+    win = paired_cells(per_run, lambda r: r["win_relmse_ref"],
+                       lambda r, c: c["win_relmse_ref"] if c is not None else nan)
+    peak = paired_cells(per_run, lambda r: r["win_peak_ratio"],
+                        lambda r, c: c["win_peak_ratio"] if c is not None else nan)
+    excess = paired_cells(per_run, lambda r: r["win_excess"], lambda r, c: r["img_excess"])
+    same = f"equivalent within {m}"
+    und = "undetermined (neither ranked nor within the margin)"
+    return ["Paired per seed (the precomputed render against the conventional one of the same photon map), Holm "
+            f"over the cells; \"equivalent\": the difference's 95% interval inside +-{m} of the second value.", "",
+            "- Window relMSE, precomputed vs conventional: " + verdict_clauses(
+                *win, {"higher": "precomputed worse in the window", "lower": "precomputed better",
+                       "equivalent": same, "undetermined": und}) + ".",
+            "- Does the caustic suffer more than the rest of the image? The precomputed method's excess error "
+            "(its relMSE over the conventional one's, same seed), in the window against over the whole image: "
+            + verdict_clauses(*excess, {"higher": "larger in the window", "lower": "smaller in the window",
+                                        "equivalent": same, "undetermined": und}) + ".",
+            "- Peak ratio, precomputed vs conventional: " + verdict_clauses(
+                *peak, {"higher": "more of the caustic's peak kept (a brighter peak)",
+                        "lower": "less of the caustic's peak kept", "equivalent": same, "undetermined": und})
+            + ".", ""]
 
 
 PANEL_MIN_PX = 256  # the least width of an enlarged window crop in the figure, in pixels
