@@ -199,3 +199,18 @@ def test_grid_reference_without_targets_and_two_refs_refused(tmp_path, capsys):
         gather.main(write_grids(tmp_path) + ["--ref", "scenes/x.scene", "64x48", "a.exr", "--ref", "scenes/x.scene",
                                              "64x48", "b.exr", "--out", str(tmp_path / "g")])
     assert e.value.code == 2 and "a.exr and b.exr" in capsys.readouterr().err
+
+
+def test_not_told_apart_names_the_overlapping_cells():
+    """The cheapest reaching cell is not told apart from the other reaching
+    cells whose range of times over seeds overlaps its own (control: a cell
+    that does not reach the target, or whose times lie wholly above, is not
+    named; no cell reaches it: none)."""
+    modes = {"a": {(1, 1): (np.array([1.0, 1.4]), np.array([0.05, 0.05])),
+                   (2, 1): (np.array([1.3, 2.0]), np.array([0.04, 0.04])),
+                   (3, 1): (np.array([1.2, 1.3]), np.array([0.5, 0.5]))},
+             "b": {(4, 1, 4): (np.array([3.0, 3.5]), np.array([0.01, 0.01]))}}
+    rows = gather.best_per_target(modes, [0.1, 1e-5])
+    assert rows[0][1:3] == ("a", (1, 1))
+    assert gather.not_told_apart(modes, rows[0]) == [("a", (2, 1))]
+    assert gather.not_told_apart(modes, rows[1]) == []

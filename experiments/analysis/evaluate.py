@@ -422,7 +422,10 @@ def gather_verdict(g):
         r = ph.iloc[0]
         parts.append(f"the gather phase alone {fnum(r['speedup'], 2)}x [{fnum(r['lo'], 2)}, {fnum(r['hi'], 2)}]")
     best = g[g["kind"] == "best"].sort_values("target", ascending=False)
-    picks = [f"{fnum(r['target'], 2)}: {r['mode']} {r['setting']} ({fnum(r['conventional_s'])} s)"
+    def tie_text(r):
+        k = int(r["ties"]) if "ties" in r and math.isfinite(float(r["ties"])) else 0
+        return f", not told apart from {k} other cell{'s' if k > 1 else ''}" if k else ""
+    picks = [f"{fnum(r['target'], 2)}: {r['mode']} {r['setting']} ({fnum(r['conventional_s'])} s{tie_text(r)})"
              if isinstance(r["mode"], str) and r["mode"] else f"{fnum(r['target'], 2)}: none reaches it"
              for _, r in best.iterrows()]
     sentence = "Final gathering (--gather N, conventional time / precomputed time at equal relMSE): " + "; ".join(parts) + "."
