@@ -388,9 +388,9 @@ def main():
     try:
         targets = [float(x) for x in args.targets.split()] if args.targets.strip() not in ("", "auto") else []
     except ValueError:
-        report.die("equal_error.py", f"--targets '{args.targets}': not numbers or 'auto'")
+        report.die("equal_error.py", f"--targets '{args.targets}': not numbers or 'auto'", report.EXIT_BAD_INPUT)
     if any(not x > 0 for x in targets):
-        report.die("equal_error.py", f"--targets '{args.targets}': relMSE targets must be positive")
+        report.die("equal_error.py", f"--targets '{args.targets}': relMSE targets must be positive", report.EXIT_BAD_INPUT)
     rng = np.random.default_rng(args.bootstrap_seed)
     grid = runs[runs["role"] == "grid"]
     estimates = list(dict.fromkeys(grid["estimate"]))

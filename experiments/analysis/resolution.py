@@ -116,7 +116,7 @@ def main(argv=None):
     try:
         targets = [float(t) for t in args.targets.split()]
     except ValueError:
-        report.die("resolution.py", f"--targets '{args.targets}': not numbers")
+        report.die("resolution.py", f"--targets '{args.targets}': not numbers", report.EXIT_BAD_INPUT)
     sizes = []
     for size, path, refdesc in args.size:
         need = ["method", "photons", "nn", TIME_COLUMN[args.time], "relmse_ref_mean", "relmse_ref_ci95"]

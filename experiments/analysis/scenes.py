@@ -93,7 +93,7 @@ def main():
     try:
         cell_p, cell_n = (int(x[1:]) for x in a.cell.split("-"))
     except ValueError:
-        report.die(a.cell, "--cell is not pP-nN")
+        report.die(a.cell, "--cell is not pP-nN", report.EXIT_BAD_INPUT)
 
     rows, images, times = [], [], set()
     for scene, table_csv, runs_csv, ee_csv, ref_path in a.scene:
