@@ -85,9 +85,9 @@ help: ## this list
 clean: ## remove the build (not results/ or reference/)
 	rm -rf $(BUILD)/obj $(BUILD)/dbg $(BUILD)/san $(BUILD)/unit $(BUILD)/photonmap $(BUILD)/unit-tests $(BUILD)/unit-tests-san
 
-results: $(BUILD)/photonmap | $(DEPS_TEST) ## every study regenerated on one pinned renderer, resumable, each attempt logged -> results/, results/regeneration-log.md (RESULTS_ONLY="T ...", WHY="...")
+results: $(BUILD)/photonmap | $(DEPS_TEST) ## every study regenerated on one renderer, resumable across sessions and machines, each attempt logged -> results/, results/regeneration-log.md (RESULTS_ONLY="T ...", WHY="...")
 	@$(PYTHON) -m experiments.regenerate run --results $(RESULTS) $(if $(RESULTS_ONLY),--only $(RESULTS_ONLY)) $(if $(WHY),--why $(call shell_quote,$(WHY)))
-results-check: | $(DEPS_TEST) ## every render under results/runs by the pinned renderer, every results file naming one commit
+results-check: | $(DEPS_TEST) ## every study of the log finished on one renderer's sources, every render under results/runs by it, each study's files naming one commit
 	@$(PYTHON) -m experiments.regenerate check --results $(RESULTS)
 
 calibrate: $(BUILD)/photonmap | $(DEPS_TEST) ## this machine's cost model: each phase's time per unit of its work counters, renders at the studies' sizes timed as theirs (TIME_*), checked on held-out renders -> results/calibrate/

@@ -24,11 +24,20 @@ renderer, exit status, renders made, seconds, why), written before the
 target runs and again when it ends, and DIR/regeneration-log.md is written
 from it; a killed attempt stays "running" in the log with no end.
 
+A regeneration can outlive its machine: the renders (DIR/runs) are not
+committed, so a new machine pins its own copy, and a study whose last
+attempt in the committed log ended ok on a pin with the same renderer
+sources (landed: regenerated and committed from another machine) is
+skipped, not rendered again (--only renders it again). The regeneration is
+one renderer's sources, not one pin.
+
 check: every render under DIR/runs (its stats file's provenance) was made by
-the pinned commit from a clean tree, and every Markdown file under DIR names
-a commit, the same one (report.commit's "commit `abc1234`", or a table's
-"Commit: `abc1234`"; README.md and stability/stability.md are written by
-hand and exempt); prints what differs and exits 1 when not.
+the pinned renderer's sources from a clean tree; every study target's last
+attempt in the log ended ok on those sources; every Markdown file under DIR
+names a commit, and the files of one study directory the same one
+(report.commit's "commit `abc1234`", or a table's "Commit: `abc1234`";
+README.md and stability/stability.md are written by hand and exempt);
+prints what differs and exits 1 when not.
 """
 
 import argparse
@@ -138,6 +147,31 @@ def pin(results, build="build"):
     return binary, head
 
 
+def same_renderer(a, b):
+    """True when commits A and B (full or abbreviated hashes) hold the same
+    renderer sources (PINNED_SOURCES); False when they differ or git does
+    not know either commit."""
+    if a and b and (a.startswith(b) or b.startswith(a)):  # one commit, abbreviated or not
+        return True
+    r = subprocess.run(["git", "diff", "--quiet", a, b, "--", *PINNED_SOURCES], capture_output=True)
+    return r.returncode == 0
+
+
+def last_rows(rows):
+    """{target: the log's last row of that target} over ROWS."""
+    return {r["target"]: r for r in rows}
+
+
+def landed(rows, commit, same=None):
+    """The targets of ROWS whose last attempt ended ok on a pin other than
+    COMMIT of the same renderer sources (SAME): studies an earlier machine
+    regenerated and committed, whose renders this machine does not hold.
+    Returns {target: that row}."""
+    same = same or same_renderer
+    return {t: r for t, r in last_rows(rows).items()
+            if r["status"] == "ok" and not commit.startswith(r["renderer"]) and same(r["renderer"], commit)}
+
+
 def read_log(results):
     """The rows of RESULTS/regeneration-log.csv (a list of dicts; empty when none)."""
     path = os.path.join(results, "regeneration-log.csv")
@@ -209,11 +243,21 @@ def count_records_since(results, t0):
     return n
 
 
-def run(results, targets, why, make_args=()):
-    """Every target of TARGETS with the pinned renderer, logged. Returns 0
-    when every target succeeded, else the first failing target's status."""
+def run(results, targets, why, make_args=(), skip_landed=True):
+    """Every target of TARGETS with the pinned renderer, logged; with
+    SKIP_LANDED, not those landed() by an earlier pin of the same renderer
+    sources (rendering them again would replace committed results with a
+    second machine's). Returns 0 when every target succeeded, else the first
+    failing target's status."""
     binary, commit = pin(results)
     rows = read_log(results)
+    if skip_landed:
+        done = landed(rows, commit)
+        for target in [t for t in targets if t in done]:
+            r = done[target]
+            print(f"regenerate: {target} skipped: committed by {r['renderer']} on {r['ended']}, the same renderer "
+                  f"sources (RESULTS_ONLY={target} renders it again)", flush=True)
+        targets = [t for t in targets if t not in done]
     for target in targets:
         head = git("rev-parse", "HEAD")  # the code this target runs (it may move between targets)
         row = {"started": now(), "ended": "", "target": target, "commit": head[:12], "renderer": commit[:12],
@@ -262,33 +306,58 @@ def file_commits(results):
     return out
 
 
-def check(results):
+def check(results, same=None):
     """The problems of a regeneration of RESULTS as sentences (empty: none):
-    renders by another commit or a dirty tree than the pinned one, and
-    Markdown files naming different commits."""
+    renders by other renderer sources than the pinned commit's (SAME
+    compares two commits' sources) or from a dirty tree, or built with
+    several sets of flags; with a log, every study target whose last attempt
+    did not end ok on the regeneration's renderer sources (the pinned
+    commit's, or the log's last renderer where RESULTS/runs is absent, as in
+    a clone); and a study directory whose Markdown files name different
+    commits (each study's files are written by one analysis; studies
+    regenerated on different machines may name different ones)."""
+    same = same or same_renderer
     problems = []
+    rows = read_log(results)
     p = read_pin(results)
+    pinned = p["commit"] if p else (rows[-1]["renderer"] if rows else None)
     renders = render_commits(results)
     if p:
         for (commit, tree, _), n in sorted(renders.items()):
-            if not p["commit"].startswith(commit) or tree != "clean":
+            if not same(commit, pinned) or tree != "clean":
                 problems.append(f"{n} render(s) under {results}/runs by commit {commit} ({tree} tree), "
-                                f"not the pinned {p['commit'][:12]} (clean)")
+                                f"not the renderer of the pinned {pinned[:12]} (clean)")
         flags = sorted({f for _, _, f in renders})
         if len(flags) > 1:
             problems.append(f"the renders under {results}/runs were built with {len(flags)} sets of flags: "
                             + "; ".join(flags))
     elif renders:
         problems.append(f"{results}/runs holds renders but no pinned renderer ({pin_dir(results)})")
+    if rows:
+        last = last_rows(rows)
+        for target in TARGETS:
+            r = last.get(target)
+            if r is None:
+                problems.append(f"{target}: no attempt in the log")
+            elif r["status"] != "ok":
+                problems.append(f"{target}: its last attempt ({r['started']}) did not end ok ({r['status']})")
+            elif not same(r["renderer"], pinned):
+                problems.append(f"{target}: rendered by {r['renderer']}, whose renderer sources differ from "
+                                f"the regeneration's ({pinned[:12]})")
     files = file_commits(results)
     unnamed = files.pop(None, [])
     if unnamed:
         problems.append(f"{len(unnamed)} results file(s) name no commit: " + ", ".join(unnamed[:6])
                         + (" ..." if len(unnamed) > 6 else ""))
-    if len(files) > 1:
-        problems.append("the results files name " + str(len(files)) + " commits: "
-                        + "; ".join(f"{c}: {', '.join(fs[:4])}{' ...' if len(fs) > 4 else ''}"
-                                    for c, fs in sorted(files.items())))
+    by_dir = {}
+    for c, fs in files.items():
+        for f in fs:
+            by_dir.setdefault(os.path.dirname(f).split(os.sep)[0] or ".", {}).setdefault(c, []).append(f)
+    for folder, commits in sorted(by_dir.items()):
+        if len(commits) > 1:
+            problems.append(f"the results files of {folder}/ name {len(commits)} commits: "
+                            + "; ".join(f"{c}: {', '.join(fs[:4])}{' ...' if len(fs) > 4 else ''}"
+                                        for c, fs in sorted(commits.items())))
     return problems
 
 
@@ -300,7 +369,7 @@ def main(argv=None):
     r.add_argument("--only", nargs="*", default=None, help="these targets only (in TARGETS' order)")
     r.add_argument("--why", default="", help="why this attempt runs (the log's last column)")
     r.add_argument("make_args", nargs="*", help="NAME=VALUE given to every target's make")
-    c = sub.add_parser("check", help="every render by the pinned renderer; every results file naming one commit")
+    c = sub.add_parser("check", help="every study on one renderer's sources; each study's files naming one commit")
     c.add_argument("--results", required=True)
     s = ap.parse_args(argv)
     try:
@@ -309,7 +378,8 @@ def main(argv=None):
             for line in problems:
                 print(f"regenerate check: {line}", file=sys.stderr)
             if not problems:
-                print(f"regenerate check: {s.results}: every render by the pinned renderer, every file one commit")
+                print(f"regenerate check: {s.results}: every study on one renderer's sources, every render by it, "
+                      "each study's files naming one commit")
             return 1 if problems else 0
         targets = list(TARGETS)
         if s.only is not None:
@@ -317,7 +387,7 @@ def main(argv=None):
             if unknown:
                 ap.error(f"--only {' '.join(unknown)}: not a study target ({' '.join(TARGETS)})")
             targets = [t for t in TARGETS if t in s.only]
-        return run(s.results, targets, s.why or "regeneration", s.make_args)
+        return run(s.results, targets, s.why or "regeneration", s.make_args, skip_landed=s.only is None)
     except RegenError as e:
         print(f"regenerate: {e}", file=sys.stderr)
         return 1

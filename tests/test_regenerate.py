@@ -9,6 +9,7 @@ Run by pytest from the repository root (tests/pytest.test.sh, part of
 import hashlib
 import json
 import os
+import shutil
 import subprocess
 import tempfile
 
@@ -57,21 +58,92 @@ def test_check_one_regeneration():
         (p,) = regenerate.check(d)
         assert "2 sets of flags" in p
     with tempfile.TemporaryDirectory() as d:
+        # studies regenerated on different machines name different commits,
+        # each study one (no problem); two commits in one study's files are
         fake_results(d, md_commits=("abcdef1", "abcdef1", "9999999"))
+        assert regenerate.check(d) == []
+        write(os.path.join(d, "study2", "y.md"), "commit `abcdef1`\n")
         (p,) = regenerate.check(d)
-        assert "name 2 commits" in p and "9999999: study2/x.md" in p
+        assert "study2/ name 2 commits" in p and "9999999: study2/x.md" in p and "study0" not in p
     with tempfile.TemporaryDirectory() as d:
         # a table's "Commit: `...`" counts; a study's file naming none is a
         # problem; the hand-written README.md is exempt
         fake_results(d)
-        write(os.path.join(d, "table", "t.md"), "- Commit: `abcdef1` when the table was written\n")
+        write(os.path.join(d, "study0", "t.md"), "- Commit: `abcdef1` when the table was written\n")
         write(os.path.join(d, "README.md"), "# results\n")
         assert regenerate.check(d) == []
-        write(os.path.join(d, "table", "t.md"), "- Commit: `9999999` when the table was written\n")
-        assert "9999999: table/t.md" in regenerate.check(d)[0]
-        write(os.path.join(d, "table", "t.md"), "no provenance\n")
+        write(os.path.join(d, "study0", "t.md"), "- Commit: `9999999` when the table was written\n")
+        assert "9999999: study0/t.md" in regenerate.check(d)[0]
+        write(os.path.join(d, "study0", "t.md"), "no provenance\n")
         (p,) = regenerate.check(d)
-        assert "1 results file(s) name no commit: table/t.md" in p
+        assert "1 results file(s) name no commit: study0/t.md" in p
+
+
+# two pins of the same renderer sources (two machines), and one of other sources
+SAME_SOURCES = {"abcdef1", "1111111"}
+
+
+def same(a, b):
+    """same_renderer of the tests: abcdef1... and 1111111... hold the same sources."""
+    return a[:7] == b[:7] or {a[:7], b[:7]} == SAME_SOURCES
+
+
+def log_row(target, renderer, status="ok", ended="t1"):
+    return {"started": "t0", "ended": ended, "target": target, "commit": "c", "renderer": renderer,
+            "status": status, "renders": "1", "seconds": "1", "why": ""}
+
+
+def test_check_log_every_target_on_the_renderer():
+    """With a log, every study target's last attempt must have ended ok on
+    the regeneration's renderer sources; a target landed from another pin of
+    the same sources counts. Controls: a target with no attempt, one whose
+    last attempt failed after an ok one, one by other sources: each named."""
+    with tempfile.TemporaryDirectory() as d:
+        fake_results(d)
+        rows = [log_row(t, "111111111111" if i % 2 else "abcdef123456") for i, t in enumerate(regenerate.TARGETS)]
+        regenerate.write_log(d, rows)
+        assert regenerate.check(d, same=same) == []
+        regenerate.write_log(d, rows[1:])
+        (p,) = regenerate.check(d, same=same)
+        assert p == f"{regenerate.TARGETS[0]}: no attempt in the log"
+        regenerate.write_log(d, rows + [log_row("caustic", "abcdef123456", status="exit 1")])
+        (p,) = regenerate.check(d, same=same)
+        assert p.startswith("caustic: its last attempt") and "exit 1" in p
+        regenerate.write_log(d, rows + [log_row("gather", "2222222")])
+        (p,) = regenerate.check(d, same=same)
+        assert p.startswith("gather: rendered by 2222222") and "differ" in p
+        # without runs/ (a clone) the log's last renderer is the regeneration's
+        shutil.rmtree(os.path.join(d, "runs"))
+        regenerate.write_log(d, rows + [log_row("findings", "2222222")])
+        problems = regenerate.check(d, same=same)
+        assert len(problems) == len(regenerate.TARGETS) - 1 and all("differ" in p for p in problems)
+
+
+def test_landed_targets():
+    """landed(): a target whose last attempt ended ok on another pin of the
+    same renderer sources; not one of this pin (it resumes here), of other
+    sources, failed, or killed after an ok attempt."""
+    rows = [log_row("reproduce-table", "111111111111"), log_row("figures", "abcdef123456"),
+            log_row("caustic", "2222222"), log_row("scenes", "111111111111", status="exit 1"),
+            log_row("gather", "111111111111"), log_row("gather", "111111111111", status="running", ended="")]
+    assert list(regenerate.landed(rows, "abcdef1234560000", same=same)) == ["reproduce-table"]
+
+
+def test_run_skips_landed_targets(monkeypatch, capsys):
+    """make results on a new machine skips the studies landed from another
+    pin of the same renderer and runs the rest; --only runs them again."""
+    with tempfile.TemporaryDirectory() as d:
+        regenerate.write_log(d, [log_row("reproduce-table", "111111111111")])
+        ran = []
+        monkeypatch.setattr(regenerate, "pin", lambda results: ("pm", "abcdef1234560000"))
+        monkeypatch.setattr(regenerate, "git", lambda *a: "headcommit00")
+        monkeypatch.setattr(regenerate, "same_renderer", same)
+        monkeypatch.setattr(regenerate.subprocess, "run",
+                            lambda cmd, **kw: ran.append(cmd[2]) or subprocess.CompletedProcess(cmd, 0))
+        assert regenerate.run(d, ["reproduce-table", "figures"], "why") == 0
+        assert ran == ["figures"] and "reproduce-table skipped" in capsys.readouterr().out
+        assert regenerate.run(d, ["reproduce-table"], "why", skip_landed=False) == 0
+        assert ran == ["figures", "reproduce-table"]
 
 
 def git(d, *args):
@@ -139,11 +211,13 @@ def test_log_rows_round_trip():
 
 def test_committed_results_are_one_regeneration():
     """results/ as committed: when its log records every study target
-    finished on one pinned renderer, every file names one commit and every
-    render present was made by that renderer; skipped until then."""
+    finished on one renderer's sources (pinned on one machine or several),
+    every study's files name one commit and every render present was made
+    by that renderer; skipped until then."""
     rows = regenerate.read_log("results")
     pin = rows[-1]["renderer"] if rows else None  # the last attempt's renderer: the regeneration's
-    done = {r["target"] for r in rows if r["status"] == "ok" and r["renderer"] == pin}
+    done = {t for t, r in regenerate.last_rows(rows).items()
+            if r["status"] == "ok" and regenerate.same_renderer(r["renderer"], pin)}
     if not rows or set(regenerate.TARGETS) - done:
         pytest.skip("results/ holds no finished regeneration yet (results/regeneration-log.csv)")
     problems = [p for p in regenerate.check("results") if "render(s)" not in p or os.path.isdir("results/runs")]
