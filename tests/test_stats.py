@@ -320,3 +320,20 @@ def test_paired_difference_uses_the_pairing():
     assert stats.paired_difference(a, b)["p"] < 0.01
     assert sps.ttest_ind(a, b, equal_var=False).pvalue > 0.5
     assert stats.paired_difference(a, np.roll(b, 2))["p"] > 0.05
+
+
+def test_paired_family_is_holm_over_its_cells():
+    """paired_family gives each cell's paired_difference, Holm over the
+    cells, in the cells' order: a clear difference is ranked with p_holm =
+    its p times the family's size (3 cells); control: alone, the same cell
+    keeps its own p."""
+    a = np.array([1.0, 1.1, 0.9, 1.05, 0.95])
+    clear = (a + 1.0, a + np.array([0.0, 0.01, -0.01, 0.02, -0.02]))
+    flat = (a, a[::-1].copy())
+    labels, comps = stats.paired_family([("x", *clear), ("y", *flat), ("z", *flat)])
+    assert labels == ["x", "y", "z"]
+    p = stats.paired_difference(*clear)["p"]
+    close(comps[0]["p_holm"], min(1.0, 3 * p), 1e-15, "Holm over 3 cells")
+    assert comps[0]["verdict"] == "higher" and p < 0.01
+    (_,), (alone,) = stats.paired_family([("x", *clear)])
+    close(alone["p_holm"], p, 1e-15, "a family of one")

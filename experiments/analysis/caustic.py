@@ -132,15 +132,13 @@ def paired_cells(per_run, a_of, b_of):
     estimate's PER_RUN rows: A_OF(precomputed row) and B_OF(precomputed
     row, its conventional row of the same seed) give one pair per seed."""
     conv = per_run[per_run["method"] == "conventional"].set_index("run")
-    labels, comps = [], []
-    for (p, n), g in per_run[per_run["method"] == "precomputed"].groupby(["photons", "nn"], sort=True):
+
+    def cell(p, n, g):
         pairs = [(a_of(r), b_of(r, conv.loc[r["conv_run"]] if r["conv_run"] in conv.index else None))
                  for _, r in g.iterrows()]
-        a = [x for x, y in pairs]
-        b = [y for x, y in pairs]
-        labels.append(f"({kilo(p)}, {n})")
-        comps.append(stats.paired_difference(a, b))
-    return labels, stats.compare_family(comps)
+        return f"({kilo(p)}, {n})", [x for x, _ in pairs], [y for _, y in pairs]
+    return stats.paired_family(cell(p, n, g) for (p, n), g in
+                               per_run[per_run["method"] == "precomputed"].groupby(["photons", "nn"], sort=True))
 
 
 def verdict_clauses(labels, comps, words):

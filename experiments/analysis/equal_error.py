@@ -43,14 +43,24 @@ def cell_samples(runs, estimate, method, time_col, seeds_out=None):
     mine = runs[(runs["estimate"] == estimate) & (runs["method"] == method)]
     # a variant's conventional renders are the ones it is compared with
     role = "grid" if (mine["role"] == "grid").any() or method != "conventional" else "comparison"
-    sel = mine[(mine["role"] == role) & (mine["status"] == "ok")]
+    return seed_samples(mine[(mine["role"] == role) & (mine["status"] == "ok")], ["photons", "nn"], time_col,
+                        seeds_out)
+
+
+def seed_samples(sel, by, time_col, seeds_out=None):
+    """{cell: (times, errors)} per-seed arrays, in seed order, of the rows of
+    SEL with a finite error and time, one cell per value of the columns BY
+    (the key: those values as ints); SEEDS_OUT, a dict when given, receives
+    each cell's seeds as a tuple (in the same order, so that two methods'
+    arrays pair by position where their seeds agree)."""
     sel = sel[np.isfinite(sel[metrics.PRIMARY_COLUMN].astype(float)) & np.isfinite(sel[time_col].astype(float))]
     out = {}
-    for (p, n), g in sel.groupby(["photons", "nn"], sort=True):
+    for key, g in sel.groupby(by, sort=True):
         g = g.sort_values("seed", kind="stable")
-        out[(int(p), int(n))] = (g[time_col].to_numpy(np.float64), g[metrics.PRIMARY_COLUMN].to_numpy(np.float64))
+        cell = tuple(int(k) for k in (key if isinstance(key, tuple) else (key,)))
+        out[cell] = (g[time_col].to_numpy(np.float64), g[metrics.PRIMARY_COLUMN].to_numpy(np.float64))
         if seeds_out is not None:
-            seeds_out[(int(p), int(n))] = tuple(int(x) for x in g["seed"])
+            seeds_out[cell] = tuple(int(x) for x in g["seed"])
     return out
 
 

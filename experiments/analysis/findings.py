@@ -1281,15 +1281,15 @@ def record_metric(d):
         means = g.groupby(["method", "photons", "nn"])[["relmse_ref", "nmse_ref"]].mean()
         verdicts = {}
         for col in ("relmse_ref", "nmse_ref"):
-            comps, keys = [], []
+            cells = []
             for (ph, n), h in g.groupby(["photons", "nn"]):
                 a = h[h["method"] == "precomputed"].set_index("seed")[col]
                 b = h[h["method"] == "conventional"].set_index("seed")[col]
                 seeds = sorted(set(a.index) & set(b.index))
                 if seeds:
-                    comps.append(stats.paired_difference(a.loc[seeds].to_numpy(), b.loc[seeds].to_numpy()))
-                    keys.append((ph, n))
-            verdicts[col] = dict(zip(keys, (c["verdict"] for c in stats.compare_family(comps))))
+                    cells.append(((ph, n), a.loc[seeds].to_numpy(), b.loc[seeds].to_numpy()))
+            keys, comps = stats.paired_family(cells)
+            verdicts[col] = dict(zip(keys, (c["verdict"] for c in comps)))
         ratio = (means["nmse_ref"] / means["relmse_ref"]).to_numpy(np.float64)
         out.append({"estimate": est, "cells": len(means),
                     "rho": sps.spearmanr(means["relmse_ref"], means["nmse_ref"]).statistic,

@@ -116,15 +116,7 @@ def load_grids(grids, time_col):
 def samples_of(runs, method, time_col, seeds_out=None):
     """{(P_e, n, N): (times, errors)} of one method's ok renders, in seed
     order; SEEDS_OUT, a dict when given, receives each cell's seeds."""
-    sel = runs[runs["method"] == method]
-    sel = sel[np.isfinite(sel[metrics.PRIMARY_COLUMN].astype(float)) & np.isfinite(sel[time_col].astype(float))]
-    out = {}
-    for (p, n, g), d in sel.groupby(["photons", "nn", "N"], sort=True):
-        d = d.sort_values("seed", kind="stable")
-        out[(int(p), int(n), int(g))] = (d[time_col].to_numpy(np.float64), d[metrics.PRIMARY_COLUMN].to_numpy(np.float64))
-        if seeds_out is not None:
-            seeds_out[(int(p), int(n), int(g))] = tuple(int(x) for x in d["seed"])
-    return out
+    return equal_error.seed_samples(runs[runs["method"] == method], ["photons", "nn", "N"], time_col, seeds_out)
 
 
 def cell_label(key):

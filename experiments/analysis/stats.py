@@ -333,3 +333,14 @@ def compare_family(comparisons, alpha=1 - LEVEL):
         else:
             c["verdict"] = "undetermined"
     return comparisons
+
+
+def paired_family(cells):
+    """(labels, comparisons) of CELLS, an iterable of (label, a, b): each
+    cell's paired_difference of A against B (arrays paired by position),
+    with compare_family's verdicts, Holm over the cells."""
+    labels, comps = [], []
+    for label, a, b in cells:
+        labels.append(label)
+        comps.append(paired_difference(a, b))
+    return labels, compare_family(comps)

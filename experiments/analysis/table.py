@@ -288,11 +288,8 @@ def estimate_comparisons(runs, est, method):
     ok = ok[ok["role"] == role]
     m = ok[ok["estimate"] == est].merge(ok[ok["estimate"] == "paper"], on=["photons", "nn", "seed"],
                                         suffixes=("", "_paper"))
-    labels, comps = [], []
-    for (p, n), g in m.groupby(["photons", "nn"], sort=True):
-        labels.append(cell_label({"photons": int(p), "nn": int(n)}))
-        comps.append(stats.paired_difference(g[ERR].astype(float), g[f"{ERR}_paper"].astype(float)))
-    return labels, stats.compare_family(comps)
+    return stats.paired_family((cell_label({"photons": int(p), "nn": int(n)}), g[ERR].astype(float),
+                                g[f"{ERR}_paper"].astype(float)) for (p, n), g in m.groupby(["photons", "nn"], sort=True))
 
 
 def rank_sentences(table, estimates, runs=None):
