@@ -1193,3 +1193,24 @@ def test_brief_table_equal_error_and_gather_wording():
     text = findings.brief_gather(g)
     assert "(point estimates); its interval lies above 1 at every counted target in 1 of 3 grids." in text
     assert "faster" not in text
+
+
+def test_renderers_sentence_names_each_studys_renderer():
+    """The sentence FINDINGS.md and README's summary open with: one renderer
+    when every study's last attempt ended ok on it; two named with their
+    studies when a regeneration on a newer one is under way, and a target
+    whose last attempt did not end ok named as such; none without a log."""
+    from experiments import regenerate
+    with tempfile.TemporaryDirectory() as d:
+        assert findings.renderers(d, "log.md") == ""
+        row = {"started": "t0", "ended": "t1", "commit": "c", "status": "ok", "renders": "1", "seconds": "1", "why": ""}
+        rows = [dict(row, target=t, renderer="aaaaaaa11111") for t in ("reproduce-table", "figures", "gather")]
+        regenerate.write_log(d, rows)
+        assert findings.renderers(d, "log.md") == "Every study's files come from renderer `aaaaaaa` ([regeneration-log.md](log.md))."
+        rows += [dict(row, target="reproduce-table", renderer="bbbbbbb22222"),
+                 dict(row, target="gather", renderer="bbbbbbb22222", status="running", ended="")]
+        regenerate.write_log(d, rows)
+        line = findings.renderers(d, "log.md")
+        assert "from 2 renderers" in line and "`bbbbbbb` made `reproduce-table`" in line
+        assert "`aaaaaaa` made `figures`;" in line and line.count("`gather`") == 1
+        assert "the last attempt of `gather` did not end ok" in line

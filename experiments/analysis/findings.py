@@ -2786,7 +2786,8 @@ def summary(d, recs=None):
     given): SUMMARY_BEGIN, which estimate is primary and why, one bullet per
     SUMMARY writer (a missing input is said as such), SUMMARY_END."""
     recs = records(d) if recs is None else recs
-    out = [SUMMARY_BEGIN, PRIMARY_ESTIMATE_REASON, ""]
+    line = renderers(d["root"], os.path.join(d["root"], "regeneration-log.md"))
+    out = [SUMMARY_BEGIN, PRIMARY_ESTIMATE_REASON, ""] + ([line, ""] if line else [])
     for name, writer in SUMMARY:
         try:
             out.append(write(recs[name], writer))
@@ -2817,6 +2818,31 @@ def paths(root):
             "agreement": os.path.relpath(AGREEMENT_CSV), "gather": j(root, "gather", "gather.csv")}
 
 
+def renderers(root, link):
+    """The sentence that names the renderer each study's files come from,
+    linking the log as LINK:
+    per target of ROOT/regeneration-log.csv, the pinned renderer of its last
+    attempt where that ended ok ('' without a log). Studies regenerated at
+    different times (a regeneration goes on across machines, one study at a
+    time) may come from different renderers; the sentence says which."""
+    path = os.path.join(root, "regeneration-log.csv")
+    if not os.path.exists(path):
+        return ""
+    log = pd.read_csv(path, dtype=str, keep_default_na=False)
+    by, unfinished = {}, []
+    for target, row in log.groupby("target", sort=False).tail(1).set_index("target").iterrows():
+        if row["status"] == "ok":
+            by.setdefault(row["renderer"][:7], []).append(f"`{target}`")
+        else:
+            unfinished.append(f"`{target}`")
+    parts = [f"`{r}` made {', '.join(ts)}" for r, ts in by.items()]
+    head = (f"Every study's files come from renderer `{next(iter(by))}`" if len(by) == 1 else
+            f"The studies come from {len(by)} renderers (a regeneration on a newer one goes on study by study): "
+            + "; ".join(parts)) if by else "No study has finished"
+    tail = f"; the last attempt of {', '.join(unfinished)} did not end ok" if unfinished else ""
+    return f"{head}{tail} ([regeneration-log.md]({link}))."
+
+
 def markdown(d, recs=None):
     """The text of FINDINGS.md from the records RECS (read from D when not given)."""
     recs = records(d) if recs is None else recs
@@ -2826,7 +2852,8 @@ def markdown(d, recs=None):
            "paired comparisons are worded from their Holm-corrected test (ranked, equivalent within delta = "
            f"{fmt(100 * stats.EQUIVALENCE_MARGIN)}% of the conventional value, or undetermined), unpaired ones "
            f"rank only disjoint 95% intervals. Error: {metrics.PRIMARY_DEFINITION} (experiments/analysis/metrics.py).", ""]
-    out += opener(recs) + [""]
+    line = renderers(d["root"], "regeneration-log.md")  # FINDINGS.md lies in the results directory
+    out += ([line, ""] if line else []) + opener(recs) + [""]
     figs = recs.get("figures", {})
     for num, name, writer, missing_title in FINDINGS:
         try:
