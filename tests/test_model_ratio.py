@@ -163,3 +163,16 @@ def test_a_model_of_other_counters_is_named_not_fatal(tmp_path):
     line = table.model_lines(None, None, ["paper"], str(e.value))[1]
     assert line.startswith("Model ratio: no model (") and "not this version's" in line
     assert table.model_lines(None, None, ["paper"])[1].startswith("Model ratio: no model (`make calibrate`")
+
+
+def test_model_disagrees_only_outside_both_bands():
+    """A disagreement needs the model's band (its ratio give or take its
+    error) wholly outside the measured 95% interval: 0.80 with 3% error
+    (band [0.777, 0.824]) against [0.70, 0.76] disagrees; controls: against
+    [0.70, 0.78] the band reaches the interval (no claim), a model below the
+    interval the same way, and an undefined interval (one pair) claims
+    nothing."""
+    assert table.model_disagrees(0.70, 0.76, 0.80, 0.03)
+    assert not table.model_disagrees(0.70, 0.78, 0.80, 0.03)
+    assert table.model_disagrees(0.90, 0.95, 0.85, 0.03) and not table.model_disagrees(0.87, 0.95, 0.85, 0.03)
+    assert not table.model_disagrees(math.nan, math.nan, 0.5, 0.03)

@@ -113,7 +113,8 @@ def summarize(runs, cells, paper, model=None):
                 r, lo, hi, _ = stats.paired_log_ratio(a[col], b[col])
                 row[f"{name}_percent{sfx}"] = 100 * r
                 row[f"{name}_ci95_lo{sfx}"], row[f"{name}_ci95_hi{sfx}"] = 100 * lo, 100 * hi
-            row.update(model_columns(model, sel, conv, sfx))
+            row.update(model_columns(model, sel, conv, sfx, (row[f"paired_ratio_ci95_lo{sfx}"] / 100,
+                                                             row[f"paired_ratio_ci95_hi{sfx}"] / 100)))
             d = stats.paired_difference(a[ERR], b[ERR])
             for k in ("mean", "lo", "hi", "p", "delta", "relative"):
                 row[f"relmse_diff_{k}{sfx}"] = d[k]
@@ -183,13 +184,26 @@ def model_rows(sel, conv):
     return out
 
 
-def model_columns(model, sel, conv, sfx):
+def model_disagrees(lo, hi, q, err):
+    """True when the model's ratio Q, give or take its relative error ERR
+    (the band [Q / (1 + ERR), Q (1 + ERR)]), lies wholly outside the
+    measured ratio's 95% interval [LO, HI]; False where they overlap or the
+    interval is undefined (fewer than two pairs): a disagreement is claimed
+    only where neither the measurement's noise nor the model's error covers
+    it."""
+    if not (isnum(lo) and isnum(hi) and isnum(q)):
+        return False
+    return q * (1 + err) < lo or q / (1 + err) > hi
+
+
+def model_columns(model, sel, conv, sfx, measured):
     """The cost model's columns of one cell against its conventional cell:
     model_ratio_percent (the model's paired ratio of the predicted totals),
-    model_differs (the measured paired ratio and the model's differ by more
-    than the model's validation error, the held-out median relative error
-    of the total), model_phase and model_counter (calibrate.explain, where
-    they differ); nan / False / "" without a model or counters."""
+    model_differs (model_disagrees: the model's ratio, give or take its
+    validation error, the held-out median relative error of the total, lies
+    outside MEASURED, the measured paired ratio's 95% interval (lo, hi) as
+    fractions), model_phase and model_counter (calibrate.explain, where they
+    differ); nan / False / "" without a model or counters."""
     out = {f"model_ratio_percent{sfx}": math.nan, f"model_differs{sfx}": False, f"model_phase{sfx}": "",
            f"model_counter{sfx}": ""}
     if model is None:
@@ -199,9 +213,8 @@ def model_columns(model, sel, conv, sfx):
         return out
     coef, validation = model
     q = calibrate.model_ratio(coef, *pairs)
-    m = math.exp(float(np.mean([math.log(x["time"]["total"] / y["time"]["total"]) for x, y in zip(*pairs)])))
     out[f"model_ratio_percent{sfx}"] = 100 * q
-    if abs(m / q - 1) > validation["median"]:
+    if model_disagrees(*measured, q, validation["median"]):
         phase, name = calibrate.explain(coef, *pairs)
         out.update({f"model_differs{sfx}": True, f"model_phase{sfx}": phase, f"model_counter{sfx}": name})
     return out
@@ -234,10 +247,14 @@ def model_lines(table, model, estimates, problem=""):
             continue
         rows = [r for _, r in table.iterrows() if bool(r[col])]
         if not rows:
-            out.append(f"- {est} estimate: measured and model ratios agree within the model's error in every cell.")
+            out.append(f"- {est} estimate: in every cell the model's ratio, give or take its error, overlaps the "
+                       "measured ratio's 95% interval (no disagreement shown; overlap is not a test of agreement).")
             continue
-        out.append(f"- {est} estimate: measured and model ratios differ by more than the model's error in "
-                   + "; ".join(f"{cell_label(r)} (measured {fmt(r.get(f'paired_ratio_percent{sfx}'))}%, model "
+        out.append(f"- {est} estimate: the model's ratio, give or take its error, lies outside the measured ratio's "
+                   "95% interval in "
+                   + "; ".join(f"{cell_label(r)} (measured {fmt(r.get(f'paired_ratio_percent{sfx}'))}% "
+                               f"[{fmt(r.get(f'paired_ratio_ci95_lo{sfx}'))}, "
+                               f"{fmt(r.get(f'paired_ratio_ci95_hi{sfx}'))}], model "
                                f"{fmt(r.get(f'model_ratio_percent{sfx}'))}%: phase {r[f'model_phase{sfx}']}, counter "
                                f"{r[f'model_counter{sfx}']})" for r in rows) + ".")
     return out
@@ -572,8 +589,9 @@ def markdown(table, runs, estimates, args):
             "- `model_ratio_percent`: the cost model's (`make calibrate`; empty without one) paired ratio of the "
             "predicted totals, 100 x exp(mean over the paired seeds of log(predicted precomputed / predicted "
             "conventional)), each prediction from the render's work counters (its `--stats` JSON's `work`); "
-            "`model_differs`: the measured paired ratio and the model's differ by more than the model's "
-            "validation error (the median relative error of a held-out render's total); `model_phase`, "
+            "`model_differs`: the model's ratio, give or take the model's validation error (the median "
+            "relative error of a held-out render's total), lies wholly outside the measured ratio's 95% "
+            "interval; `model_phase`, "
             "`model_counter` (where they differ): the phase whose measured times, put in the place of its "
             "predicted ones, bring the model's ratio closest to the measured one, and that phase's counter with "
             "the most predicted seconds in the method where the phase is furthest from its prediction "
