@@ -215,7 +215,7 @@ def run(r, quick):
     r.exact("furnace, P_e = 200, n = 100000 (max): the disc estimate, unbiased", "[furnace] `--photons 200 --nn 100000`",
             FURNACE, fb + ["--photons", "200", "--nn", "100000"], 1.0, list(range(1, 41)))
     r.exact("furnace, P_e = 1: the disc estimate, unbiased", "[furnace] `--photons 1 --nn 20`", FURNACE,
-            fb + ["--photons", "1", "--nn", "20"], 1.0, list(range(1, 2401)))
+            fb + ["--photons", "1", "--nn", "20"], 1.0, list(range(1, 3001)))
     r.exact("furnace, P_e = 0: black", "[furnace] `--photons 0`", FURNACE, fb + ["--photons", "0"], 0.0)
     r.exact("furnace, P_e = 0, precomputed: black", "[furnace] `--photons 0 --method precomputed`", FURNACE,
             fb + ["--photons", "0", "--method", "precomputed"], 0.0)
