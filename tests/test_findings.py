@@ -9,6 +9,7 @@ known answer, the definition computed directly), so each can fail. Random
 numbers come from fixed seeds: the outcome is deterministic.
 """
 
+import math
 import os
 import subprocess
 import tempfile
@@ -255,8 +256,8 @@ def test_findings_beyond():
 
 
 def test_findings_scale():
-    """Finding P quotes the largest map's row of each method and the median
-    paired two-thread speed-up (t1 / t2 per pair); without threads.csv it
+    """Finding P quotes the largest map's row of each method and the paired
+    two-thread speed-up (geometric mean of t1 / t2 per pair, t interval); without threads.csv it
     names the target instead of a number (negative control)."""
     sc = pd.DataFrame([{"method": "conventional", "photons_emitted": p, "photons_stored": 4 * p, "threads": 2,
                         "trace_s": p / 1e6, "build_s": 0.5, "precompute_s": 0.0, "eye_s": 0.25,
@@ -272,7 +273,8 @@ def test_findings_scale():
         text = "\n".join(lines)
         assert "8,000 emitted photons (32,000 stored): 0.758 s in total" in text and "44.5 bytes" in text
         assert "90" not in text.split("8,000 emitted")[0]
-        assert "photon pass 1.41x [1, 2]" in text and "kd-tree build 2x [2, 2]" in text
+        # per pair 2, 1.41, 1: geometric mean 1.41, t interval over 3 pairs [0.598, 3.35]
+        assert "photon pass 1.41x [0.598, 3.35]" in text and "kd-tree build 2x [2, 2]" in text
         os.remove(tp)
         try:
             md("scale", {"scaling": sp, "threads": tp})
@@ -436,8 +438,8 @@ def test_record_equal_error_and_resolution():
 
 
 def test_record_scale_stability_repro_rules():
-    """The scale record's conventional row and its two-thread medians (the
-    pairs' t1/t2: 4/2, 4/4, 4/1 -> median 2); the stability record's file;
+    """The scale record's conventional row and its two-thread speed-ups (the
+    pairs' t1/t2: 4/2, 4/4, 4/1 -> geometric mean 2, t interval); the stability record's file;
     the repro summary row; the rules rejected."""
     with tempfile.TemporaryDirectory() as d:
         sc = write_csv(d, "scaling.csv", [{"method": m, "photons_emitted": p, "photons_stored": 2 * p, "threads": 2,
@@ -451,7 +453,9 @@ def test_record_scale_stability_repro_rules():
         r = findings.record_scale({"scaling": sc, "threads": th})
         c = r["conventional"]
         assert c["photons_emitted"] == 9000 and c["total_s"] == 7.0 and c["two_total_median"] == 3
-        assert c["two_total_pairs"] == 3 and c["trace"][0] == 2 and (c["trace"][1], c["trace"][2]) == (1, 4)
+        h = 4.302652729911275 * math.log(2) / math.sqrt(3)  # t(0.975, 2) x sd of log(2, 1, 4) / sqrt(3)
+        assert c["two_total_pairs"] == 3 and abs(c["trace"][0] - 2) < 1e-12 and c["trace"][3] == 3
+        assert abs(c["trace"][1] - 2 * math.exp(-h)) < 1e-9 and abs(c["trace"][2] - 2 * math.exp(h)) < 1e-9
         assert [m for m, _ in r["largest"]] == ["conventional", "precomputed"]
         os.makedirs(os.path.join(d, "stability"))
         open(os.path.join(d, "stability", "x.md"), "w", encoding="utf-8").close()

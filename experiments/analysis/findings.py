@@ -1042,13 +1042,6 @@ def record_baseline(d):
             "max": p["trace_ratio_percent"].max(), "off": len(off), "cells": len(p)}
 
 
-def speedup_stats(g, col):
-    """(median, smallest, largest, pairs) of the two-thread speed-ups of
-    column COL, or None without a pair."""
-    x = threads.speedups(g, col)
-    return (np.median(x), x.min(), x.max(), len(x)) if len(x) else None
-
-
 def scaling_repeats(*rows):
     """The smallest repeats count of scaling.csv ROWS (1 where the file has
     no repeats column: one render, timed once)."""
@@ -1073,7 +1066,7 @@ def record_scale(d):
     th = load(d["threads"], ["photons_emitted", "pair", "threads", "trace_s", "build_s", "total_s"],
               "make bench-threads")
     largest = [(m, row_dict(g.loc[g["photons_emitted"].idxmax()])) for m, g in sc.groupby("method", sort=False)]
-    two = [{"photons": ph, **{col: speedup_stats(g, col) for col in ("trace_s", "build_s", "total_s")}}
+    two = [{"photons": ph, **{col: threads.speedup(g, col) for col in ("trace_s", "build_s", "total_s")}}
            for ph, g in th.groupby("photons_emitted")]
     conv = None
     c = sc[sc["method"] == "conventional"]
@@ -1082,7 +1075,7 @@ def record_scale(d):
         g = th[th["photons_emitted"] == r["photons_emitted"]]
         t2 = g[g["threads"] == 2]["total_s"]
         conv = {**row_dict(r), "two_total_median": np.median(t2) if len(t2) else None, "two_total_pairs": len(t2),
-                "trace": speedup_stats(g, "trace_s"), "build": speedup_stats(g, "build_s")}
+                "trace": threads.speedup(g, "trace_s"), "build": threads.speedup(g, "build_s")}
     # both methods at the largest map they share: the totals and each phase's difference
     both = None
     c, q = sc[sc["method"] == "conventional"], sc[sc["method"] == "precomputed"]
@@ -1976,8 +1969,8 @@ def md_scale(rec):
                  for x, what in ((t["trace_s"], "photon pass"), (t["build_s"], "kd-tree build"),
                                  (t["total_s"], "total"))]
         pairs = t["total_s"][3] if t["total_s"] is not None else 0
-        lines.append(f"- Two threads against one at {int(t['photons']):,} emitted photons (median of {pairs} back-to-back "
-                     f"pairs [smallest, largest], `bench/threads.csv`): " + ", ".join(parts) + ".")
+        lines.append(f"- Two threads against one at {int(t['photons']):,} emitted photons (geometric mean of {pairs} "
+                     f"back-to-back pairs [95% t interval over the pairs], `bench/threads.csv`): " + ", ".join(parts) + ".")
     return "Performance at scale", lines
 
 
@@ -2552,7 +2545,9 @@ def readme_scale(rec):
     pairs = (f"{fmt(r['two_total_median'])} s in total (median of {r['two_total_pairs']} pairs; "
              f"{fmt(r['total_s'])} s in the scaling run)"
              if r["two_total_pairs"] else f"{fmt(r['total_s'])} s in total (the scaling run)")
-    speed = (f"; two threads against one: photon pass {fmt(r['trace'][0])}x, build {fmt(r['build'][0])}x"
+    speed = (f"; two threads against one (geometric mean over {r['trace'][3]} pairs, 95% t interval): photon pass "
+             f"{fmt(r['trace'][0])}x [{fmt(r['trace'][1])}, {fmt(r['trace'][2])}], build {fmt(r['build'][0])}x "
+             f"[{fmt(r['build'][1])}, {fmt(r['build'][2])}]"
              if r["trace"] is not None and r["build"] is not None else "")
     b = rec["both"]
     methods = ""

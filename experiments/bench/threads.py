@@ -1,26 +1,33 @@
 """experiments/bench/threads.py: the table of results/bench/threads.md from
 results/bench/threads.csv (experiments/bench/threads.sh): per emitted photon
-count and phase, the speed-up of 2 threads over 1 as the median of the paired
-ratios t1/t2 (pairs ran back to back, order alternating), with the smallest
-and largest pair. Raises ValueError on a CSV without both thread counts."""
+count and phase, the speed-up of 2 threads over 1 as the geometric mean of
+the paired ratios t1/t2 (pairs ran back to back, order alternating), with its
+95% t interval over the pairs (stats.paired_log_ratio, as every time ratio
+of the project). Raises ValueError on a CSV without both thread counts."""
 import subprocess
 import sys
 
 import numpy as np
 import pandas as pd
 
+from experiments.analysis import stats
+
 PHASES = [("trace_s", "photon pass"), ("build_s", "kd-tree build"),
           ("eye_s", "eye pass"), ("total_s", "total")]
 
 
-def speedups(g, col):
-    """The paired speed-ups t(1 thread) / t(2 threads) of column COL over the
-    pairs of G (one emitted photon count's rows of threads.csv), as an array
-    in pair order (empty when no pair has both renders)."""
+def speedup(g, col):
+    """(speed-up, lo, hi, pairs) of column COL over the pairs of G (one
+    emitted photon count's rows of threads.csv): the geometric mean of
+    t(1 thread) / t(2 threads) with its 95% t interval over the pairs
+    (stats.paired_log_ratio; nan interval under two pairs, None without a
+    pair)."""
     one = g[g.threads == 1].set_index("pair")
     two = g[g.threads == 2].set_index("pair")
     pairs = one.index.intersection(two.index)
-    return (one.loc[pairs, col] / two.loc[pairs, col]).to_numpy(np.float64)
+    if not len(pairs):
+        return None
+    return stats.paired_log_ratio(one.loc[pairs, col].to_numpy(np.float64), two.loc[pairs, col].to_numpy(np.float64))
 
 
 def main(path):
@@ -33,7 +40,7 @@ def main(path):
            f"`make bench-threads` (experiments/bench/threads.sh), commit `{commit}`: cornell, "
            "conventional, n = 100, 512x384; each pair renders on 1 and 2 threads back to back "
            "(order alternating); the renderer's own phase timers. Speed-up = t(1 thread) / "
-           "t(2 threads), median over the pairs [smallest, largest].", "",
+           "t(2 threads), the geometric mean over the pairs [95% t interval over the pairs].", "",
            "| emitted | stored | pairs | " + " | ".join(l for _, l in PHASES) + " | total, 2 threads (s) |",
            "|---:|---:|---:|" + "---:|" * len(PHASES) + "---:|"]
     for p, g in df.groupby("photons_emitted"):
@@ -42,8 +49,8 @@ def main(path):
         pairs = one.index.intersection(two.index)
         cells = []
         for col, _ in PHASES:
-            r = speedups(g, col)
-            cells.append(f"{np.median(r):.2f}x [{r.min():.2f}, {r.max():.2f}]")
+            r = speedup(g, col)
+            cells.append("-" if r is None else f"{r[0]:.2f}x [{r[1]:.2f}, {r[2]:.2f}]")
         t2 = np.median(two.loc[pairs, "total_s"])
         out.append(f"| {p:,} | {int(g.photons_stored.iloc[0]):,} | {len(pairs)} | "
                    + " | ".join(cells) + f" | {t2:.2f} |")
