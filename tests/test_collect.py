@@ -177,3 +177,16 @@ def test_runs_carry_the_processes(tmp_path):
     runs, _ = collect.collect(args)
     got = runs.set_index(["method", "seed"])["processes"]
     assert got[("conventional", 1)] == 2 and got[("precomputed", 1)] == 1 and got[("conventional", 2)] == 1
+
+
+def test_broken_reference_json_is_bad_input(tmp_path):
+    """A reference whose JSON beside it is not JSON is bad input: exit 2
+    naming the JSON (control: without a JSON the error is not measured,
+    nan, and nothing exits)."""
+    ref = tmp_path / "ref.exr"
+    ref.write_bytes(b"")
+    assert math.isnan(collect.reference_error(str(ref))[1])
+    (tmp_path / "ref.json").write_text("{not json")
+    with pytest.raises(SystemExit) as e:
+        collect.reference_error(str(ref))
+    assert e.value.code == 2

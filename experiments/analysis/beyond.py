@@ -397,8 +397,8 @@ def case_references(table, cases):
     bias in relMSE (reference.measured: nan when not measured), the case's
     tightest equal-error target (the smallest finite `tightest` of its rows
     in TABLE; None when there is none) and reference.describe's sentence
-    checked against it. Exits 1 naming a reference's JSON that cannot be
-    read."""
+    checked against it. Exits 2 (bad input) naming a reference's JSON that
+    is not JSON or lacks the numbers."""
     out = {}
     for cid, (_scene, _size, ref) in cases.items():
         t = table.loc[table["case"] == cid, "tightest"] if "tightest" in table else pd.Series([], dtype=float)
@@ -407,7 +407,7 @@ def case_references(table, cases):
         try:
             _info, noise, bias = reference.measured(ref)
         except ValueError as e:
-            report.die(WHERE, str(e))
+            report.die(WHERE, str(e), report.EXIT_BAD_INPUT)
         # nan, not None: the sentence then says that there is no target to check it against
         sentence = (reference.describe(ref, math.nan if tightest is None else tightest) if ref else
                     "No reference is named for this case: its own error is not measured.")

@@ -148,11 +148,12 @@ def reference_error(ref_path):
     """(info, ref_noise, ref_bias) of the reference at REF_PATH for
     runs.csv (reference.measured: None, nan, nan when not measured, or
     measured in other units than relmse_ref, so nothing is subtracted);
-    exits 1 naming its JSON when that is unreadable."""
+    exits 2 (bad input) naming its JSON when that is not JSON or lacks the
+    numbers."""
     try:
         return reference.measured(ref_path)
     except ValueError as e:
-        report.die("collect.py", str(e))
+        report.die("collect.py", str(e), report.EXIT_BAD_INPUT)
     return None, math.nan, math.nan
 
 

@@ -266,14 +266,14 @@ def grid_reference(ref, rows):
     its reference REF's noise and bias in relMSE (reference.measured: nan
     when not measured), the grid's tightest equal-error target (the
     smallest target of its equal-error ROWS; None without one) and
-    reference.describe's sentence checked against it. Exits 1 naming a
-    reference's JSON that cannot be read."""
+    reference.describe's sentence checked against it. Exits 2 (bad input)
+    naming a reference's JSON that is not JSON or lacks the numbers."""
     t = [r["target"] for r in rows if report.isnum(r["target"]) and math.isfinite(r["target"])]
     tightest = min(t) if t else None
     try:
         _info, noise, bias = reference.measured(ref)
     except ValueError as e:
-        report.die("gather.py", str(e))
+        report.die("gather.py", str(e), report.EXIT_BAD_INPUT)
     # nan, not None: the sentence then says that there is no target to check it against
     sentence = (reference.describe(ref, math.nan if tightest is None else tightest) if ref else
                 "No reference is named for it (--ref): its own error is not reported here.")
