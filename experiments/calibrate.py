@@ -235,6 +235,8 @@ def driver(phase, name):
 
 
 def drivers(photons, nn, samples):
+    """What the counters grow with (driver) in a render of PHOTONS emitted photons, n = NN and SAMPLES
+    eye samples: {"P": PHOTONS, "Pn": PHOTONS x NN, "S": SAMPLES, "Sn": SAMPLES x NN}."""
     return {"P": float(photons), "Pn": float(photons) * nn, "S": float(samples), "Sn": float(samples) * nn}
 
 
@@ -574,6 +576,9 @@ def write(out, model, fitted, held, median, largest, knobs, provenance):
 
 
 def main(argv=None):
+    """Command line: see the module docstring; renders, fits and writes the model to --out (with
+    --refit, refits DIR's renders instead). Returns 0, or 1 when a calibration render fails or --refit's
+    files cannot be read; a bad timing knob is a usage error (exit 2)."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--pm", default="build/photonmap")
     ap.add_argument("--out", default=DEFAULT_OUT)

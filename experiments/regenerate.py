@@ -97,6 +97,7 @@ def sha256(path):
 
 
 def pin_dir(results):
+    """The folder under RESULTS that holds the pinned renderer: RESULTS/runs/.renderer."""
     return os.path.join(results, "runs", ".renderer")
 
 
@@ -362,6 +363,9 @@ def check(results, same=None):
 
 
 def main(argv=None):
+    """Command line: see the module docstring (run or check). Returns run's status, or check's: 0
+    without a problem, 1 with any (each printed on stderr); 1 on a RegenError; an --only target that is
+    not a study target is a usage error (exit 2)."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = ap.add_subparsers(dest="cmd", required=True)
     r = sub.add_parser("run", help="run every study target with the pinned renderer, logged")

@@ -246,6 +246,8 @@ def block_compare(t, r, block=BLOCK_PX):
     h, w = r.shape[:2]
     bh, bw = max(1, h // block), max(1, w // block)
     def down(x):
+        """The image X (h x w x 3) box-averaged into bh x bw blocks, the rows and columns that fill no
+        whole block dropped."""
         x = x[:bh * (h // bh), :bw * (w // bw)]
         return x.reshape(bh, h // bh, bw, w // bw, 3).mean(axis=(1, 3))
     tb, rb = down(t), down(r)
@@ -423,6 +425,8 @@ def gather_verdict(g):
         parts.append(f"the gather phase alone {fnum(r['speedup'], 2)}x [{fnum(r['lo'], 2)}, {fnum(r['hi'], 2)}]")
     best = g[g["kind"] == "best"].sort_values("target", ascending=False)
     def tie_text(r):
+        """', not told apart from K other cells' of a best row R with K ties; '' without ties (or without
+        the ties column)."""
         k = int(r["ties"]) if "ties" in r and math.isfinite(float(r["ties"])) else 0
         return f", not told apart from {k} other cell{'s' if k > 1 else ''}" if k else ""
     picks = [f"{fnum(r['target'], 2)}: {r['mode']} {r['setting']} ({fnum(r['conventional_s'])} s{tie_text(r)})"

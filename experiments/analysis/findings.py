@@ -1687,6 +1687,9 @@ def md_figure3(rec):
 
 
 def readme_figure3(rec):
+    """README's summary bullet on the paper's Figure 3 claim from its record REC: at each of Figure 3's
+    cells in table1.csv, what the paper says and the paired data's verdict; raises Missing when table1.csv has
+    none of those cells."""
     parts = []
     for r in rec["rows"]:
         if r["present"] and PRIMARY_ESTIMATE in r:
@@ -2176,6 +2179,9 @@ def count_list(items):
 
 
 def readme_table(rec):
+    """README's summary bullet on Table 1 from its record REC: the paired time ratio's course over n at
+    the smallest P_e beside the paper's, the cells whose interval holds the paper's value, and where ours is
+    faster while the paper's method was slower; raises Missing when table1.csv has no precomputed row."""
     phs = rec["photons"]
     if not phs:
         raise Missing("`table1.csv` has no precomputed row (`make reproduce-table`)")
@@ -2255,6 +2261,9 @@ def undetermined_text(rec):
 
 
 def readme_precompute(rec):
+    """README's summary bullet on what may explain Table 1's largest P_e (finding T) from its record
+    REC: our precompute's share of the precomputed method's time there beside the paper's as a model puts
+    it, with the model's assumption."""
     return (f"- **What may explain P_e = {k_of(rec['top'])} (a model, not a measurement)**: there our precompute takes "
             f"{pct(100 * rec['ours_share'][0])}-{pct(100 * rec['ours_share'][1])}% of the precomputed method's time "
             f"(median {fmt(1e6 * rec['ours_per_rep'])} µs per representative); if the paper's other phases scaled "
@@ -2277,6 +2286,9 @@ def vs_one_word(v):
 
 
 def readme_equal_error(rec):
+    """README's summary bullet on the speed-up at equal error from its record REC: where the primary
+    estimate's curve starts, its headline and trend_text; raises Missing when that estimate's fronts share
+    no error."""
     r = estimate_of(rec["estimates"], PRIMARY_ESTIMATE)
     t = r["tightest"]
     head = "**The speed-up at equal error is a curve, not a number**" if r["span_rank"] in ("lower", "higher") \
@@ -2319,6 +2331,9 @@ def within_margin_text(group):
 
 
 def readme_cost(rec):
+    """README's summary bullet on what the speed costs from its record REC: the paired verdict on the
+    precomputed method's error per cell (Holm over the cells), the largest excess, and the cells where the
+    other estimate's verdict differs; raises Missing when table1.csv has no verdicts of the primary estimate."""
     words = {"higher": "higher", "equivalent": f"equivalent within {fmt(100 * stats.EQUIVALENCE_MARGIN)}%",
              "lower": "lower", "undetermined": "undetermined"}
     if PRIMARY_ESTIMATE not in rec["verdicts"]:
@@ -2375,6 +2390,10 @@ def regions_head(runs):
 
 
 def readme_resolution(rec):
+    """README's summary bullet on small images from its record REC: where on the smallest size's
+    equal-error curve the precomputation pays, and the speed-up at the largest size's headline target;
+    raises Missing with fewer than two sizes, or when the smallest or the largest has no target that enough
+    resamples reach on both fronts."""
     sizes = rec["sizes"]
     if len(sizes) < 2:
         raise Missing(f"fewer than two `{rec['dir']}/equal-error-WxH.csv` (`make resolution`)")
@@ -2415,6 +2434,9 @@ def bias_equivalence_text(rec):
 
 
 def readme_bias(rec):
+    """README's summary bullet on the paper's estimator's bias from its record REC: the paper estimate at
+    the quoted n against the law n/(n-1), the corrected estimate's equivalence to the exact radiance, and
+    the precomputed method's paper estimate where the file has it."""
     at = rec["quoted"]
     return (f"- **The paper's estimator is biased{' by a law' if at['on_law'] else ''}**: "
             f"{fmt(at['mean'], 5)} ± {fmt(at['ci95'], 2)} at n = {int(at['n'])} "
@@ -2437,6 +2459,8 @@ def law_text(rec):
 
 
 def readme_rules(rec):
+    """README's summary bullet on the representative rules from its record REC: how many of the rules
+    the paper's times reject after Holm, and how that count moves with the noise assumed."""
     bad, n = rec["rejected"], len(rec["rows"])
     head = ("**Which photons are representatives is not settled by the paper's times**: no representative rule "
             f"of the {n} is rejected after Holm" if len(bad) == 0 else
@@ -2447,6 +2471,9 @@ def readme_rules(rec):
 
 
 def readme_beyond(rec):
+    """README's summary bullet on the variants beyond the paper's rule from its record REC: the paired
+    tests of each case's variants against the paper's rule, and the cases where the goal holds; raises
+    Missing when no case is quoted."""
     if not rec["decided"]:
         raise Missing(f"`beyond.csv` quotes no case: each at a target that fewer than {100 * ee.DEFINED_MIN:.0f}% "
                       "of the resamples reach on both fronts, or with too few seeds (`make beyond` again)")
@@ -2475,6 +2502,9 @@ def readme_beyond(rec):
 
 
 def readme_repro(rec):
+    """README's summary bullet on a rerun from its record REC: in how many cells the two runs' paired
+    ratios' intervals overlap, their median and largest shift against the goal, and the same render's
+    change between two processes where the file has it."""
     all_in = rec["overlap"] == rec["cells"]
     head = ("A rerun lands inside the first run's intervals, within the goal" if all_in and rec["met"]
             else "A rerun does not land inside the first run's intervals everywhere" if not all_in
@@ -2490,6 +2520,8 @@ def readme_repro(rec):
 
 
 def readme_peers(rec):
+    """README's summary bullet on the kd-tree's k nearest against the peers from its record REC
+    (peers_body under its head); raises Missing without a tile-order cell."""
     return f"- **The kd-tree's k nearest against the peers**: {peers_body(rec)}"
 
 
@@ -2539,6 +2571,9 @@ def noise_bound_text(ph):
 
 
 def readme_scale(rec):
+    """README's summary bullet on performance at scale from its record REC: the conventional method's
+    largest map (its time, memory and two-thread speed-ups) and both methods at the largest map they
+    share; raises Missing when scaling.csv has no conventional row."""
     r = rec["conventional"]
     if r is None:
         raise Missing("`scaling.csv` has no conventional row (`make bench-scaling`)")
@@ -2598,6 +2633,8 @@ def brief_table(rec):
 
 
 def brief_precompute(rec):
+    """FINDINGS.md's opening bullet on where the precomputed method's time goes: our precompute's
+    share of that method's time at the largest P_e beside the paper's as a model puts it."""
     return (f"- **A possible reason (a model, not a measurement).** At P_e = {k_of(rec['top'])} our precompute is {pct(100 * rec['ours_share'][0])}-"
             f"{pct(100 * rec['ours_share'][1])}% of the precomputed method's time; a model from the paper's single-run "
             f"times, without intervals and not consistent across its cells, puts the paper's at "
@@ -2606,6 +2643,8 @@ def brief_precompute(rec):
 
 
 def brief_figure3(rec):
+    """FINDINGS.md's opening bullet on Figure 3: at how many of its cells the paired errors agree
+    with what the paper says, and the verdict at each; raises Missing when table1.csv has none of them."""
     rows = [r for r in rec["rows"] if r["present"] and PRIMARY_ESTIMATE in r]
     if not rows:
         raise Missing("`table1.csv` has none of Figure 3's cells (`make reproduce-table`)")
@@ -2632,6 +2671,9 @@ def brief_equal_error(rec):
 
 
 def brief_cost(rec):
+    """FINDINGS.md's opening bullet on the cost in accuracy: in how many cells the precomputed method's
+    error is higher, equivalent, lower or undetermined; raises Missing when table1.csv has no verdicts of
+    the primary estimate."""
     if PRIMARY_ESTIMATE not in rec["verdicts"]:
         raise Missing(f"`table1.csv` has no {PRIMARY_ESTIMATE}-estimate verdicts (`make reproduce-table`)")
     g = rec["verdicts"][PRIMARY_ESTIMATE]["groups"]
@@ -2649,6 +2691,9 @@ def brief_cost(rec):
 
 
 def brief_resolution(rec):
+    """FINDINGS.md's opening bullet on small images: at the smallest size, at how many of the
+    targets enough resamples reach the precomputation pays, is slower or is undetermined; raises Missing
+    with fewer than two sizes, or when the primary estimate's fronts there share no error."""
     sizes = rec["sizes"]
     if len(sizes) < 2:
         raise Missing(f"fewer than two `{rec['dir']}/equal-error-WxH.csv` (`make resolution`)")
@@ -2661,6 +2706,9 @@ def brief_resolution(rec):
 
 
 def brief_bias(rec):
+    """FINDINGS.md's opening bullet on the paper's estimator's bias: the paper estimate at the quoted n
+    against its law (and the precomputed method's where the file has it), and in how many cases the
+    corrected estimate is shown equivalent to the exact value."""
     at = rec["quoted"]
     p = at["precomputed"]
     return (f"- **The paper's estimator is biased{' by n/(n-1)' if at['on_law'] else ''}.** In the analytic scene "
@@ -2692,6 +2740,8 @@ def bias_rest_text(rec):
 
 
 def brief_rules(rec):
+    """FINDINGS.md's opening bullet on the representatives: how many of the rules tried the paper's
+    times reject, and how that moves with the noise assumed."""
     bad, n = rec["rejected"], len(rec["rows"])
     return ("- **Representatives.** " + (f"The paper's times reject none of the {n} rules we tried for which "
                                          "photons are representatives" if not bad else
@@ -2701,6 +2751,8 @@ def brief_rules(rec):
 
 
 def brief_beyond(rec):
+    """FINDINGS.md's opening bullet on the variants beyond the paper's rule: what the paired tests
+    against it say over the cases; raises Missing when no case is quoted."""
     if not rec["decided"]:
         raise Missing("`beyond.csv` quotes no case (`make beyond`)")
     return ("- **Beyond the paper's rule.** Of lazy evaluation, the plane-gated lookup and both together, paired "
@@ -2720,6 +2772,8 @@ def brief_gather(rec):
 
 
 def brief_repro(rec):
+    """FINDINGS.md's opening bullet on a rerun: the median shift of the time ratios against the goal,
+    and the same render's change between two processes where the file has it."""
     met = rec["met"]
     return (f"- **A rerun.** A second run of Table 1 moves the time ratios by a median "
             f"{report.fmt_fixed(rec['median_pp'], 2)} pp (goal {fmt(rec['goal_pp'])} pp: "
@@ -2730,6 +2784,8 @@ def brief_repro(rec):
 
 
 def brief_peers(rec):
+    """FINDINGS.md's opening bullet on the k-nearest search: how many times as many queries ours
+    answers as the strongest peer, per k; raises Missing without a tile-order cell."""
     rows = rec["rows"]
     if not rows:
         raise Missing(f"`{rec['file']}` has no tile-order cell (`make bench`)")
@@ -2743,6 +2799,9 @@ def brief_peers(rec):
 
 
 def brief_scale(rec):
+    """FINDINGS.md's opening bullet on performance at scale: the conventional method's time and
+    memory at its largest map, and both methods' totals at the largest map they share; raises Missing
+    when scaling.csv has no conventional row."""
     r, b = rec["conventional"], rec["both"]
     if r is None:
         raise Missing("`scaling.csv` has no conventional row (`make bench-scaling`)")

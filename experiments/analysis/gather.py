@@ -89,6 +89,8 @@ def stats_of(run):
 
 
 def report_load(path):
+    """The JSON object in PATH (runs.load_json); exits 1 naming the file when it is unreadable or
+    not JSON."""
     from experiments.analysis import runs as layout
     try:
         return layout.load_json(path)
@@ -120,6 +122,7 @@ def samples_of(runs, method, time_col, seeds_out=None):
 
 
 def cell_label(key):
+    """'P_e=50000 n=10 N=64' of a gather cell KEY (P_e, n, N)."""
     return f"P_e={key[0]} n={key[1]} N={key[2]}"
 
 
@@ -256,6 +259,8 @@ def direct_samples(path, time_col):
 
 
 def setting_label(key):
+    """The label of a setting KEY: cell_label's of a gather cell (P_e, n, N), 'P_e=50000 n=10' of
+    a cell of the map seen directly (P_e, n), '' for None."""
     if key is None:
         return ""
     return cell_label(key) if len(key) == 3 else f"P_e={key[0]} n={key[1]}"
@@ -405,6 +410,9 @@ def parse_grid_args(items):
 
 
 def main(argv=None):
+    """Command line: see the module docstring; writes OUT.md, OUT.csv and, with --figure, the figure. Exits 1
+    when no grid has an ok render, 2 when one scene and size are given two references (--ref), and as its
+    readers do on a missing or malformed input."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--grid", nargs=4, action="append", required=True, metavar=("SCENE", "SIZE", "N", "RUNS_CSV"))
     ap.add_argument("--ref", nargs=3, action="append", default=[], metavar=("SCENE", "SIZE", "REF"),

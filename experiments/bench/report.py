@@ -25,6 +25,9 @@ import pandas as pd
 
 
 def icount(prefix, before_csv):
+    """Prints the Markdown table of instructions per query per (P_e, k, order) from the callgrind
+    dumps PREFIX.*: ours now beside the kd-tree of before (BEFORE_CSV), nanoflann, FLANN when present and
+    our other modes; exits 1 when there is no dump."""
     rows = []
     for path in glob.glob(prefix + ".*"):
         desc = total = None
@@ -60,6 +63,8 @@ def icount(prefix, before_csv):
 
 
 def heavy(rows_file):
+    """Prints one Markdown row per method of ROWS_FILE: the median render, precompute and total seconds
+    over its runs and the largest RSS (KiB)."""
     d = pd.read_csv(rows_file, sep=" ", names=["method", "render_s", "precompute_s", "total_s", "rss_kib"])
     for method, g in d.groupby("method", sort=False):
         print(f"| {method} | {g['render_s'].median():.2f} | {g['precompute_s'].median():.2f} | "
@@ -91,6 +96,9 @@ def strongest_peer(med):
 
 
 def peers(csv):
+    """Prints the peers tables of CSV (bench --peers): per cell each tree's queries/s (median over the
+    runs) and ours against each peer and the strongest, the builds' times, and the neighbour-set checks;
+    exits 1 naming how many sets did not check."""
     d = pd.read_csv(csv)
     runs = d[~d["rep"].isin(["build", "check"])].copy()
     checks = d[d["rep"] == "check"]

@@ -63,6 +63,7 @@ def fit_slope(x, y):
 
 
 def fmt_count(n):
+    """N as '20M' or '50k' when it is a whole number of millions or thousands, else in digits."""
     n = int(n)
     if n >= 1000000 and n % 1000000 == 0:
         return "%dM" % (n // 1000000)
@@ -72,6 +73,7 @@ def fmt_count(n):
 
 
 def fmt_slope(s, lo, hi):
+    """'S [LO, HI]' to two decimals, 'S' without an interval (LO nan), '-' when S is nan."""
     if math.isnan(s):
         return "-"
     if math.isnan(lo):
@@ -91,6 +93,10 @@ def repeats_text(rows):
 
 
 def markdown(rows, load, commit, threads):
+    """scaling.md's text from the CSV's ROWS: per method its table of phase times and memory per
+    count of emitted photons, each phase's fitted slope, and the largest count's total and memory; LOAD
+    (the load average) and COMMIT are quoted in its header, THREADS there and in the trace's CPU time per
+    emitted photon."""
     out = ["# Scaling: each phase's cost against the work", ""]
     out.append("Written by `make bench-scaling` (experiments/bench/scaling.sh, scaling.py) from "
                "`results/bench/scaling.csv`: scenes/cornell.scene, n = 100, 512x384, %s threads, %s; "
@@ -139,6 +145,9 @@ def markdown(rows, load, commit, threads):
 
 
 def plot(rows, path):
+    """Writes the figure of ROWS to PATH (PNG): per method each phase's seconds against the emitted
+    photons, log-log, with its fitted slope and a slope-1 guide, and both methods' peak bytes per stored
+    photon."""
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
     for ax, method in zip(axes[:2], METHODS):
         rs = sorted((r for r in rows if r["method"] == method), key=lambda r: r["photons_emitted"])
@@ -179,6 +188,8 @@ def plot(rows, path):
 
 
 def main():
+    """Command line: see the module docstring; writes --md and --png from the CSV, and exits 1 when
+    the CSV has no rows."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("csv")
     ap.add_argument("--md", required=True)
