@@ -1202,8 +1202,9 @@ def test_brief_table_equal_error_and_gather_wording():
 def test_renderers_sentence_names_each_studys_renderer():
     """The sentence FINDINGS.md and README's summary open with: one renderer
     when every study's last attempt ended ok on it; two named with their
-    studies when a regeneration on a newer one is under way, and a target
-    whose last attempt did not end ok named as such; none without a log."""
+    studies when a regeneration on a newer one is under way (a study's files
+    are its last ok attempt's: a later killed one changes nothing), and a
+    target with no finished attempt named as such; none without a log."""
     from experiments import regenerate
     with tempfile.TemporaryDirectory() as d:
         assert findings.renderers(d, "log.md") == ""
@@ -1212,9 +1213,10 @@ def test_renderers_sentence_names_each_studys_renderer():
         regenerate.write_log(d, rows)
         assert findings.renderers(d, "log.md") == "Every study's files come from renderer `aaaaaaa` ([regeneration-log.md](log.md))."
         rows += [dict(row, target="reproduce-table", renderer="bbbbbbb22222"),
-                 dict(row, target="gather", renderer="bbbbbbb22222", status="running", ended="")]
+                 dict(row, target="gather", renderer="bbbbbbb22222", status="running", ended=""),
+                 dict(row, target="caustic", renderer="bbbbbbb22222", status="exit 1")]
         regenerate.write_log(d, rows)
         line = findings.renderers(d, "log.md")
         assert "from 2 renderers" in line and "`bbbbbbb` made `reproduce-table`" in line
-        assert "`aaaaaaa` made `figures`;" in line and line.count("`gather`") == 1
-        assert "the last attempt of `gather` did not end ok" in line
+        assert "`aaaaaaa` made `figures`, `gather`;" in line and line.count("`gather`") == 1
+        assert "no attempt of `caustic` has ended ok" in line

@@ -2876,24 +2876,26 @@ def renderers(root, link):
     """The sentence that names the renderer each study's files come from,
     linking the log as LINK:
     per target of ROOT/regeneration-log.csv, the pinned renderer of its last
-    attempt where that ended ok ('' without a log). Studies regenerated at
-    different times (a regeneration goes on across machines, one study at a
-    time) may come from different renderers; the sentence says which."""
+    attempt that ended ok (a later attempt, killed or failed, wrote no
+    results file: they are written at the end, through temporary names);
+    '' without a log. Studies regenerated at different times (a regeneration
+    goes on across machines, one study at a time) may come from different
+    renderers; the sentence says which, and names a target with no finished
+    attempt."""
     path = os.path.join(root, "regeneration-log.csv")
     if not os.path.exists(path):
         return ""
     log = pd.read_csv(path, dtype=str, keep_default_na=False)
-    by, unfinished = {}, []
-    for target, row in log.groupby("target", sort=False).tail(1).set_index("target").iterrows():
-        if row["status"] == "ok":
-            by.setdefault(row["renderer"][:7], []).append(f"`{target}`")
-        else:
-            unfinished.append(f"`{target}`")
+    ok = log[log["status"] == "ok"].groupby("target", sort=False).tail(1).set_index("target")
+    by = {}
+    for target, row in ok.iterrows():
+        by.setdefault(row["renderer"][:7], []).append(f"`{target}`")
+    unfinished = [f"`{t}`" for t in dict.fromkeys(log["target"]) if t not in ok.index]
     parts = [f"`{r}` made {', '.join(ts)}" for r, ts in by.items()]
     head = (f"Every study's files come from renderer `{next(iter(by))}`" if len(by) == 1 else
             f"The studies come from {len(by)} renderers (a regeneration on a newer one goes on study by study): "
             + "; ".join(parts)) if by else "No study has finished"
-    tail = f"; the last attempt of {', '.join(unfinished)} did not end ok" if unfinished else ""
+    tail = f"; no attempt of {', '.join(unfinished)} has ended ok" if unfinished else ""
     return f"{head}{tail} ([regeneration-log.md]({link}))."
 
 
