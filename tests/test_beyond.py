@@ -255,13 +255,13 @@ def test_case_references_name_each_reference_error(tmp_path):
 
 
 def test_case_references_refuse_a_broken_json(tmp_path, capsys):
-    """A JSON beside a case's reference that is not JSON: exit 1 naming it."""
+    """A JSON beside a case's reference that is not JSON: bad input, exit 2 naming it."""
     exr = str(tmp_path / "r.exr")
     with open(str(tmp_path / "r.json"), "w") as f:
         f.write("[")
     with pytest.raises(SystemExit) as e:
         beyond.case_references(pd.DataFrame({"case": ["a"], "tightest": [0.01]}), {"a": ("s", "8x6", exr)})
-    assert e.value.code == 1 and "r.json" in capsys.readouterr().err
+    assert e.value.code == 2 and "r.json" in capsys.readouterr().err
 
 
 def test_main_reports_the_references(tmp_path, monkeypatch):
