@@ -62,7 +62,7 @@ caustic: ## the Fig. 3 cells on the caustic scene, caustic-window error over see
 resolution: ## cheapest settings per output size -> results/resolution/
 gather: ## final gathering (--gather N), both methods over P_e x n x N on every scene and cornell's sizes: equal-error and gather-phase speed-ups, best configuration per target -> results/gather/, figures/gather.png (Snakemake: studies.yaml, rules/gather.smk)
 estimator-bias: ## both estimators' bias in the analytic scene over n -> results/estimator-bias/ (Snakemake: studies.yaml, rules/bias.smk)
-reproducibility: ## the grid twice, runs interleaved: how far the paired ratios move between runs -> results/reproducibility/
+reproducibility: ## Table 1's grid again after Table 1 (run b), then again with a busy loop on the other core (run busy), not interleaved: how far the paired ratios move between runs -> results/reproducibility/
 findings: ## results/FINDINGS.md from the results files; checks that README's findings numbers are in results/
 scenes: ## the grid on every scene: equal-error speed-up, kNN share, where the error lies -> results/scenes/
 beyond: ## the paper's rule, lazy, gated and lazy+gated representatives at equal error per scene and size -> results/beyond/, figures/beyond.png

@@ -4,9 +4,13 @@ experiments/calibrate.py) predicts for the study's renders that are missing
 (no record yet), each at its --repeats (TIME_REPEATS, or 1 where the study
 renders it once) in its processes (TIME_PROCESSES, or 1 there; the
 processes the photon pass's gauge adds, TIME_GAUGE, depend on the machine
-at the time and are not predicted: runs.csv's gauge_added counts them):
+at the time and are not predicted: runs.csv's gauge_added counts them).
+The model predicts a render's minimum over its repeats, so the time is of
+the repeats at their minimum; the wall a study takes is longer (repeats
+above their minimum, the processes the gauge adds, each process's start and
+image writing), and the line says so:
 
-    predicted: 12 renders missing, about 0 h 7 min on this machine (cost model results/calibrate/model.json of 2026-12-05)
+    predicted: 12 renders missing, about 0 h 7 min on this machine at the repeats' minima; the wall is longer (repeats above their minimum, processes the gauge adds, each process's start) (cost model results/calibrate/model.json of 2026-12-05)
 
 or "no cost model: run make calibrate" when there is none. The Snakefile
 prints it when make's front door passes PREDICT=1 (a dry run:
@@ -82,7 +86,8 @@ def line(study, path=None):
         else:
             seconds += t
     text = (f"predicted: {len(todo)} render{'' if len(todo) == 1 else 's'} missing, about {duration(seconds)} "
-            f"on this machine (cost model {path} of {calibrate.model_date(path)})")
+            f"on this machine at the repeats' minima; the wall is longer (repeats above their minimum, processes "
+            f"the gauge adds, each process's start) (cost model {path} of {calibrate.model_date(path)})")
     if unknown:
         text += (f"; {unknown} of them not predicted (final gathering or a method the cost model did not "
                  "calibrate), so the time is a lower bound")

@@ -50,8 +50,9 @@ def test_constant_time_times_repeats(tmp_path):
     240 s = 1 h 36 min."""
     path = fake_model(str(tmp_path), constant=40.0)
     s = studies.load("table1", dict(TINY, RESULTS=str(tmp_path)))
-    assert prediction.line(s) == (f"predicted: 32 renders missing, about 2 h 8 min on this machine "
-                                  f"(cost model {path} of 2026-01-02)")
+    assert prediction.line(s) == (f"predicted: 32 renders missing, about 2 h 8 min on this machine at the "
+                                  f"repeats' minima; the wall is longer (repeats above their minimum, processes "
+                                  f"the gauge adds, each process's start) (cost model {path} of 2026-01-02)")
     s1 = studies.load("table1", dict(TINY, RESULTS=str(tmp_path), TIME_PROCESSES="1"))
     assert "32 renders missing, about 1 h 4 min" in prediction.line(s1)
     s2 = studies.load("table1", dict(TINY, RESULTS=str(tmp_path), TIME_REPEATS="2"))
