@@ -485,7 +485,8 @@ def test_record_scale_stability_repro_rules():
         assert r["design"].startswith("two runs of `make reproduce-table`") and r["drift_inside_cells"] == 3
         assert r["busy"]["median_pp"] == 1.0 and r["busy"]["met"]
         text = "\n".join(findings.md_repro(r)[1])
-        assert "in 3 of 9 cells (range 60.0-104.0%)" in text and "(goal 4 pp)" in text and "goal not met." in text
+        assert "in 3 of 9 cells (range 60.0-104.0%)" in text and "(goal 4 pp)" in text and "goal not met (the median shift is above " \
+            "1.5 pp, and the largest shift is above 4 pp, and the drift control lies outside [97%, 103%] in 6 of 9 cells)." in text
         ru = write_csv(d, "rules.csv", [{"rule": k, "label": k.upper(), "fitted": False, "chi2": 1.0, "dof": 3,
                                          "p_value": 0.5, "p_holm": 0.9, "verdict": v}
                                         for k, v in (("a", "incompatible"), ("b", "not rejected"), ("c", "incompatible"))])
@@ -544,7 +545,8 @@ def test_writers_read_only_the_record():
     recs["repro"] = rec
     md_text = findings.markdown({"root": "x"}, recs)
     sm_text = findings.summary({"root": "x"}, recs)
-    assert "1.23 pp (goal 2 pp), largest 5.68 pp; the two runs' intervals overlap in 7 of 9 cells; goal not met." in md_text
+    assert "1.23 pp (goal 2 pp), largest 5.68 pp; the two runs' intervals overlap in 7 of 9 cells; goal not met " \
+        "(the intervals are disjoint in 2 of 9 cells)." in md_text
     assert "overlap in 7 of 9 cells" in sm_text and "largest shift is 5.68 pp" in sm_text
     assert md_text.count("Not answered here: absent.") == len(findings.FINDINGS) - 1
     recs["repro"] = {**rec, "overlap": 9}
@@ -1038,8 +1040,17 @@ def test_brief_writers():
         pass
     rec = {"median_pp": 2.3376, "goal_pp": 1.5, "met": False, "process_change_median": 0.076}
     assert findings.brief_repro(rec) == ("- **A rerun.** A second run of Table 1 moves the time ratios by a median "
-                                         "2.34 pp (goal 1.5 pp: not met); the same render's time moves by a median "
-                                         "7.6% between two processes.")
+                                         "2.34 pp (goal 1.5 pp); goal not met (the median shift is above 1.5 pp); "
+                                         "the same render's time moves by a median 7.6% between two processes.")
+    # a miss is named by the clause that misses: here the drift control alone, not the median within its goal
+    drift = {"median_pp": 1.37, "goal_pp": 1.5, "max_pp": 3.34, "goal_max_pp": 4, "overlap": 24, "cells": 24,
+             "met": False, "drift_lo": 97, "drift_hi": 103, "drift_inside_cells": 22}
+    text = findings.brief_repro(drift)
+    assert "1.37 pp (goal 1.5 pp) and by at most 3.34 pp (goal 4 pp); goal not met (the drift control lies " \
+        "outside [97%, 103%] in 2 of 24 cells)." in text and "median shift is above" not in text
+    assert "but misses the goal" in findings.readme_repro(drift) and "in 2 of 24 cells" in findings.readme_repro(drift)
+    assert findings.repro_verdict(drift | {"met": True}) == "goal met"
+    assert findings.repro_verdict(drift | {"drift_inside_cells": None}) == "goal not met"
     # the opening: brief sentences first, the detailed bullets after, a
     # missing record left out of both
     out = findings.opener({name: findings.Missing("x") for name, _ in findings.SUMMARY} | {"repro": rec | {
