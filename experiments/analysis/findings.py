@@ -2794,8 +2794,9 @@ def brief_gather(rec):
 
 
 def brief_repro(rec):
-    """FINDINGS.md's opening bullet on a rerun: the median shift of the time ratios against the goal,
-    and the same render's change between two processes where the file has it."""
+    """FINDINGS.md's opening bullet on a rerun: the median (and, where the record has its goal, the
+    largest) shift of the time ratios against the goal, the verdict naming the clauses missed
+    (repro_verdict), and the same render's change between two processes where the file has it."""
     largest = (f" and by at most {report.fmt_fixed(rec['max_pp'], 2)} pp (goal {fmt(rec['goal_max_pp'])} pp)"
                if isnum(rec.get("max_pp")) and isnum(rec.get("goal_max_pp")) else "")
     return (f"- **A rerun.** A second run of Table 1 moves the time ratios by a median "
