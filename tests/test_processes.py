@@ -236,12 +236,12 @@ def test_knob_reaches_the_launcher():
 
 
 def test_gauge_knobs_reach_the_launcher():
-    """TIME_GAUGE (default 4) and TIME_PROCESSES_MAX (default 4) are every
+    """TIME_GAUGE (default 4) and TIME_PROCESSES_MAX (default 8) are every
     timed study's --gauge and --max-processes (never below
     TIME_PROCESSES: no room); an untimed study has no gauge; a bad value
     is refused."""
     _, w = words("table1")
-    assert w[w.index("--gauge") + 1] == "4" and w[w.index("--max-processes") + 1] == "4"
+    assert w[w.index("--gauge") + 1] == "4" and w[w.index("--max-processes") + 1] == "8"
     _, w = words("table1", TIME_GAUGE="2.5", TIME_PROCESSES_MAX="6")
     assert w[w.index("--gauge") + 1] == "2.5" and w[w.index("--max-processes") + 1] == "6"
     _, w = words("bias")
@@ -249,8 +249,8 @@ def test_gauge_knobs_reach_the_launcher():
     for bad in ("-1", "four", "1000"):
         with pytest.raises(studies.StudyError, match="TIME_GAUGE="):
             words("table1", TIME_GAUGE=bad)
-    _, w = words("table1", TIME_PROCESSES="5")
-    assert w[w.index("--max-processes") + 1] == "5"
+    _, w = words("table1", TIME_PROCESSES="9")
+    assert w[w.index("--max-processes") + 1] == "9"
     for bad in ("0", "x"):
         with pytest.raises(studies.StudyError, match="TIME_PROCESSES_MAX=.*positive number of processes"):
             words("table1", TIME_PROCESSES_MAX=bad)
