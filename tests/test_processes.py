@@ -236,12 +236,12 @@ def test_knob_reaches_the_launcher():
 
 
 def test_gauge_knobs_reach_the_launcher():
-    """TIME_GAUGE (default 4) and TIME_PROCESSES_MAX (default 8) are every
+    """TIME_GAUGE (default 4) and TIME_PROCESSES_MAX (default 4) are every
     timed study's --gauge and --max-processes (never below
     TIME_PROCESSES: no room); an untimed study has no gauge; a bad value
     is refused."""
     _, w = words("table1")
-    assert w[w.index("--gauge") + 1] == "4" and w[w.index("--max-processes") + 1] == "8"
+    assert w[w.index("--gauge") + 1] == "4" and w[w.index("--max-processes") + 1] == "4"
     _, w = words("table1", TIME_GAUGE="2.5", TIME_PROCESSES_MAX="6")
     assert w[w.index("--gauge") + 1] == "2.5" and w[w.index("--max-processes") + 1] == "6"
     _, w = words("bias")
