@@ -208,6 +208,21 @@ def test_conclusions_record(tmp_path):
     assert len(repstudy.conclusions(study(tmp_path, off=1.0))["kept"]) == 3
 
 
+def test_markdown_names_no_least_rejected_rule_on_a_tie(tmp_path):
+    """Holm caps p at 1, so rules can tie for the largest Holm p: the report
+    then names no rule as the one with the least evidence against it; control:
+    a rule alone at the largest p is named in bold."""
+    res = study(tmp_path, off=3.0)
+    rec = repstudy.conclusions(res)
+    A = type("A", (), {"out": "x", "time": "cpu_s"})
+    one = repstudy.markdown(res, {**rec, "best_ties": [rec["best"]["label"]]}, A, "runs.csv", [])
+    assert f"(the largest Holm p): **{rec['best']['label']}**" in one
+    tie = repstudy.markdown(res, {**rec, "best_ties": ["rule a", "rule b"]}, A, "runs.csv", [])
+    assert "is shared by 2 rules (rule a, rule b), so none has less evidence" in tie
+    assert "(the largest Holm p): **" not in tie
+    assert rec["best"]["label"] in rec["best_ties"]
+
+
 # the synthetic rules' slopes fall with R (every8 is the slow one), so the
 # cost model implies no R and panel (b) has only nan points to draw
 @pytest.mark.filterwarnings("ignore:All-NaN axis encountered:RuntimeWarning")

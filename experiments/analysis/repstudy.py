@@ -482,7 +482,8 @@ def conclusions(res):
     rec = {"size": conv["size"].iloc[0], "seeds": sorted(set(conv["seed"])),
            "paper_ratio": {p: {k: first.loc[p].get(f"paper_slope_ratio{k}") for k in ("", "_lo", "_hi")}
                            for p in sorted(set(fits["photons"]))},
-           "tested": int(scores["p_holm"].notna().sum()), "best": None, "kept": [], "best_shape": None,
+           "tested": int(scores["p_holm"].notna().sum()), "best": None, "best_ties": [], "kept": [],
+           "best_shape": None,
            "sensitivity": [],
            "shared": [r for r in dict.fromkeys(fits["rule"])
                       if fits.loc[fits["rule"] == r, "kind"].iloc[0] == "shared"]}
@@ -493,6 +494,9 @@ def conclusions(res):
         b = tested.assign(_fit=tested["chi2"] / tested["dof"].clip(lower=1)).sort_values(
             ["p_holm", "_fit"], ascending=[False, True]).iloc[0]
         rec["best"] = {k: b[k] for k in ("label", "chi2", "dof", "p_holm")}
+        # Holm's adjustment caps p at 1, so several rules can share the largest:
+        # then none has less evidence against it than the others
+        rec["best_ties"] = tested[tested["p_holm"] == b["p_holm"]]["label"].tolist()
         rec["kept"] = tested[tested["verdict"] == "not rejected"]["label"].tolist()
         shape = scores.dropna(subset=["shape_factor"]).sort_values("shape_factor")
         if len(shape):
@@ -586,10 +590,15 @@ def markdown(res, rec, args, base_path, variant_paths):
             ""]
     b, kept = rec["best"], rec["kept"]
     if b is not None:
+        ties = rec.get("best_ties") or [b["label"]]
+        least = (f"the least evidence against it (the largest Holm p): **{b['label']}** (chi^2 "
+                 f"{fmt(b['chi2'], 3)} with {int(b['dof'])} dof, Holm p = {fmt(b['p_holm'], 2)})"
+                 if len(ties) == 1 else
+                 f"the largest Holm p, {fmt(b['p_holm'], 2)}, is shared by {len(ties)} rules "
+                 f"({', '.join(ties)}), so none has less evidence against it than the others")
         out += [f"**Finding.** Rules not rejected against the paper's slope ratios after Holm over {m} rules: "
-                f"{', '.join(kept) if kept else 'none'}; the least evidence against it (the largest Holm p): "
-                f"**{b['label']}** (chi^2 {fmt(b['chi2'], 3)} with {int(b['dof'])} dof, Holm p = "
-                f"{fmt(b['p_holm'], 2)}); the rules not rejected are not ranked among themselves."
+                f"{', '.join(kept) if kept else 'none'}; {least}; the rules not rejected are not ranked among "
+                "themselves."
                 + (f" Best table shape: {rec['best_shape'][0]} (x{fmt(rec['best_shape'][1], 3)})."
                    if rec["best_shape"] is not None else ""), ""]
         for a in rec["sensitivity"]:
